@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: MIT
+// The subcommands. Each returns the process exit code.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace tumble::cli {
+
+struct RunOptions {
+    std::string scenario_file;
+    std::string output_directory;  // empty: the scenario's [output] directory
+    bool force = false;            // overwrite an earlier run's output
+    bool quiet = false;
+};
+int run_command(const RunOptions& options);
+
+struct BenchOptions {
+    int size = 21;             // lattice edge: 21 -> 9261 spheres (the paper's), 46 -> 97336
+    std::int64_t steps = 2000;
+    std::int64_t warmup = 200;
+    std::uint64_t seed = 1;
+    bool json = false;
+};
+int bench_command(const BenchOptions& options);
+
+}  // namespace tumble::cli

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+// What a run writes into its output directory:
+//   time_series.csv       one row per sample: time, energies (total and per
+//                         material), contacts, largest overlap, list builds
+//   snapshots/NNNNNN.csv  per-particle state, rows ordered by global id
+//   run.json              the settings in force, the time step and its limits,
+//                         the speed of the run
+// Numbers are written in the shortest form that reads back to the same
+// double, so two runs with the same input and seed give identical files.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "tumble/sim/simulation.hpp"
+
+namespace tumble::io {
+
+class TimeSeriesWriter {
+public:
+    TimeSeriesWriter(const std::filesystem::path& file, const std::vector<Material>& materials);
+    void write(const Observables& o);
+
+private:
+    std::filesystem::path path_;
+    std::ofstream out_;
+};
+
+// Writes snapshots/NNNNNN.csv (NNNNNN = the sample number) and returns its path.
+std::filesystem::path write_snapshot(const std::filesystem::path& directory, int number, const Simulation& sim);
+
+// Creates the output directory. Refuses (tumble::Error) one that already holds
+// a run, unless `overwrite`.
+void prepare_output_directory(const std::filesystem::path& directory, bool overwrite);
+
+struct RunSummary {
+    std::string scenario_file;
+    std::uint64_t seed = 0;
+    double duration = 0.0;
+    std::int64_t steps = 0;
+    double wall_seconds = 0.0;
+    std::size_t particles = 0;
+    std::size_t free_particles = 0;
+};
+void write_run_json(const std::filesystem::path& file, const Simulation& sim, const RunSummary& summary);
+
+}  // namespace tumble::io

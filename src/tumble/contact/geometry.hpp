@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: MIT
+// The state of one contact between spheres i and j, built once per pair and
+// handed to every force term.
+//
+// Convention (SPEC-NOTES "Notation"): n is the unit vector from the centre of
+// j to the centre of i; overlap h = R_i + R_j - |X_i - X_j| > 0 while in
+// contact; v is the velocity of i relative to j at the contact point.
+#pragma once
+
+#include <cmath>
+
+#include "tumble/core/vec3.hpp"
+
+namespace tumble {
+
+struct ContactGeometry {
+    Vec3 n;                // unit normal, j -> i
+    double overlap = 0.0;  // h, m
+    double R_star = 0.0;   // R_i R_j / (R_i + R_j), m
+    double contact_radius = 0.0;  // a = sqrt(R* h), m; every term of the model is a power of a and h
+    double lever_i = 0.0;  // distance from centre of i to the contact point, R_i - h/2, m
+    double lever_j = 0.0;  // distance from centre of j to the contact point, R_j - h/2, m
+    double v_n = 0.0;      // v . n, m/s (negative while approaching)
+    Vec3 v_t;              // v - (v . n) n, m/s
+    double w_n = 0.0;      // (omega_i - omega_j) . n, rad/s
+};
+
+// Contact point: the shear force acts at X_i - lever_i n = X_j + lever_j n.
+// With lever = R - h/2 for both spheres the two points coincide, so the
+// shear torques on i and j conserve angular momentum exactly.
+//
+// d = X_i - X_j (periodic image already applied), distance = |d| > 0.
+inline ContactGeometry make_contact_geometry(const Vec3& d, double distance, double R_i, double R_j,
+                                             const Vec3& v_i, const Vec3& v_j, const Vec3& omega_i,
+                                             const Vec3& omega_j) {
+    ContactGeometry c;
+    c.n = (1.0 / distance) * d;
+    c.overlap = R_i + R_j - distance;
+    c.R_star = R_i * R_j / (R_i + R_j);
+    c.contact_radius = std::sqrt(c.R_star * c.overlap);
+    c.lever_i = R_i - 0.5 * c.overlap;
+    c.lever_j = R_j - 0.5 * c.overlap;
+    // Velocity of the contact point as part of i minus as part of j:
+    // (v_i + omega_i x (-lever_i n)) - (v_j + omega_j x (lever_j n)).
+    const Vec3 v = v_i - v_j - cross(c.lever_i * omega_i + c.lever_j * omega_j, c.n);
+    c.v_n = dot(v, c.n);
+    c.v_t = v - c.v_n * c.n;
+    c.w_n = dot(omega_i - omega_j, c.n);
+    return c;
+}
+
+}  // namespace tumble

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: MIT
+#include "tumble/integrate/time_step.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "tumble/core/constants.hpp"
+#include "tumble/core/error.hpp"
+#include "tumble/materials/pair_table.hpp"
+#include "tumble/sim/scenario.hpp"
+
+namespace tumble {
+
+namespace {
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+std::string format(double value, const char* unit) {
+    char buffer[48];
+    std::snprintf(buffer, sizeof buffer, "%.3g %s", value, unit);
+    return buffer;
+}
+std::string format_seconds(double t) { return format(t, "s"); }
+}  // namespace
+
+TimeStepReport assess_time_step(const Scenario& s) {
+    const std::size_t n_materials = s.materials.size();
+    std::vector<double> smallest_radius(n_materials, inf);
+    for (const auto& p : s.particles)
+        smallest_radius[p.material] = std::min(smallest_radius[p.material], p.radius);
+
+    double collision = inf, viscous = inf, rayleigh = inf;
+    std::string collision_pair, viscous_pair, rayleigh_material;
+    const double v = s.time_step.reference_speed;
+    for (std::size_t a = 0; a < n_materials; ++a) {
+        if (smallest_radius[a] == inf) continue;  // no particle of this material
+        const Material& ma = s.materials[a];
+        const double t_R = pi * smallest_radius[a] * std::sqrt(ma.rho / ma.G) / (0.1631 * ma.nu + 0.8766);
+        if (t_R < rayleigh) { rayleigh = t_R; rayleigh_material = ma.name; }
+        for (std::size_t b = a; b < n_materials; ++b) {
+            if (smallest_radius[b] == inf) continue;
+            const Material& mb = s.materials[b];
+            const PairCoefficients c = make_pair_coefficients(ma, mb, s.pair_properties[a][b]);
+            const double Ra = smallest_radius[a], Rb = smallest_radius[b];
+            const double R_star = Ra * Rb / (Ra + Rb);
+            const double mass_a = 4.0 / 3.0 * pi * ma.rho * Ra * Ra * Ra;
+            const double mass_b = 4.0 / 3.0 * pi * mb.rho * Rb * Rb * Rb;
+            const double m_star = mass_a * mass_b / (mass_a + mass_b);
+            if (!s.model.elastic || c.E_star <= 0.0) continue;
+            const double h_max = std::pow(15.0 * m_star * v * v / (16.0 * c.E_star * std::sqrt(R_star)), 0.4);
+            const double t_c = 2.9432 * h_max / v;
+            const std::string pair = ma.name + "-" + mb.name;
+            if (t_c < collision) { collision = t_c; collision_pair = pair; }
+            if (s.model.viscous && c.B_star > 0.0) {
+                const double damping = 2.0 * c.B_star * std::sqrt(R_star * h_max);  // N s/m
+                const double t_v = m_star / damping;
+                if (t_v < viscous) { viscous = t_v; viscous_pair = pair; }
+            }
+        }
+    }
+
+    TimeStepReport r;
+    r.collision_time = collision == inf ? 0.0 : collision;
+    r.viscous_time = viscous == inf ? 0.0 : viscous;
+    r.rayleigh_time = rayleigh == inf ? 0.0 : rayleigh;
+    r.recommended = std::min({collision / 50.0, 0.2 * viscous, 0.2 * rayleigh});
+    r.maximum = inf;
+    auto limit = [&](double value, const std::string& why) {
+        if (value < r.maximum) { r.maximum = value; r.limiting = why; }
+    };
+    limit(collision / 10.0, "a tenth of the Hertz collision time at " + format(v, "m/s") + " (" +
+                                format_seconds(collision) + ", pair " + collision_pair + ")");
+    limit(viscous, "the viscous time m*/c (" + format_seconds(viscous) + ", pair " + viscous_pair +
+                       "), above which the damping is unstable");
+    limit(0.5 * rayleigh, "half the Rayleigh time (" + format_seconds(rayleigh) + ", material " +
+                              rayleigh_material + ")");
+    if (r.recommended == inf) throw Error("time step: no particles to derive a time step from");
+
+    const double given = s.time_step.dt;
+    if (given == 0.0) {
+        r.dt = r.recommended;
+        r.automatic = true;
+    } else {
+        if (!(given > 0.0) || !std::isfinite(given)) throw Error("time step: dt must be a positive number of seconds");
+        if (given > r.maximum && !s.time_step.allow_unsafe)
+            throw Error("time step: dt = " + format_seconds(given) + " is larger than the safe maximum " +
+                        format_seconds(r.maximum) + ", set by " + r.limiting +
+                        "; use a smaller dt or leave it out to have one chosen (recommended " +
+                        format_seconds(r.recommended) + ")");
+        r.dt = given;
+    }
+    return r;
+}
+
+}  // namespace tumble

@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+// Choosing and checking the time step from the materials.
+//
+// For every pair of materials present (each at its smallest radius, with the
+// reduced mass of two free grains, which is the conservative case):
+//  - Hertz collision time at the reference impact speed v (no damping):
+//      h_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5),  t_c = 2.9432 h_max / v;
+//  - viscous time m*/c with c = 2 B* sqrt(R* h_max), the Kuwabara-Kono
+//    damping at the deepest overlap; the half-step kick is stable only for
+//    dt < 2 m*/c;
+// and for every material the Rayleigh time
+//      t_R = pi R sqrt(rho/G) / (0.1631 nu + 0.8766).
+// Recommended step: min(t_c/50, 0.2 m*/c, 0.2 t_R).
+// Largest step accepted: min(t_c/10, m*/c, 0.5 t_R).
+#pragma once
+
+#include <string>
+
+namespace tumble {
+
+struct Scenario;
+
+struct TimeStepReport {
+    double collision_time = 0.0;  // s, shortest over pairs (0 if elasticity is off)
+    double viscous_time = 0.0;    // s, shortest m*/c over pairs (0 if viscosity is off)
+    double rayleigh_time = 0.0;   // s, shortest over materials
+    double recommended = 0.0;     // s
+    double maximum = 0.0;         // s
+    std::string limiting;         // which criterion and which pair or material sets `maximum`
+    double dt = 0.0;              // s, the step in use
+    bool automatic = false;       // dt was chosen, not given
+};
+
+// Throws tumble::Error if a given dt exceeds the maximum (unless the
+// scenario allows unsafe steps) or is not positive.
+TimeStepReport assess_time_step(const Scenario& scenario);
+
+}  // namespace tumble

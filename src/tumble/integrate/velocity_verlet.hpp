@@ -1,0 +1,19 @@
+// SPDX-License-Identifier: MIT
+// Velocity Verlet (kick-drift-kick) for the translation and rotation of
+// spheres. Second order in dt for position-dependent forces. The forces are
+// evaluated with the half-step velocities v(t + dt/2), so velocity-dependent
+// terms (internal friction, shear, twisting) are first order in dt; with
+// those terms off the scheme is symplectic. Spheres need no orientation.
+#pragma once
+
+#include "tumble/particles/particle_store.hpp"
+
+namespace tumble {
+
+// v += half_dt (F/m + g), omega += half_dt T/I, for free particles.
+void kick(ParticleStore& p, const Vec3& gravity, double half_dt);
+
+// x += dt v, for free particles.
+void drift(ParticleStore& p, double dt);
+
+}  // namespace tumble

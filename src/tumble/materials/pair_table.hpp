@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: MIT
+// Per-pair coefficients, computed once for every pair of materials.
+// They depend only on the two materials, not on the radii: R* is formed per
+// contact because grains of one material may have different radii.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "tumble/materials/material.hpp"
+
+namespace tumble {
+
+struct PairCoefficients {
+    double E_star = 0.0;      // E_i E_j / (E_i (1 - nu_j^2) + E_j (1 - nu_i^2)), Pa
+    double G_star = 0.0;      // G_i G_j / (G_i (2 - nu_j) + G_j (2 - nu_i)), Pa
+    double B_star = 0.0;      // B_i B_j / (B_i (1 - s_j^2) + B_j (1 - s_i^2)), Pa s
+    double mu = 0.0;          // static friction coefficient
+    double W = 0.0;           // surface energy, J/m^2
+    double attraction = 0.0;  // sqrt(4/3 * 8 pi W E*), prefactor of eq. 7, N m^-3/2
+};
+
+PairCoefficients make_pair_coefficients(const Material& a, const Material& b, const PairProperties& p);
+
+// Symmetric table indexed by two material ids.
+class PairTable {
+public:
+    PairTable() = default;
+    // properties[i][j] must be given for every i, j and be symmetric.
+    PairTable(const std::vector<Material>& materials,
+              const std::vector<std::vector<PairProperties>>& properties);
+
+    const PairCoefficients& operator()(int i, int j) const { return table_[i * n_ + j]; }
+    int size() const { return n_; }
+
+private:
+    int n_ = 0;
+    std::vector<PairCoefficients> table_;
+};
+
+}  // namespace tumble

@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+// Verlet list with a skin over linked cells. Rebuilt only when some particle
+// has moved more than half the skin since the last build (then no pair can
+// have come into contact unseen). At a rebuild the particles may be re-sorted
+// in cell order for cache reuse; contact history is carried over by the
+// global ids of the two particles, so neither re-sorting nor rebuilding loses
+// it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "tumble/neighbor/pair_list.hpp"
+#include "tumble/neighbor/periodic_images.hpp"
+#include "tumble/particles/particle_store.hpp"
+#include "tumble/sim/scenario.hpp"
+
+namespace tumble {
+
+class VerletList {
+public:
+    VerletList() = default;
+    VerletList(const Domain& domain, double skin, int sort_every);
+
+    bool needs_rebuild(const ParticleStore& p) const;
+    // Wraps positions into periodic axes, sorts (every sort_every-th build),
+    // rebuilds the pairs and carries the contact history over.
+    void rebuild(ParticleStore& p);
+
+    PairList& pairs() { return pairs_; }
+    const PairList& pairs() const { return pairs_; }
+    const PeriodicImages& images() const { return images_; }
+    double skin() const { return skin_; }
+    std::int64_t builds() const { return builds_; }
+
+private:
+    Domain domain_;
+    double skin_ = 0.0;
+    int sort_every_ = 1;
+    PeriodicImages images_;
+    PairList pairs_;
+    std::vector<Vec3> position_at_build_;
+    std::int64_t builds_ = 0;
+};
+
+}  // namespace tumble

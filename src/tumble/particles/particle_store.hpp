@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+// All particles, structure-of-arrays: one contiguous array per field, so the
+// force loop streams only what it reads. Array order changes when the store
+// is re-sorted in space; a particle's identity is its global id.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "tumble/core/vec3.hpp"
+
+namespace tumble {
+
+// Free particles follow Newton's equations; kinematic ones follow a
+// prescribed rigid motion (index into Scenario::motions) and only push.
+inline constexpr std::int32_t free_motion = -1;
+
+struct ParticleStore {
+    std::vector<std::int64_t> id;           // global id, never changes
+    std::vector<Vec3> position;             // m
+    std::vector<Vec3> velocity;             // m/s
+    std::vector<Vec3> angular_velocity;     // rad/s
+    std::vector<Vec3> force;                // N
+    std::vector<Vec3> torque;               // N m
+    std::vector<double> radius;             // m
+    std::vector<double> inv_mass;           // 1/kg (0 for kinematic)
+    std::vector<double> inv_inertia;        // 1/(kg m^2), solid sphere I = 2/5 m R^2 (0 for kinematic)
+    std::vector<double> mass;               // kg (of the sphere, also for kinematic)
+    std::vector<std::int32_t> material;     // index into the material list
+    std::vector<std::int32_t> motion;       // free_motion or index of a prescribed motion
+    std::vector<std::int32_t> tag;          // user label (e.g. the half a grain started in)
+    std::vector<Vec3> reference_position;   // kinematic: position at t = 0 of the motion, m
+    std::vector<Vec3> image_shift;          // kinematic: periodic wraps applied since t = 0, m
+
+    std::size_t size() const { return id.size(); }
+    bool is_kinematic(std::size_t i) const { return motion[i] != free_motion; }
+
+    // Reorder every field: new index k holds the particle that was at order[k].
+    void permute(const std::vector<std::uint32_t>& order);
+};
+
+}  // namespace tumble

@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: MIT
+#include "tumble/sim/scenario.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tumble/neighbor/candidate_pairs.hpp"
+#include "tumble/sim/particle_setup.hpp"
+
+namespace tumble {
+
+namespace {
+bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+}  // namespace
+
+std::string scenario_problem(const Scenario& s) {
+    const auto n_materials = static_cast<std::int32_t>(s.materials.size());
+    if (n_materials == 0) return "no materials";
+    for (const Material& m : s.materials)
+        if (auto why = material_problem(m); !why.empty()) return "material " + m.name + ": " + why;
+    if (s.pair_properties.size() != s.materials.size()) return "pair table does not cover every material";
+    for (std::int32_t a = 0; a < n_materials; ++a) {
+        if (s.pair_properties[a].size() != s.materials.size()) return "pair table does not cover every material";
+        for (std::int32_t b = 0; b < n_materials; ++b) {
+            const PairProperties& p = s.pair_properties[a][b];
+            const std::string pair = s.materials[a].name + "-" + s.materials[b].name;
+            if (!(p.mu >= 0.0) || !std::isfinite(p.mu)) return "pair " + pair + ": mu must be >= 0";
+            if (!(p.W >= 0.0) || !std::isfinite(p.W)) return "pair " + pair + ": W must be >= 0";
+            const PairProperties& q = s.pair_properties[b][a];
+            if (p.mu != q.mu || p.W != q.W) return "pair " + pair + " is not symmetric";
+        }
+    }
+    if (!(s.model.slip_velocity_regularisation > 0.0)) return "slip velocity regularisation must be > 0";
+    for (int k = 0; k < 3; ++k)
+        if (!(s.domain.hi[k] > s.domain.lo[k]) || !std::isfinite(s.domain.hi[k] - s.domain.lo[k]))
+            return "domain: hi must exceed lo on every axis";
+    if (!finite(s.gravity)) return "gravity must be finite";
+    for (std::size_t k = 0; k < s.motions.size(); ++k) {
+        const RigidMotion& m = s.motions[k];
+        if (!(norm(m.axis_direction) > 0.0)) return "motion " + std::to_string(k) + ": axis direction is zero";
+        if (!finite(m.axis_point) || !finite(m.axis_direction) || !finite(m.velocity) ||
+            !std::isfinite(m.angular_velocity))
+            return "motion " + std::to_string(k) + ": values must be finite";
+    }
+    if (s.particles.empty()) return "no particles";
+    if (s.particles.size() >= (std::size_t{1} << 31)) return "too many particles (at most 2^31 - 1)";
+    for (std::size_t i = 0; i < s.particles.size(); ++i) {
+        const ParticleSpec& p = s.particles[i];
+        const std::string who = "particle " + std::to_string(i) + ": ";
+        if (!(p.radius > 0.0) || !std::isfinite(p.radius)) return who + "radius must be > 0";
+        if (p.material < 0 || p.material >= n_materials) return who + "unknown material";
+        if (p.motion != free_motion && (p.motion < 0 || p.motion >= static_cast<std::int32_t>(s.motions.size())))
+            return who + "unknown motion";
+        if (!finite(p.position) || !finite(p.velocity) || !finite(p.angular_velocity))
+            return who + "position and velocities must be finite";
+        for (int k = 0; k < 3; ++k)
+            if (s.domain.periodic[k] && (p.position[k] < s.domain.lo[k] || p.position[k] >= s.domain.hi[k]))
+                return who + "lies outside the periodic axis " + std::string(1, "xyz"[k]);
+    }
+    return {};
+}
+
+OverlapReport largest_overlap(const Scenario& s) {
+    const ParticleStore store = make_particle_store(s);
+    PairList pairs;
+    cell_list_pairs(store, s.domain, 0.0, pairs);
+    const PeriodicImages images(s.domain.length());
+    OverlapReport worst;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const std::uint32_t i = pairs.first[k], j = pairs.second[k];
+        const double distance = norm(store.position[i] - store.position[j] + images[pairs.image[k]]);
+        const double ratio = (store.radius[i] + store.radius[j] - distance) / std::min(store.radius[i], store.radius[j]);
+        if (ratio > worst.ratio) {
+            worst.ratio = ratio;
+            worst.a = static_cast<std::size_t>(std::min(store.id[i], store.id[j]));
+            worst.b = static_cast<std::size_t>(std::max(store.id[i], store.id[j]));
+        }
+    }
+    return worst;
+}
+
+}  // namespace tumble

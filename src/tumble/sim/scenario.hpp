@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: MIT
+// Everything that defines a simulation, as plain data. The engine builds a
+// Simulation from it; readers of file formats (src/io) fill it in.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tumble/contact/contact_law.hpp"
+#include "tumble/core/vec3.hpp"
+#include "tumble/materials/material.hpp"
+#include "tumble/particles/particle_store.hpp"
+
+namespace tumble {
+
+// The simulation box. Periodic axes wrap at [lo, hi); on the other axes the
+// box only bounds where particles start (space is open).
+struct Domain {
+    Vec3 lo;
+    Vec3 hi;
+    std::array<bool, 3> periodic{false, false, false};
+
+    Vec3 length() const { return hi - lo; }
+};
+
+// A prescribed rigid motion for kinematic particles: rotation at
+// angular_velocity (rad/s, right-handed about axis_direction) around the
+// axis through axis_point, plus a translation at velocity. The axis point
+// moves with the translation.
+struct RigidMotion {
+    Vec3 axis_point;
+    Vec3 axis_direction{0.0, 0.0, 1.0};  // need not be normalised
+    double angular_velocity = 0.0;       // rad/s
+    Vec3 velocity;                       // m/s
+};
+
+// One particle as the user describes it.
+struct ParticleSpec {
+    Vec3 position;
+    Vec3 velocity;
+    Vec3 angular_velocity;
+    double radius = 0.0;
+    std::int32_t material = 0;
+    std::int32_t motion = free_motion;  // free_motion, or an index into Scenario::motions
+    std::int32_t tag = 0;
+};
+
+struct TimeStepSettings {
+    double dt = 0.0;               // s; 0 chooses it automatically from the collision times
+    double reference_speed = 1.0;  // impact speed (m/s) whose Hertz collision must be resolved
+    bool allow_unsafe = false;     // accept a given dt above the safe maximum (for experts and tests)
+};
+
+struct NeighborSettings {
+    double skin = 0.0;        // m; 0 chooses 0.2 x the largest radius
+    int sort_every = 1;       // re-sort particles in space at every n-th list rebuild (0: never)
+};
+
+struct Scenario {
+    std::vector<Material> materials;
+    // pair_properties[a][b] for every pair of material indices, symmetric.
+    std::vector<std::vector<PairProperties>> pair_properties;
+    ContactModel model;
+    Domain domain;
+    Vec3 gravity;  // m/s^2
+    TimeStepSettings time_step;
+    NeighborSettings neighbor;
+    std::vector<RigidMotion> motions;
+    std::vector<ParticleSpec> particles;
+};
+
+// Reason why a scenario cannot be simulated, or empty if it can. Checks
+// materials, pair table completeness and symmetry, particle radii, material
+// and motion indices, and that the particles fit in periodic axes.
+std::string scenario_problem(const Scenario& s);
+
+// The largest overlap between two particles of the scenario, relative to the
+// smaller radius, and which two (indices into Scenario::particles).
+struct OverlapReport {
+    double ratio = 0.0;  // h / min(R_a, R_b); 0 if nothing touches
+    std::size_t a = 0, b = 0;
+};
+OverlapReport largest_overlap(const Scenario& s);
+
+}  // namespace tumble

@@ -1,0 +1,168 @@
+// SPDX-License-Identifier: MIT
+#include "tumble/sim/simulation.hpp"
+
+#include <algorithm>
+#include <utility>
+
+#include "tumble/core/error.hpp"
+#include "tumble/integrate/velocity_verlet.hpp"
+#include "tumble/particles/rigid_motion.hpp"
+#include "tumble/sim/particle_setup.hpp"
+
+namespace tumble {
+
+namespace {
+
+double default_skin(const Scenario& s) {
+    double largest = 0.0;
+    for (const auto& p : s.particles) largest = std::max(largest, p.radius);
+    return 0.2 * largest;
+}
+
+// The pair loop: for every candidate pair in contact, build the contact
+// geometry, apply the contact law, and add the result to both particles
+// (Newton's third law; the half list holds each pair once). A pair that is
+// not touching drops its history. Threads will split this loop; the force
+// law itself does not change.
+template <bool Record>
+void add_contact_forces(ParticleStore& p, PairList& pairs, const PeriodicImages& images, const PairTable& table,
+                        const ContactModel& model, double dt, std::vector<ContactRecord>& records) {
+    const std::size_t n_pairs = pairs.size();
+    for (std::size_t k = 0; k < n_pairs; ++k) {
+        const std::uint32_t i = pairs.first[k], j = pairs.second[k];
+        const Vec3 d = p.position[i] - p.position[j] + images[pairs.image[k]];
+        const double distance2 = norm2(d);
+        const double reach = p.radius[i] + p.radius[j];
+        ContactHistory& history = pairs.history[k];
+        if (distance2 >= reach * reach) {
+            if (!history.is_zero()) history = ContactHistory{};  // contact ended
+            continue;
+        }
+        const ContactGeometry g =
+            make_contact_geometry(d, std::sqrt(distance2), p.radius[i], p.radius[j], p.velocity[i], p.velocity[j],
+                                  p.angular_velocity[i], p.angular_velocity[j]);
+        const ContactForces f = contact_law(table(p.material[i], p.material[j]), g, model, dt, history);
+        p.force[i] += f.force_i;
+        p.force[j] -= f.force_i;
+        p.torque[i] += f.torque_i;
+        p.torque[j] += f.torque_j;
+        if constexpr (Record) records.push_back({p.id[i], p.id[j], g, f, history});
+    }
+}
+
+}  // namespace
+
+Simulation::Simulation(Scenario scenario) : scenario_(std::move(scenario)) {
+    if (const std::string why = scenario_problem(scenario_); !why.empty()) throw Error("scenario: " + why);
+    pair_table_ = PairTable(scenario_.materials, scenario_.pair_properties);
+    time_step_report_ = assess_time_step(scenario_);
+    dt_ = time_step_report_.dt;
+    particles_ = make_particle_store(scenario_);
+    const double skin = scenario_.neighbor.skin > 0.0 ? scenario_.neighbor.skin : default_skin(scenario_);
+    neighbors_ = VerletList(scenario_.domain, skin, scenario_.neighbor.sort_every);
+    for (const RigidMotion& m : scenario_.motions) motions_.push_back({m, 0.0});
+    move_kinematic();
+    neighbors_.rebuild(particles_);
+    compute_forces();
+}
+
+// One time step of velocity Verlet; see integrate/velocity_verlet.hpp.
+void Simulation::step() {
+    const double half_dt = 0.5 * dt_;
+    kick(particles_, scenario_.gravity, half_dt);  // v(t) -> v(t + dt/2)
+    drift(particles_, dt_);                        // x(t) -> x(t + dt)
+    ++step_;
+    time_ = static_cast<double>(step_) * dt_;
+    move_kinematic();                              // prescribed x, v, omega at t + dt
+    if (neighbors_.needs_rebuild(particles_)) neighbors_.rebuild(particles_);
+    compute_forces();                              // F(t + dt), with v(t + dt/2)
+    kick(particles_, scenario_.gravity, half_dt);  // v(t + dt/2) -> v(t + dt)
+}
+
+void Simulation::advance(std::int64_t steps) {
+    for (std::int64_t s = 0; s < steps; ++s) step();
+}
+
+void Simulation::compute_forces() {
+    std::fill(particles_.force.begin(), particles_.force.end(), Vec3{});
+    std::fill(particles_.torque.begin(), particles_.torque.end(), Vec3{});
+    records_.clear();
+    if (recording_)
+        add_contact_forces<true>(particles_, neighbors_.pairs(), neighbors_.images(), pair_table_, scenario_.model, dt_,
+                                 records_);
+    else
+        add_contact_forces<false>(particles_, neighbors_.pairs(), neighbors_.images(), pair_table_, scenario_.model,
+                                  dt_, records_);
+}
+
+void Simulation::move_kinematic() {
+    // Per motion: where the axis is now and the rotation since the motion began.
+    struct Now {
+        Vec3 axis_point, u, velocity;
+        double angle, angular_velocity;
+    };
+    std::vector<Now> now;
+    for (const MotionClock& m : motions_) {
+        const double elapsed = time_ - m.start_time;
+        const Vec3 u = (1.0 / norm(m.motion.axis_direction)) * m.motion.axis_direction;
+        now.push_back({m.motion.axis_point + elapsed * m.motion.velocity, u, m.motion.velocity,
+                       m.motion.angular_velocity * elapsed, m.motion.angular_velocity});
+    }
+    ParticleStore& p = particles_;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        if (!p.is_kinematic(i)) continue;
+        const Now& m = now[static_cast<std::size_t>(p.motion[i])];
+        const Vec3 start_axis = motions_[static_cast<std::size_t>(p.motion[i])].motion.axis_point;
+        const Vec3 arm = rotate(p.reference_position[i] - start_axis, m.u, m.angle);
+        p.position[i] = m.axis_point + arm + p.image_shift[i];
+        p.velocity[i] = m.velocity + m.angular_velocity * cross(m.u, arm);
+        p.angular_velocity[i] = m.angular_velocity * m.u;
+    }
+}
+
+void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
+    if (k >= motions_.size()) throw Error("set_motion: no motion " + std::to_string(k));
+    if (!(norm(motion.axis_direction) > 0.0)) throw Error("set_motion: axis direction is zero");
+    ParticleStore& p = particles_;
+    for (std::size_t i = 0; i < p.size(); ++i)
+        if (p.motion[i] == static_cast<std::int32_t>(k)) p.reference_position[i] = p.position[i] - p.image_shift[i];
+    motions_[k] = {motion, time_};
+    scenario_.motions[k] = motion;
+    move_kinematic();
+}
+
+Observables Simulation::observe() const {
+    const ParticleStore& p = particles_;
+    Observables o;
+    o.time = time_;
+    o.step = step_;
+    o.neighbor_builds = neighbors_.builds();
+    o.per_material.resize(scenario_.materials.size());
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        if (p.is_kinematic(i)) continue;
+        MaterialEnergies& e = o.per_material[static_cast<std::size_t>(p.material[i])];
+        const double translational = 0.5 * p.mass[i] * norm2(p.velocity[i]);
+        const double rotational = 0.5 * 0.4 * p.mass[i] * p.radius[i] * p.radius[i] * norm2(p.angular_velocity[i]);
+        ++e.particles;
+        e.kinetic_translational += translational;
+        e.kinetic_rotational += rotational;
+        o.kinetic_translational += translational;
+        o.kinetic_rotational += rotational;
+    }
+    const PairList& pairs = neighbors_.pairs();
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const std::uint32_t i = pairs.first[k], j = pairs.second[k];
+        const double distance = norm(p.position[i] - p.position[j] + neighbors_.images()[pairs.image[k]]);
+        const double overlap = p.radius[i] + p.radius[j] - distance;
+        if (overlap <= 0.0) continue;
+        const PairCoefficients& c = pair_table_(p.material[i], p.material[j]);
+        const double a = std::sqrt(p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]) * overlap);
+        ++o.contacts;
+        o.max_overlap_ratio = std::max(o.max_overlap_ratio, overlap / std::min(p.radius[i], p.radius[j]));
+        if (scenario_.model.elastic) o.contact_energy += hertz_energy(c.E_star, a, overlap);
+        if (scenario_.model.attraction) o.contact_energy += attraction_energy(c.attraction, a, overlap);
+    }
+    return o;
+}
+
+}  // namespace tumble

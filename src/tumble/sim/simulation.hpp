@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: MIT
+// A running simulation: owns the particles, the neighbour list with the
+// contact history, and the clock. step() is the whole time step.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tumble/integrate/time_step.hpp"
+#include "tumble/materials/pair_table.hpp"
+#include "tumble/neighbor/verlet_list.hpp"
+#include "tumble/particles/particle_store.hpp"
+#include "tumble/sim/scenario.hpp"
+
+namespace tumble {
+
+// Per-material sums over the free particles.
+struct MaterialEnergies {
+    std::size_t particles = 0;
+    double kinetic_translational = 0.0;  // J
+    double kinetic_rotational = 0.0;     // J
+};
+
+struct Observables {
+    double time = 0.0;        // s
+    std::int64_t step = 0;
+    std::vector<MaterialEnergies> per_material;
+    double kinetic_translational = 0.0;  // J, all free particles
+    double kinetic_rotational = 0.0;     // J
+    double contact_energy = 0.0;         // J, elastic + attraction energy stored in contacts
+    std::size_t contacts = 0;
+    double max_overlap_ratio = 0.0;      // largest h / min(R_i, R_j)
+    std::int64_t neighbor_builds = 0;
+};
+
+// One contact as seen by the force law in the last step (when recording).
+struct ContactRecord {
+    std::int64_t id_i = 0, id_j = 0;
+    ContactGeometry geometry;
+    ContactForces forces;
+    ContactHistory history;  // after the step
+};
+
+class Simulation {
+public:
+    // Checks the scenario (throws tumble::Error with the reason), chooses or
+    // checks the time step, builds the neighbour list and the initial forces.
+    explicit Simulation(Scenario scenario);
+
+    void step();
+    void advance(std::int64_t steps);
+
+    double time() const { return time_; }
+    double dt() const { return dt_; }
+    std::int64_t step_count() const { return step_; }
+    const Scenario& scenario() const { return scenario_; }
+    const ParticleStore& particles() const { return particles_; }
+    const TimeStepReport& time_step_report() const { return time_step_report_; }
+    const VerletList& neighbors() const { return neighbors_; }
+    Observables observe() const;
+
+    // Replace prescribed motion k from now on; its particles continue from
+    // where they are.
+    void set_motion(std::size_t k, const RigidMotion& motion);
+
+    // When on, every step keeps a record of each contact (for tests and
+    // diagnostics; slows the force loop).
+    void set_contact_recording(bool on) { recording_ = on; }
+    const std::vector<ContactRecord>& contact_records() const { return records_; }
+
+private:
+    void compute_forces();
+    void move_kinematic();
+
+    Scenario scenario_;
+    PairTable pair_table_;
+    ParticleStore particles_;
+    VerletList neighbors_;
+    TimeStepReport time_step_report_;
+    struct MotionClock {
+        RigidMotion motion;
+        double start_time = 0.0;
+    };
+    std::vector<MotionClock> motions_;
+    double dt_ = 0.0;
+    double time_ = 0.0;
+    std::int64_t step_ = 0;
+    bool recording_ = false;
+    std::vector<ContactRecord> records_;
+};
+
+}  // namespace tumble
