@@ -49,4 +49,23 @@ inline ContactGeometry make_contact_geometry(const Vec3& d, double distance, dou
     return c;
 }
 
+// Contact of sphere i with a flat wall at rest, seen as a sphere of infinite
+// radius: n is the wall's unit normal pointing into the space of i, distance
+// the distance of the centre of i from the wall plane.
+inline ContactGeometry make_wall_geometry(const Vec3& n, double distance, double R_i, const Vec3& v_i,
+                                          const Vec3& omega_i) {
+    ContactGeometry c;
+    c.n = n;
+    c.overlap = R_i - distance;
+    c.R_star = R_i;
+    c.contact_radius = std::sqrt(c.R_star * c.overlap);
+    c.lever_i = R_i - 0.5 * c.overlap;
+    c.lever_j = 0.0;
+    const Vec3 v = v_i - c.lever_i * cross(omega_i, c.n);
+    c.v_n = dot(v, c.n);
+    c.v_t = v - c.v_n * c.n;
+    c.w_n = dot(omega_i, c.n);
+    return c;
+}
+
 }  // namespace tumble

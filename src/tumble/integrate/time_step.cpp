@@ -34,6 +34,22 @@ TimeStepReport assess_time_step(const Scenario& s) {
     double collision = inf, viscous = inf, rayleigh = inf;
     std::string collision_pair, viscous_pair, rayleigh_material;
     const double v = s.time_step.reference_speed;
+    // The Hertz collision at speed v and its viscous damping for one pair.
+    auto consider = [&](const std::string& pair, const PairCoefficients& c, double R_star, double m_star) {
+        if (!s.model.elastic || c.E_star <= 0.0) return;
+        const double h_max = std::pow(15.0 * m_star * v * v / (16.0 * c.E_star * std::sqrt(R_star)), 0.4);
+        const double t_c = 2.9432 * h_max / v;
+        if (t_c < collision) { collision = t_c; collision_pair = pair; }
+        if (!s.model.viscous || c.B_star <= 0.0) return;
+        const double damping = 2.0 * c.B_star * std::sqrt(R_star * h_max);  // N s/m
+        if (m_star / damping < viscous) { viscous = m_star / damping; viscous_pair = pair; }
+    };
+    auto mass = [&](std::size_t a) {
+        const double R = smallest_radius[a];
+        return 4.0 / 3.0 * pi * s.materials[a].rho * R * R * R;
+    };
+    const auto& walls = s.domain.walls;
+    const bool any_wall = walls[0] || walls[1] || walls[2];
     for (std::size_t a = 0; a < n_materials; ++a) {
         if (smallest_radius[a] == inf) continue;  // no particle of this material
         const Material& ma = s.materials[a];
@@ -42,22 +58,15 @@ TimeStepReport assess_time_step(const Scenario& s) {
         for (std::size_t b = a; b < n_materials; ++b) {
             if (smallest_radius[b] == inf) continue;
             const Material& mb = s.materials[b];
-            const PairCoefficients c = make_pair_coefficients(ma, mb, s.pair_properties[a][b]);
             const double Ra = smallest_radius[a], Rb = smallest_radius[b];
-            const double R_star = Ra * Rb / (Ra + Rb);
-            const double mass_a = 4.0 / 3.0 * pi * ma.rho * Ra * Ra * Ra;
-            const double mass_b = 4.0 / 3.0 * pi * mb.rho * Rb * Rb * Rb;
-            const double m_star = mass_a * mass_b / (mass_a + mass_b);
-            if (!s.model.elastic || c.E_star <= 0.0) continue;
-            const double h_max = std::pow(15.0 * m_star * v * v / (16.0 * c.E_star * std::sqrt(R_star)), 0.4);
-            const double t_c = 2.9432 * h_max / v;
-            const std::string pair = ma.name + "-" + mb.name;
-            if (t_c < collision) { collision = t_c; collision_pair = pair; }
-            if (s.model.viscous && c.B_star > 0.0) {
-                const double damping = 2.0 * c.B_star * std::sqrt(R_star * h_max);  // N s/m
-                const double t_v = m_star / damping;
-                if (t_v < viscous) { viscous = t_v; viscous_pair = pair; }
-            }
+            consider(ma.name + "-" + mb.name, make_pair_coefficients(ma, mb, s.pair_properties[a][b]),
+                     Ra * Rb / (Ra + Rb), mass(a) * mass(b) / (mass(a) + mass(b)));
+        }
+        if (any_wall) {
+            // A flat wall: infinite radius and mass, so R* = R and m* = m.
+            const auto w = static_cast<std::size_t>(s.domain.wall_material);
+            consider(ma.name + "-flat wall", make_pair_coefficients(ma, s.materials[w], s.pair_properties[a][w]),
+                     smallest_radius[a], mass(a));
         }
     }
 

@@ -34,6 +34,12 @@ std::string scenario_problem(const Scenario& s) {
     for (int k = 0; k < 3; ++k)
         if (!(s.domain.hi[k] > s.domain.lo[k]) || !std::isfinite(s.domain.hi[k] - s.domain.lo[k]))
             return "domain: hi must exceed lo on every axis";
+    for (int k = 0; k < 3; ++k)
+        if (s.domain.walls[k] && s.domain.periodic[k])
+            return std::string("domain: axis ") + "xyz"[k] + " cannot be both periodic and walled";
+    const bool any_wall = s.domain.walls[0] || s.domain.walls[1] || s.domain.walls[2];
+    if (any_wall && (s.domain.wall_material < 0 || s.domain.wall_material >= n_materials))
+        return "domain: unknown wall material";
     if (!finite(s.gravity)) return "gravity must be finite";
     for (std::size_t k = 0; k < s.motions.size(); ++k) {
         const RigidMotion& m = s.motions[k];
@@ -53,9 +59,11 @@ std::string scenario_problem(const Scenario& s) {
             return who + "unknown motion";
         if (!finite(p.position) || !finite(p.velocity) || !finite(p.angular_velocity))
             return who + "position and velocities must be finite";
-        for (int k = 0; k < 3; ++k)
-            if (s.domain.periodic[k] && (p.position[k] < s.domain.lo[k] || p.position[k] >= s.domain.hi[k]))
-                return who + "lies outside the periodic axis " + std::string(1, "xyz"[k]);
+        for (int k = 0; k < 3; ++k) {
+            const bool inside = p.position[k] >= s.domain.lo[k] && p.position[k] < s.domain.hi[k];
+            if (s.domain.periodic[k] && !inside) return who + "lies outside the periodic axis " + "xyz"[k];
+            if (s.domain.walls[k] && !inside) return who + "lies outside the walls along " + "xyz"[k];
+        }
     }
     return {};
 }

@@ -61,6 +61,8 @@ Simulation::Simulation(Scenario scenario) : scenario_(std::move(scenario)) {
     const double skin = scenario_.neighbor.skin > 0.0 ? scenario_.neighbor.skin : default_skin(scenario_);
     neighbors_ = VerletList(scenario_.domain, skin, scenario_.neighbor.sort_every);
     for (const RigidMotion& m : scenario_.motions) motions_.push_back({m, 0.0});
+    const auto& walls = scenario_.domain.walls;
+    if (walls[0] || walls[1] || walls[2]) wall_history_.resize(6 * particles_.size());
     move_kinematic();
     neighbors_.rebuild(particles_);
     compute_forces();
@@ -93,6 +95,36 @@ void Simulation::compute_forces() {
     else
         add_contact_forces<false>(particles_, neighbors_.pairs(), neighbors_.images(), pair_table_, scenario_.model,
                                   dt_, records_);
+    if (!wall_history_.empty()) add_wall_forces();
+}
+
+// Flat walls at both ends of each walled axis: every free sphere closer to a
+// wall than its radius is in contact with it (a sphere of infinite radius).
+void Simulation::add_wall_forces() {
+    ParticleStore& p = particles_;
+    const Domain& box = scenario_.domain;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        if (p.is_kinematic(i)) continue;
+        for (int axis = 0; axis < 3; ++axis) {
+            if (!box.walls[axis]) continue;
+            for (int side = 0; side < 2; ++side) {
+                const int face = 2 * axis + side;
+                ContactHistory& history = wall_history_[6 * static_cast<std::size_t>(p.id[i]) + face];
+                const double distance = side == 0 ? p.position[i][axis] - box.lo[axis] : box.hi[axis] - p.position[i][axis];
+                if (distance >= p.radius[i]) {
+                    if (!history.is_zero()) history = ContactHistory{};
+                    continue;
+                }
+                Vec3 n;
+                n[axis] = side == 0 ? 1.0 : -1.0;  // from the wall into the box
+                const ContactGeometry g = make_wall_geometry(n, distance, p.radius[i], p.velocity[i], p.angular_velocity[i]);
+                const ContactForces f = contact_law(pair_table_(p.material[i], box.wall_material), g, scenario_.model, dt_, history);
+                p.force[i] += f.force_i;
+                p.torque[i] += f.torque_i;
+                if (recording_) records_.push_back({p.id[i], wall_id(face), g, f, history});
+            }
+        }
+    }
 }
 
 void Simulation::move_kinematic() {
@@ -162,6 +194,21 @@ Observables Simulation::observe() const {
         if (scenario_.model.elastic) o.contact_energy += hertz_energy(c.E_star, a, overlap);
         if (scenario_.model.attraction) o.contact_energy += attraction_energy(c.attraction, a, overlap);
     }
+    const Domain& box = scenario_.domain;
+    for (std::size_t i = 0; i < p.size() && !wall_history_.empty(); ++i)
+        for (int axis = 0; axis < 3; ++axis) {
+            if (!box.walls[axis] || p.is_kinematic(i)) continue;
+            for (double distance : {p.position[i][axis] - box.lo[axis], box.hi[axis] - p.position[i][axis]}) {
+                const double overlap = p.radius[i] - distance;
+                if (overlap <= 0.0) continue;
+                const PairCoefficients& c = pair_table_(p.material[i], box.wall_material);
+                const double a = std::sqrt(p.radius[i] * overlap);
+                ++o.contacts;
+                o.max_overlap_ratio = std::max(o.max_overlap_ratio, overlap / p.radius[i]);
+                if (scenario_.model.elastic) o.contact_energy += hertz_energy(c.E_star, a, overlap);
+                if (scenario_.model.attraction) o.contact_energy += attraction_energy(c.attraction, a, overlap);
+            }
+        }
     return o;
 }
 

@@ -35,12 +35,17 @@ struct Observables {
 };
 
 // One contact as seen by the force law in the last step (when recording).
+// For a contact with a flat wall, id_j is wall_id(face).
 struct ContactRecord {
     std::int64_t id_i = 0, id_j = 0;
     ContactGeometry geometry;
     ContactForces forces;
     ContactHistory history;  // after the step
 };
+
+// The id that stands for a flat wall in a ContactRecord: face = 2 axis + (0 at
+// lo, 1 at hi).
+constexpr std::int64_t wall_id(int face) { return -1 - face; }
 
 class Simulation {
 public:
@@ -71,6 +76,7 @@ public:
 
 private:
     void compute_forces();
+    void add_wall_forces();
     void move_kinematic();
 
     Scenario scenario_;
@@ -88,6 +94,9 @@ private:
     std::int64_t step_ = 0;
     bool recording_ = false;
     std::vector<ContactRecord> records_;
+    // History of the contacts with the six flat walls, at 6 id + face (ids are
+    // dense, 0 .. N-1); empty when the domain has no walls.
+    std::vector<ContactHistory> wall_history_;
 };
 
 }  // namespace tumble

@@ -1,0 +1,181 @@
+// SPDX-License-Identifier: MIT
+// The tumble command as a user meets it: exit codes, messages, and that the
+// same input and seed give byte-identical output files.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+    int exit_code;
+    std::string output;  // stdout and stderr
+};
+
+Result run_tumble(const std::string& arguments) {
+    const std::string command = std::string(TUMBLE_BINARY) + " " + arguments + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    std::string output;
+    char buffer[4096];
+    while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+    const int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+std::string read_file(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("tumble-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    fs::path write(const std::string& name, const std::string& text) {
+        std::ofstream(dir_ / name) << text;
+        return dir_ / name;
+    }
+    fs::path dir_;
+};
+
+// A small, fast scenario: 60 grains of the paper's material 1 falling onto a
+// flat floor, with random velocities so the run exercises the RNG.
+const char* small_scenario = R"(
+[simulation]
+duration = 0.02
+seed = 11
+gravity = [0.0, 0.0, -9.81]
+
+[domain]
+lo = [-0.03, -0.03, 0.0]
+hi = [0.03, 0.03, 0.06]
+walls = [false, false, true]
+wall_material = "material-1"
+
+[neighbor]
+skin = 0.0002
+
+[[material]]
+name = "material-1"
+E = 1.0e6
+G = 0.3e6
+nu = 0.25
+xi = 500.0
+eta = 500.0
+rho = 1000.0
+radius = 0.0036
+
+[[pair]]
+materials = ["material-1", "material-1"]
+mu = 0.1
+W = 0.2
+
+[[particles]]
+kind = "random_fill"
+material = "material-1"
+lo = [-0.03, -0.03, 0.0]
+hi = [0.03, 0.03, 0.04]
+count = 60
+speed = 0.3
+
+[output]
+time_series_interval = 0.001
+snapshot_interval = 0.01
+)";
+
+}  // namespace
+
+TEST(CliBasics, VersionAndHelp) {
+    const Result version = run_tumble("--version");
+    EXPECT_EQ(version.exit_code, 0);
+    EXPECT_NE(version.output.find("tumble"), std::string::npos);
+    const Result help = run_tumble("--help");
+    EXPECT_EQ(help.exit_code, 0);
+    EXPECT_NE(help.output.find("run"), std::string::npos);
+    EXPECT_NE(help.output.find("bench"), std::string::npos);
+}
+
+TEST_F(Cli, SameInputAndSeedGiveIdenticalFiles) {
+    const fs::path scenario = write("small.toml", small_scenario);
+    const Result a = run_tumble("run -q " + scenario.string() + " --out " + (dir_ / "a").string());
+    const Result b = run_tumble("run -q " + scenario.string() + " --out " + (dir_ / "b").string());
+    ASSERT_EQ(a.exit_code, 0) << a.output;
+    ASSERT_EQ(b.exit_code, 0) << b.output;
+    const std::string series = read_file(dir_ / "a" / "time_series.csv");
+    // 0.02 s sampled every 1 ms: the header and 21 rows.
+    EXPECT_EQ(std::count(series.begin(), series.end(), '\n'), 22);
+    EXPECT_EQ(series, read_file(dir_ / "b" / "time_series.csv"));
+    int snapshots = 0;
+    for (const auto& entry : fs::directory_iterator(dir_ / "a" / "snapshots")) {
+        ++snapshots;
+        EXPECT_EQ(read_file(entry.path()), read_file(dir_ / "b" / "snapshots" / entry.path().filename()))
+            << entry.path().filename();
+    }
+    EXPECT_EQ(snapshots, 3);  // t = 0, 0.01, 0.02 s
+}
+
+TEST_F(Cli, RefusesToOverwriteAnEarlierRun) {
+    const fs::path scenario = write("small.toml", small_scenario);
+    const std::string out = (dir_ / "out").string();
+    ASSERT_EQ(run_tumble("run -q " + scenario.string() + " --out " + out).exit_code, 0);
+    const std::string before = read_file(dir_ / "out" / "time_series.csv");
+    const Result again = run_tumble("run -q " + scenario.string() + " --out " + out);
+    EXPECT_NE(again.exit_code, 0);
+    EXPECT_NE(again.output.find("--force"), std::string::npos) << again.output;
+    EXPECT_EQ(read_file(dir_ / "out" / "time_series.csv"), before);
+    EXPECT_EQ(run_tumble("run -q --force " + scenario.string() + " --out " + out).exit_code, 0);
+}
+
+TEST_F(Cli, BadInputNamesFileKeyAndReasonAndWritesNothing) {
+    std::string bad = small_scenario;
+    bad.replace(bad.find("nu = 0.25"), 9, "nu = 0.7");
+    const fs::path scenario = write("bad.toml", bad);
+    const Result r = run_tumble("run " + scenario.string() + " --out " + (dir_ / "out").string());
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.output.find("bad.toml"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("nu"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+TEST_F(Cli, MissingFileIsAClearError) {
+    const Result r = run_tumble("run " + (dir_ / "nowhere.toml").string());
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.output.find("nowhere.toml"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, TooLargeTimeStepIsRefusedWithTheReason) {
+    std::string bad = small_scenario;
+    bad += "\n[time_step]\ndt = 1e-3\n";
+    const fs::path scenario = write("coarse.toml", bad);
+    const Result r = run_tumble("run " + scenario.string() + " --out " + (dir_ / "out").string());
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.output.find("safe maximum"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+TEST(CliBench, JsonLastLineHasTheBenchmarkKeys) {
+    // A tiny lattice and few steps: this checks the report, not the speed.
+    const Result r = run_tumble("bench --size 8 --steps 20 --warmup 0 --json");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    std::string last = r.output.substr(0, r.output.find_last_not_of('\n') + 1);
+    last = last.substr(last.find_last_of('\n') + 1);
+    for (const char* key : {"\"particles\": 512", "\"steps\": 20", "\"seconds\"", "\"updates_per_second\"",
+                            "\"contacts_per_particle\""})
+        EXPECT_NE(last.find(key), std::string::npos) << key << " missing in: " << last;
+    // Each sphere of the 1.98 R lattice overlaps its six neighbours.
+    EXPECT_NE(last.find("\"contacts_per_particle\": 6"), std::string::npos) << last;
+}
