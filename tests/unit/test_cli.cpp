@@ -69,6 +69,9 @@ wall_material = "material-1"
 [neighbor]
 skin = 0.0002
 
+[time_step]
+dt = 1e-5
+
 [[material]]
 name = "material-1"
 E = 1.0e6
@@ -116,7 +119,7 @@ TEST_F(Cli, SameInputAndSeedGiveIdenticalFiles) {
     ASSERT_EQ(a.exit_code, 0) << a.output;
     ASSERT_EQ(b.exit_code, 0) << b.output;
     const std::string series = read_file(dir_ / "a" / "time_series.csv");
-    // 0.02 s sampled every 1 ms: the header and 21 rows.
+    // 2000 steps of 1e-5 s sampled every 100 steps: the header and 21 rows.
     EXPECT_EQ(std::count(series.begin(), series.end(), '\n'), 22);
     EXPECT_EQ(series, read_file(dir_ / "b" / "time_series.csv"));
     int snapshots = 0;
@@ -159,7 +162,7 @@ TEST_F(Cli, MissingFileIsAClearError) {
 
 TEST_F(Cli, TooLargeTimeStepIsRefusedWithTheReason) {
     std::string bad = small_scenario;
-    bad += "\n[time_step]\ndt = 1e-3\n";
+    bad.replace(bad.find("dt = 1e-5"), 9, "dt = 1e-3");
     const fs::path scenario = write("coarse.toml", bad);
     const Result r = run_tumble("run " + scenario.string() + " --out " + (dir_ / "out").string());
     EXPECT_NE(r.exit_code, 0);

@@ -16,6 +16,8 @@ double viscous_poisson_ratio(const Material& m) {
 }
 
 std::string material_problem(const Material& m) {
+    for (double value : {m.E, m.G, m.nu, m.xi, m.eta, m.rho, m.radius})
+        if (!std::isfinite(value)) return "every parameter must be a finite number";
     if (!(m.E > 0.0)) return "Young's modulus E must be > 0";
     if (!(m.G > 0.0)) return "shear modulus G must be > 0";
     if (!(m.nu > -1.0 && m.nu < 0.5)) return "Poisson ratio nu must lie in (-1, 0.5)";

@@ -19,10 +19,12 @@ void brute_force_pairs(const ParticleStore& p, const Domain& domain, double skin
 
 // Linked cells of edge >= 2 R_max + skin. Periodic axes need at least three
 // cells (box length >= 3 (2 R_max + skin)), else tumble::Error. Positions on
-// periodic axes must lie in [lo, hi). With `cell_order` non-null it receives
-// the particle indices sorted by cell (for spatial sorting), computed before
-// the pairs. Pairs come grouped by first index, in increasing order of it.
+// periodic axes must lie in [lo, hi). Pairs come grouped by first index, in
+// increasing order of it, and by increasing second index within a group.
 void cell_list_pairs(const ParticleStore& p, const Domain& domain, double skin, PairList& out);
+
+// The particle indices sorted by the cell they lie in: the order in which to
+// store them so that neighbours are near in memory.
 std::vector<std::uint32_t> cell_order(const ParticleStore& p, const Domain& domain, double skin);
 
 }  // namespace tumble

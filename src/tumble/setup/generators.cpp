@@ -82,17 +82,22 @@ std::vector<ParticleSpec> random_fill(const Vec3& lo, const Vec3& hi, std::size_
     std::mt19937_64 rng(seed);
     std::vector<ParticleSpec> out;
     out.reserve(count);
-    const std::size_t max_attempts = 1000 * count + 10000;
-    std::size_t attempts = 0;
+    // Give up when this many tries in a row find no room: the region is full.
+    constexpr std::size_t max_failures = 100000;
+    std::size_t failures = 0;
     while (out.size() < count) {
-        if (++attempts > max_attempts)
+        if (failures == max_failures)
             throw Error("random fill: placed only " + std::to_string(out.size()) + " of " + std::to_string(count) +
-                        " spheres without overlap in " + std::to_string(max_attempts) +
-                        " attempts; the region is too full (enlarge it or ask for fewer)");
+                        " spheres; " + std::to_string(max_failures) +
+                        " random tries in a row found no room (enlarge the region or ask for fewer)");
         const double r = radius_min + (radius_max - radius_min) * uniform(rng);
         Vec3 x;
         for (int k = 0; k < 3; ++k) x[k] = lo[k] + r + (hi[k] - lo[k] - 2.0 * r) * uniform(rng);
-        if (!grid.free(x, r, largest)) continue;
+        if (!grid.free(x, r, largest)) {
+            ++failures;
+            continue;
+        }
+        failures = 0;
         grid.add(x, r);
         ParticleSpec p;
         p.position = x;

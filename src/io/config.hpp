@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: MIT
+// The scenario reader: a TOML file (format: docs/SCENARIO.md) -> RunConfig.
+//
+// Every key is checked before anything runs: unknown keys, missing keys,
+// wrong types, impossible values, unknown names, an incomplete pair table,
+// overlapping initial particles, and finally tumble::scenario_problem().
+// Any failure throws ConfigError with the message
+//
+//     FILE: KEY: REASON
+//
+// KEY is the path of the offending value, written as follows:
+//   - a key in a table:            simulation.duration, domain.lo
+//   - an entry of an array of
+//     tables ([[material]] etc.):  material[1].nu   (0-based, in file order)
+//   - an element of an array:      domain.lo[2], pair[0].materials[1]
+//   - nested arrays of tables:     particles[2].particles[5].position
+//   - a whole table or block:      material[1], particles[0]
+//   - a CSV cell:                  line 7, column vx   (FILE is then the CSV)
+//   - a TOML syntax error:         line 3, column 12
+// Indices count from 0, as the entries appear in the file. Where the value
+// exists in the file, REASON ends with its line number, "(line 23)".
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "tumble/core/error.hpp"
+#include "tumble/sim/scenario.hpp"
+
+namespace tumble::io {
+
+struct OutputSettings {
+    // Where a run writes; relative paths are relative to the working
+    // directory of the run (not to the scenario file).
+    std::filesystem::path directory = "tumble-out";
+    // s between two rows of time_series.csv. 0: no periodic rows, only the
+    // final state. The reader's default when the key is absent is
+    // duration / 100 (101 rows).
+    double time_series_interval = 0.0;
+    // s between two snapshots; 0: none.
+    double snapshot_interval = 0.0;
+};
+
+struct RunConfig {
+    Scenario scenario;
+    double duration = 0.0;  // s of simulated time
+    std::uint64_t seed = 1;
+    OutputSettings output;
+    std::filesystem::path source;  // the scenario file (or the name given to parse_run_config)
+};
+
+// Bad input. what() is "FILE: KEY: REASON" ("FILE: REASON" when no key
+// applies); the three parts are also available on their own.
+class ConfigError : public tumble::Error {
+public:
+    ConfigError(const std::filesystem::path& file, std::string key, std::string reason);
+    const std::filesystem::path& file() const { return file_; }
+    const std::string& key() const { return key_; }
+    const std::string& reason() const { return reason_; }
+
+private:
+    std::filesystem::path file_;
+    std::string key_;
+    std::string reason_;
+};
+
+// Reads and checks a scenario file. CSV files it names are found relative to
+// the file's directory.
+RunConfig load_run_config(const std::filesystem::path& file);
+
+// The same from text: `name` is used in messages (and as RunConfig::source),
+// `base_dir` resolves relative CSV paths.
+RunConfig parse_run_config(std::string_view toml_text, const std::filesystem::path& name,
+                           const std::filesystem::path& base_dir);
+
+}  // namespace tumble::io

@@ -1,0 +1,576 @@
+// SPDX-License-Identifier: MIT
+// The scenario reader (src/io/config.hpp, particle_csv.hpp): every class of
+// bad input is refused with the file, the key path and the reason; good
+// input gives exactly the values written.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+
+#include "io/config.hpp"
+#include "io/particle_csv.hpp"
+
+namespace fs = std::filesystem;
+using tumble::io::ConfigError;
+using tumble::io::parse_run_config;
+using tumble::io::RunConfig;
+
+namespace {
+
+// Two material-1 spheres 1 mm apart: the smallest valid scenario.
+const std::string base = R"(
+[simulation]
+duration = 0.01
+gravity = [0.0, 0.0, -9.81]
+
+[domain]
+lo = [-0.02, -0.02, -0.02]
+hi = [0.02, 0.02, 0.02]
+
+[[material]]
+name = "material-1"
+E = 1.0e6
+G = 0.3e6
+nu = 0.25
+xi = 500.0
+eta = 500.0
+rho = 1000.0
+radius = 0.0036
+
+[[pair]]
+materials = ["material-1", "material-1"]
+mu = 0.1
+W = 0.2
+
+[[particles]]
+kind = "list"
+material = "material-1"
+particles = [
+    { position = [-0.0041, 0.0, 0.0], velocity = [0.5, 0.0, 0.0] },
+    { position = [0.0041, 0.0, 0.0], velocity = [-0.5, 0.0, 0.0] },
+]
+)";
+
+const std::string material_2 = R"(
+[[material]]
+name = "material-2"
+E = 1.0e6
+G = 0.3e6
+nu = 0.25
+xi = 500.0
+eta = 500.0
+rho = 1000.0
+radius = 0.0024
+)";
+
+RunConfig parse(const std::string& text, const fs::path& base_dir = ".") {
+    return parse_run_config(text, "test.toml", base_dir);
+}
+
+// `text` with the first occurrence of `from` replaced by `to` (which must exist).
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << "test bug: \"" << from << "\" not in the scenario";
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+}
+
+// Runs `read`, which must throw ConfigError for `file` at `key` with a
+// reason containing `reason`; the message must read "FILE: KEY: REASON".
+void expect_error(const std::function<void()>& read, const std::string& file, const std::string& key,
+                  const std::string& reason) {
+    try {
+        read();
+        ADD_FAILURE() << "no error; expected " << file << ": " << key << ": ..." << reason << "...";
+    } catch (const ConfigError& e) {
+        const std::string what = e.what();
+        EXPECT_EQ(e.file().string(), file) << what;
+        EXPECT_EQ(e.key(), key) << what;
+        EXPECT_NE(e.reason().find(reason), std::string::npos) << "reason \"" << reason << "\" not in: " << what;
+        const std::string prefix = key.empty() ? file + ": " : file + ": " + key + ": ";
+        EXPECT_EQ(what.rfind(prefix, 0), 0u) << what;
+    }
+}
+
+void expect_error(const std::string& text, const std::string& key, const std::string& reason) {
+    expect_error([&] { parse(text); }, "test.toml", key, reason);
+}
+
+// A scratch directory per test for CSV files.
+class ConfigFiles : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("tumble-config-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    fs::path write(const std::string& name, const std::string& text) {
+        std::ofstream(dir_ / name) << text;
+        return dir_ / name;
+    }
+    fs::path dir_;
+};
+
+const fs::path examples = fs::path(TUMBLE_SOURCE_DIR) / "examples";
+
+}  // namespace
+
+// ---------------------------------------------------------------- errors
+
+TEST(ConfigErrors, UnknownKeysAreRefusedEverywhereWithASuggestion) {
+    expect_error(base + "\n[simulaton]\nduration = 1.0\n", "simulaton", "did you mean \"simulation\"");
+    expect_error(replace(base, "duration = 0.01", "duration = 0.01\ndurration = 2"), "simulation.durration",
+                 "unknown key (did you mean \"duration\"?)");
+    expect_error(replace(base, "radius = 0.0036", "radius = 0.0036\nradus = 1.0"), "material[0].radus",
+                 "did you mean \"radius\"");
+    expect_error(replace(base, "mu = 0.1", "mu = 0.1\nmu_roll = 0.1"), "pair[0].mu_roll", "unknown key");
+    expect_error(replace(base, "{ position = [0.0041", "{ postion = [0.0041"), "particles[0].particles[1].postion",
+                 "did you mean \"position\"");
+    // A key valid for another kind of block is unknown here.
+    expect_error(replace(base, "kind = \"list\"", "kind = \"list\"\ncount = 3"), "particles[0].count",
+                 "unknown key");
+    // The reason lists the known keys and the line.
+    expect_error(replace(base, "duration = 0.01", "duration = 0.01\nspeed = 2"), "simulation.speed",
+                 "known keys here: \"duration\", \"seed\", \"gravity\", \"max_initial_overlap\" (line 4)");
+}
+
+TEST(ConfigErrors, MissingRequiredKeys) {
+    expect_error(replace(base, "duration = 0.01", ""), "simulation.duration", "missing required key");
+    expect_error(replace(base, "rho = 1000.0", ""), "material[0].rho", "missing required key");
+    expect_error(replace(base, "hi = [0.02, 0.02, 0.02]", ""), "domain.hi", "missing required key");
+    expect_error(replace(base, "[domain]", "[domainx]"), "domainx", "unknown key");
+    expect_error(replace(base, "W = 0.2", ""), "pair[0].W", "missing required key");
+    expect_error(replace(base, "kind = \"list\"", ""), "particles[0].kind", "missing required key");
+    expect_error(replace(base, "{ position = [0.0041, 0.0, 0.0], ", "{ "), "particles[0].particles[1].position",
+                 "missing required key");
+    expect_error(replace(base, "material = \"material-1\"\nparticles", "particles"),
+                 "particles[0].particles[0].material", "missing");
+    // Lattice and random fill need a material at block level.
+    expect_error(base + "[[particles]]\nkind = \"lattice\"\norigin = [0.0, 0.0, 0.01]\ncounts = [1, 1, 1]\n"
+                        "spacing = 0.01\n",
+                 "particles[1].material", "missing required key");
+}
+
+TEST(ConfigErrors, WrongTypes) {
+    expect_error(replace(base, "duration = 0.01", "duration = \"long\""), "simulation.duration",
+                 "expected a number, got a string");
+    expect_error(replace(base, "E = 1.0e6", "E = true"), "material[0].E", "expected a number, got a boolean");
+    expect_error(replace(base, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, -9.81]"), "simulation.gravity",
+                 "expected an array of 3 numbers [x, y, z], got 2 elements");
+    expect_error(replace(base, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, \"down\", -9.81]"),
+                 "simulation.gravity[1]", "expected a number, got a string");
+    expect_error(replace(base, "duration = 0.01", "duration = 0.01\nseed = 1.5"), "simulation.seed",
+                 "expected an integer, got a floating-point number");
+    expect_error(replace(base, "[[material]]", "[material]"), "material",
+                 "expected an array of tables");
+    expect_error(replace(base, "lo = [-0.02, -0.02, -0.02]", "lo = [-0.02, -0.02, -0.02]\nperiodic = [true, 0, false]"),
+                 "domain.periodic[1]", "expected true or false, got an integer");
+    expect_error(replace(base, "name = \"material-1\"", "name = 1"), "material[0].name", "expected a string");
+    expect_error(base + "[time_step]\ndt = \"fast\"\n", "time_step.dt", "expected \"auto\" or a time step in s");
+    expect_error(base + "[time_step]\ndt = [1e-6]\n", "time_step.dt", "expected \"auto\" or a number");
+}
+
+TEST(ConfigErrors, IntegersAreAcceptedWhereFloatsAreExpected) {
+    const RunConfig c = parse(replace(replace(base, "E = 1.0e6", "E = 1000000"), "rho = 1000.0", "rho = 1000"));
+    EXPECT_EQ(c.scenario.materials[0].E, 1.0e6);
+    EXPECT_EQ(c.scenario.materials[0].rho, 1000.0);
+}
+
+TEST(ConfigErrors, ImpossibleNumbers) {
+    expect_error(replace(base, "nu = 0.25", "nu = 0.7"), "material[0].nu", "must lie in (-1, 0.5), got 0.7");
+    expect_error(replace(base, "nu = 0.25", "nu = 0.5"), "material[0].nu", "must lie in (-1, 0.5)");
+    expect_error(replace(base, "nu = 0.25", "nu = -1"), "material[0].nu", "must lie in (-1, 0.5)");
+    expect_error(replace(base, "nu = 0.25", "nu = nan"), "material[0].nu", "must be finite");
+    expect_error(replace(base, "E = 1.0e6", "E = inf"), "material[0].E", "must be finite");
+    expect_error(replace(base, "radius = 0.0036", "radius = 0.0"), "material[0].radius", "must be > 0, got 0");
+    expect_error(replace(base, "radius = 0.0036", "radius = -0.001"), "material[0].radius", "must be > 0");
+    expect_error(replace(base, "{ position = [0.0041, 0.0, 0.0],", "{ position = [0.0041, 0.0, 0.0], radius = 0,"),
+                 "particles[0].particles[1].radius", "must be > 0");
+    expect_error(replace(base, "duration = 0.01", "duration = 0"), "simulation.duration", "must be > 0");
+    expect_error(replace(base, "mu = 0.1", "mu = -0.1"), "pair[0].mu", "must be >= 0");
+    expect_error(replace(base, "xi = 500.0", "xi = 0.0"), "material[0]", "viscosities xi and eta");
+    expect_error(replace(base, "hi = [0.02, 0.02, 0.02]", "hi = [0.02, -0.03, 0.02]"), "domain.hi[1]",
+                 "must exceed lo along y");
+    expect_error(base + "[model]\nslip_velocity_regularisation = 0\n", "model.slip_velocity_regularisation",
+                 "must be > 0");
+    expect_error(base + "[time_step]\ndt = 0\n", "time_step.dt", "must be > 0");
+    expect_error(base + "[neighbor]\nsort_every = -1\n", "neighbor.sort_every", "must lie in [0,");
+    expect_error(base + "[output]\nsnapshot_interval = -1.0\n", "output.snapshot_interval", "must be >= 0");
+}
+
+TEST(ConfigErrors, TooLargeTimeStepNamesTheKey) {
+    expect_error(base + "[time_step]\ndt = 1e-3\n", "time_step.dt", "maximum");
+    // ... unless explicitly allowed.
+    EXPECT_EQ(parse(base + "[time_step]\ndt = 1e-3\nallow_unsafe = true\n").scenario.time_step.dt, 1e-3);
+}
+
+TEST(ConfigErrors, PairTableMustBeComplete) {
+    // Two materials need 1-1, 1-2 and 2-2; only 1-1 is given.
+    expect_error(base + material_2, "pair",
+                 "missing [[pair]] with materials = [\"material-1\", \"material-2\"]");
+    const std::string pair_12 = "[[pair]]\nmaterials = [\"material-1\", \"material-2\"]\nmu = 0.2\nW = 0.2\n";
+    const std::string pair_22 = "[[pair]]\nmaterials = [\"material-2\", \"material-2\"]\nmu = 0.5\nW = 0.2\n";
+    expect_error(base + material_2 + pair_12, "pair",
+                 "missing [[pair]] with materials = [\"material-2\", \"material-2\"]");
+    // Complete: parses, symmetric.
+    const RunConfig c = parse(base + material_2 + pair_12 + pair_22);
+    EXPECT_EQ(c.scenario.pair_properties[0][1].mu, 0.2);
+    EXPECT_EQ(c.scenario.pair_properties[1][0].mu, 0.2);
+    EXPECT_EQ(c.scenario.pair_properties[1][1].mu, 0.5);
+    // The same pair twice, in either order.
+    const std::string pair_21 = "[[pair]]\nmaterials = [\"material-2\", \"material-1\"]\nmu = 0.3\nW = 0.2\n";
+    expect_error(base + material_2 + pair_12 + pair_22 + pair_21, "pair[3].materials",
+                 "duplicate pair \"material-2\" - \"material-1\" (already given by pair[1])");
+    expect_error(base + material_2 + pair_12 + pair_22 +
+                     "[[pair]]\nmaterials = [\"material-1\", \"material-3\"]\nmu = 0.3\nW = 0.2\n",
+                 "pair[3].materials[1]", "unknown material \"material-3\"");
+}
+
+TEST(ConfigErrors, UnknownNames) {
+    expect_error(replace(base, "material = \"material-1\"\nparticles", "material = \"materal-1\"\nparticles"),
+                 "particles[0].material",
+                 "unknown material \"materal-1\" (did you mean \"material-1\"?); known materials: \"material-1\"");
+    expect_error(replace(base, "{ position = [0.0041, 0.0, 0.0],", "{ position = [0.0041, 0.0, 0.0], motion = \"spin\","),
+                 "particles[0].particles[1].motion", "unknown motion \"spin\"; known motions: none");
+    expect_error(replace(base, "kind = \"list\"", "kind = \"lists\""), "particles[0].kind",
+                 "unknown kind \"lists\" (did you mean \"list\"?)");
+    expect_error(base + "[model]\nshear = \"spring-dashpot\"\n", "model.shear",
+                 "unknown shear model \"spring-dashpot\"; known: \"slip\", \"spring\", \"off\"");
+    expect_error(base + material_2 + material_2, "material[2].name",
+                 "duplicate material name \"material-2\" (also material[1])");
+    expect_error(base + "[[motion]]\nname = \"m\"\n[[motion]]\nname = \"m\"\n", "motion[1].name",
+                 "duplicate motion name \"m\"");
+    expect_error(base + "[[motion]]\nname = \"m\"\naxis_direction = [0, 0, 0]\n", "motion[0].axis_direction",
+                 "must not be the zero vector");
+}
+
+TEST(ConfigErrors, OverlappingExplicitParticlesAreNamed) {
+    // Centres 6.0 mm apart: an overlap of 1.2 mm = 0.33 R.
+    expect_error(replace(base, "position = [0.0041, 0.0, 0.0]", "position = [0.0019, 0.0, 0.0]"),
+                 "particles[0].particles[1]",
+                 "the particle at (0.0019, 0, 0) overlaps particles[0].particles[0] at (-0.0041, 0, 0) "
+                 "by 0.333 of the smaller radius, more than simulation.max_initial_overlap = 0.05");
+    // Allowed when the limit is raised.
+    EXPECT_EQ(parse(replace(replace(base, "position = [0.0041, 0.0, 0.0]", "position = [0.0019, 0.0, 0.0]"),
+                            "duration = 0.01", "duration = 0.01\nmax_initial_overlap = 0.4"))
+                  .scenario.particles.size(),
+              2u);
+    // Across blocks: a lattice sphere overlapping a list particle.
+    expect_error(base + "[[particles]]\nkind = \"lattice\"\nmaterial = \"material-1\"\norigin = [0.0, 0.0, 0.0]\n"
+                        "counts = [1, 1, 1]\nspacing = 0.01\n",
+                 "particles[1]", "sphere 0 at (0, 0, 0) overlaps particles[0].particles[");
+}
+
+TEST(ConfigErrors, ParticleSetMustNotBeEmpty) {
+    const std::string no_particles = base.substr(0, base.find("[[particles]]"));
+    expect_error(no_particles, "particles", "at least one [[particles]] block is required");
+    expect_error(no_particles + "[[particles]]\nkind = \"list\"\nmaterial = \"material-1\"\nparticles = []\n",
+                 "particles[0].particles", "the list is empty");
+}
+
+TEST(ConfigErrors, ParticlesOutsideTheDomain) {
+    expect_error(replace(replace(base, "lo = [-0.02, -0.02, -0.02]", "lo = [-0.04, -0.04, -0.04]\nperiodic = [true, true, true]"),
+                         "{ position = [0.0041, 0.0, 0.0]", "{ position = [0.0041, 0.05, 0.0]"),
+                 "particles[0].particles[1]", "the particle at (0.0041, 0.05, 0) lies outside the domain along the periodic axis y: [-0.04, 0.02)");
+    // On open axes the box bounds where particles start.
+    expect_error(replace(base, "{ position = [0.0041, 0.0, 0.0]", "{ position = [0.0041, 0.0, 0.5]"),
+                 "particles[0].particles[1]",
+                 "the particle at (0.0041, 0, 0.5) lies outside the domain along the open axis z: "
+                 "[-0.02, 0.02]");
+}
+
+TEST(ConfigErrors, SyntaxErrorGivesLineAndColumn) {
+    try {
+        parse(replace(base, "duration = 0.01", "duration = = 0.01"));
+        ADD_FAILURE() << "no error";
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(e.file().string(), "test.toml");
+        EXPECT_EQ(e.key().rfind("line 3, column ", 0), 0u) << e.what();
+        EXPECT_NE(e.reason().find("TOML syntax error"), std::string::npos) << e.what();
+    }
+    // A key given twice is a TOML error, too.
+    expect_error([] { parse(replace(base, "duration = 0.01", "duration = 0.01\nduration = 0.02")); }, "test.toml",
+                 "line 4, column 12", "TOML syntax error: Error while parsing key-value pair: cannot redefine");
+}
+
+TEST(ConfigErrors, MissingFileNamesIt) {
+    expect_error([] { tumble::io::load_run_config("/nonexistent/scenario.toml"); }, "/nonexistent/scenario.toml",
+                 "", "no such file");
+}
+
+TEST_F(ConfigFiles, BadCsvValueNamesFileLineAndColumn) {
+    const fs::path csv = write("p.csv", "x,y,z,vx,material\n0,0,0,0,material-1\n# a comment\n0.01,0,0,abc,material-1\n");
+    const std::string text = replace(base, "kind = \"list\"", "kind = \"csv\"\nfile = \"p.csv\"\n[[particles]]\nkind = \"list\"");
+    expect_error([&] { parse(text, dir_); }, csv.string(), "line 4, column vx", "expected a number, got \"abc\"");
+
+    write("p.csv", "x,y,z,material\n0,0,0,material-1\n\n0.01,0,0,materal-2\n");
+    expect_error([&] { parse(text, dir_); }, csv.string(), "line 4, column material",
+                 "unknown material \"materal-2\" (did you mean \"material-1\"?)");
+    write("p.csv", "x,y,z,material\n0,0,0,material-1\n0.01,0,0\n");
+    expect_error([&] { parse(text, dir_); }, csv.string(), "line 3", "expected 4 fields as in the header, found 3");
+    write("p.csv", "x,y,z,materials\n0,0,0,material-1\n");
+    expect_error([&] { parse(text, dir_); }, csv.string(), "line 1",
+                 "unknown column \"materials\" in the header (did you mean \"material\"?)");
+    write("p.csv", "x,y,material\n0,0,material-1\n");
+    expect_error([&] { parse(text, dir_); }, csv.string(), "line 1", "no column \"z\"");
+    write("p.csv", "x,y,z,material,radius\n0,0,0,material-1,-1\n");
+    expect_error([&] { parse(text, dir_); }, csv.string(), "line 2, column radius", "must be > 0");
+    write("p.csv", "x,y,z,material,tag\n0,0,0,material-1,1.5\n");
+    expect_error([&] { parse(text, dir_); }, csv.string(), "line 2, column tag", "expected an integer");
+    write("p.csv", "x,y,z,material\n");
+    expect_error([&] { parse(text, dir_); }, csv.string(), "", "no particles");
+    write("p.csv", "x,y,z,material\n0.01,0,0,material-1\n0.012,0,0,material-1\n");
+    expect_error([&] { parse(text, dir_); }, "test.toml", "particles[0]",
+                 "the particle of " + csv.string() + " line 3 at (0.012, 0, 0) overlaps particles[0] (" + csv.string() +
+                     " line 2) at (0.01, 0, 0) by 1.44 of the smaller radius");
+    // A file that is not there is named by the TOML key.
+    expect_error([&] { parse(replace(text, "p.csv", "q.csv"), dir_); }, "test.toml", "particles[0].file",
+                 "no such file: " + (dir_ / "q.csv").string());
+}
+
+// ---------------------------------------------------------------- values
+
+TEST(ConfigValues, DefaultsOfAMinimalScenario) {
+    const RunConfig c = parse(base);
+    EXPECT_EQ(c.source, fs::path("test.toml"));
+    EXPECT_EQ(c.duration, 0.01);
+    EXPECT_EQ(c.seed, 1u);
+    EXPECT_EQ(c.scenario.gravity, (tumble::Vec3{0.0, 0.0, -9.81}));
+    EXPECT_EQ(c.scenario.time_step.dt, 0.0);  // auto
+    EXPECT_EQ(c.scenario.time_step.reference_speed, 1.0);
+    EXPECT_FALSE(c.scenario.time_step.allow_unsafe);
+    EXPECT_EQ(c.scenario.neighbor.skin, 0.0);
+    EXPECT_EQ(c.scenario.neighbor.sort_every, 1);
+    EXPECT_TRUE(c.scenario.model.elastic && c.scenario.model.viscous && c.scenario.model.attraction &&
+                c.scenario.model.twisting);
+    EXPECT_EQ(c.scenario.model.shear, tumble::ShearModel::IntegratedSlip);
+    EXPECT_EQ(c.scenario.model.slip_velocity_regularisation, 1e-4);
+    EXPECT_EQ(c.scenario.domain.periodic, (std::array<bool, 3>{false, false, false}));
+    EXPECT_EQ(c.scenario.domain.walls, (std::array<bool, 3>{false, false, false}));
+    EXPECT_EQ(c.output.directory, fs::path("tumble-out"));
+    EXPECT_DOUBLE_EQ(c.output.time_series_interval, 0.01 / 100);
+    EXPECT_EQ(c.output.snapshot_interval, 0.0);
+    EXPECT_TRUE(c.scenario.motions.empty());
+}
+
+TEST(ConfigValues, DtAutoOrANumber) {
+    EXPECT_EQ(parse(base + "[time_step]\ndt = \"auto\"\n").scenario.time_step.dt, 0.0);
+    const RunConfig c = parse(base + "[time_step]\ndt = 2e-6\nreference_speed = 2\n");
+    EXPECT_EQ(c.scenario.time_step.dt, 2e-6);
+    EXPECT_EQ(c.scenario.time_step.reference_speed, 2.0);
+}
+
+TEST(ConfigValues, SectionsAreRead) {
+    const RunConfig c = parse(replace(base, "lo = [-0.02, -0.02, -0.02]",
+                                      "lo = [-0.02, -0.02, -0.02]\nperiodic = [true, false, false]\n"
+                                      "walls = [false, false, true]\nwall_material = \"material-1\"") +
+                              "[model]\nelastic = true\nviscous = false\nattraction = false\ntwisting = false\n"
+                              "shear = \"spring\"\nslip_velocity_regularisation = 1e-3\n"
+                              "[neighbor]\nskin = 0.0005\nsort_every = 0\n"
+                              "[output]\ndirectory = \"out\"\ntime_series_interval = 0.001\nsnapshot_interval = 0\n"
+                              "[[motion]]\nname = \"drum\"\naxis_point = [0, 0.01, 0]\naxis_direction = [1, 0, 0]\n"
+                              "angular_velocity = 5\nvelocity = [0, 0, 0.1]\n");
+    const tumble::Scenario& s = c.scenario;
+    EXPECT_EQ(s.domain.periodic, (std::array<bool, 3>{true, false, false}));
+    EXPECT_EQ(s.domain.walls, (std::array<bool, 3>{false, false, true}));
+    EXPECT_EQ(s.domain.wall_material, 0);
+    EXPECT_FALSE(s.model.viscous || s.model.attraction || s.model.twisting);
+    EXPECT_EQ(s.model.shear, tumble::ShearModel::TangentialSpring);
+    EXPECT_EQ(s.model.slip_velocity_regularisation, 1e-3);
+    EXPECT_EQ(s.neighbor.skin, 0.0005);
+    EXPECT_EQ(s.neighbor.sort_every, 0);
+    EXPECT_EQ(c.output.directory, fs::path("out"));
+    EXPECT_EQ(c.output.time_series_interval, 0.001);
+    ASSERT_EQ(s.motions.size(), 1u);
+    EXPECT_EQ(s.motions[0].axis_point, (tumble::Vec3{0, 0.01, 0}));
+    EXPECT_EQ(s.motions[0].axis_direction, (tumble::Vec3{1, 0, 0}));
+    EXPECT_EQ(s.motions[0].angular_velocity, 5.0);
+    EXPECT_EQ(s.motions[0].velocity, (tumble::Vec3{0, 0, 0.1}));
+}
+
+TEST(ConfigValues, ListParticlesGiveTheWrittenValuesAndBlockDefaults) {
+    const std::string text = base + material_2 +
+                             "[[pair]]\nmaterials = [\"material-1\", \"material-2\"]\nmu = 0.2\nW = 0.2\n"
+                             "[[pair]]\nmaterials = [\"material-2\", \"material-2\"]\nmu = 0.5\nW = 0.2\n"
+                             "[[motion]]\nname = \"fixed\"\n"
+                             "[[particles]]\nkind = \"list\"\nmaterial = \"material-2\"\ntag = 7\nmotion = \"fixed\"\n"
+                             "angular_velocity = [0, 0, 3]\nparticles = [\n"
+                             "  { position = [0.0, 0.01, 0.0] },\n"
+                             "  { position = [0.0, -0.01, 0.0], velocity = [1, 2, 3], angular_velocity = [4, 5, 6],"
+                             " radius = 0.002, material = \"material-1\", tag = -3 },\n]\n";
+    const RunConfig c = parse(text);
+    const auto& p = c.scenario.particles;
+    ASSERT_EQ(p.size(), 4u);
+    // The first block (base): block material, given velocities, free.
+    EXPECT_EQ(p[0].position, (tumble::Vec3{-0.0041, 0, 0}));
+    EXPECT_EQ(p[0].velocity, (tumble::Vec3{0.5, 0, 0}));
+    EXPECT_EQ(p[0].radius, 0.0036);
+    EXPECT_EQ(p[0].material, 0);
+    EXPECT_EQ(p[0].motion, tumble::free_motion);
+    EXPECT_EQ(p[0].tag, 0);
+    // Block defaults.
+    EXPECT_EQ(p[2].position, (tumble::Vec3{0.0, 0.01, 0.0}));
+    EXPECT_EQ(p[2].velocity, (tumble::Vec3{}));
+    EXPECT_EQ(p[2].angular_velocity, (tumble::Vec3{0, 0, 3}));
+    EXPECT_EQ(p[2].radius, 0.0024);
+    EXPECT_EQ(p[2].material, 1);
+    EXPECT_EQ(p[2].motion, 0);
+    EXPECT_EQ(p[2].tag, 7);
+    // Per-particle values win.
+    EXPECT_EQ(p[3].velocity, (tumble::Vec3{1, 2, 3}));
+    EXPECT_EQ(p[3].angular_velocity, (tumble::Vec3{4, 5, 6}));
+    EXPECT_EQ(p[3].radius, 0.002);
+    EXPECT_EQ(p[3].material, 0);
+    EXPECT_EQ(p[3].motion, 0);
+    EXPECT_EQ(p[3].tag, -3);
+}
+
+TEST_F(ConfigFiles, CsvParticlesGiveTheWrittenValues) {
+    write("p.csv",
+          "# comment\n"
+          "tag , motion, material, x, y, z, vx, vy, vz, wx, wy, wz, radius\r\n"
+          "3, spin, material-1, 0.01, 0.02, 0.0, 1, 2, 3, 4, 5, 6, 0.003\r\n"
+          "\n"
+          ",, material-1, -0.015, 0.0, 0.0,,,,,,,\n");
+    const std::string text = replace(base, "kind = \"list\"", "kind = \"csv\"\nfile = \"p.csv\"\n[[particles]]\nkind = \"list\"") +
+                             "[[motion]]\nname = \"spin\"\nangular_velocity = 1.0\n";
+    const RunConfig c = parse(text, dir_);
+    const auto& p = c.scenario.particles;
+    ASSERT_EQ(p.size(), 4u);
+    EXPECT_EQ(p[0].position, (tumble::Vec3{0.01, 0.02, 0.0}));
+    EXPECT_EQ(p[0].velocity, (tumble::Vec3{1, 2, 3}));
+    EXPECT_EQ(p[0].angular_velocity, (tumble::Vec3{4, 5, 6}));
+    EXPECT_EQ(p[0].radius, 0.003);
+    EXPECT_EQ(p[0].material, 0);
+    EXPECT_EQ(p[0].motion, 0);
+    EXPECT_EQ(p[0].tag, 3);
+    // Empty cells: the defaults.
+    EXPECT_EQ(p[1].position, (tumble::Vec3{-0.015, 0.0, 0.0}));
+    EXPECT_EQ(p[1].velocity, (tumble::Vec3{}));
+    EXPECT_EQ(p[1].radius, 0.0036);
+    EXPECT_EQ(p[1].motion, tumble::free_motion);
+    EXPECT_EQ(p[1].tag, 0);
+
+    // The reader on its own, with block defaults and line numbers.
+    write("q.csv", "x,y,z\n0,0,0\n\n1,2,3\n");
+    tumble::io::CsvDefaults d;
+    d.material = 0;
+    d.tag = 9;
+    d.velocity = {0, 0, -1};
+    std::vector<std::size_t> lines;
+    const auto q = tumble::io::read_particle_csv(dir_ / "q.csv", c.scenario.materials, {"spin"}, d, &lines);
+    ASSERT_EQ(q.size(), 2u);
+    EXPECT_EQ(lines, (std::vector<std::size_t>{2, 4}));
+    EXPECT_EQ(q[1].position, (tumble::Vec3{1, 2, 3}));
+    EXPECT_EQ(q[1].velocity, (tumble::Vec3{0, 0, -1}));
+    EXPECT_EQ(q[1].tag, 9);
+    EXPECT_EQ(q[1].radius, 0.0036);
+    // Without a default material the column is required.
+    expect_error([&] { tumble::io::read_particle_csv(dir_ / "q.csv", c.scenario.materials, {}); },
+                 (dir_ / "q.csv").string(), "line 1", "no column \"material\"");
+}
+
+TEST(ConfigValues, GeneratedBlocksAreDeterministicAndSeeded) {
+    const std::string fill = "[[particles]]\nkind = \"random_fill\"\nmaterial = \"material-1\"\n"
+                             "lo = [-0.02, -0.02, 0.005]\nhi = [0.02, 0.02, 0.02]\ncount = 10\nspeed = 0.3\n";
+    const RunConfig a = parse(base + fill + fill);
+    const RunConfig b = parse(base + fill + fill);
+    const RunConfig other_seed = parse(replace(base + fill + fill, "duration = 0.01", "duration = 0.01\nseed = 2"));
+    ASSERT_EQ(a.scenario.particles.size(), 22u);
+    for (std::size_t i = 0; i < 22; ++i) {
+        EXPECT_EQ(a.scenario.particles[i].position, b.scenario.particles[i].position);
+        EXPECT_EQ(a.scenario.particles[i].velocity, b.scenario.particles[i].velocity);
+    }
+    EXPECT_NE(a.scenario.particles[2].position, other_seed.scenario.particles[2].position);
+    // Two identical blocks draw different numbers.
+    EXPECT_NE(a.scenario.particles[2].position, a.scenario.particles[12].position);
+    EXPECT_NE(a.scenario.particles[2].velocity, a.scenario.particles[12].velocity);
+    for (std::size_t i = 2; i < 22; ++i) EXPECT_NEAR(norm(a.scenario.particles[i].velocity), 0.3, 1e-12);
+
+    // Polydisperse fill and a lattice.
+    const RunConfig c = parse(base +
+                              "[[particles]]\nkind = \"random_fill\"\nmaterial = \"material-1\"\n"
+                              "lo = [-0.02, -0.02, 0.005]\nhi = [0.02, 0.02, 0.02]\ncount = 10\n"
+                              "radius_min = 0.001\nradius_max = 0.002\ntag = 4\n"
+                              "[[particles]]\nkind = \"lattice\"\nmaterial = \"material-1\"\n"
+                              "origin = [-0.01, -0.01, -0.015]\ncounts = [3, 2, 1]\nspacing = 0.008\n"
+                              "velocity = [0, 0, 1]\n");
+    ASSERT_EQ(c.scenario.particles.size(), 18u);
+    for (std::size_t i = 2; i < 12; ++i) {
+        EXPECT_GE(c.scenario.particles[i].radius, 0.001);
+        EXPECT_LE(c.scenario.particles[i].radius, 0.002);
+        EXPECT_EQ(c.scenario.particles[i].tag, 4);
+    }
+    EXPECT_EQ(c.scenario.particles[12].position, (tumble::Vec3{-0.01, -0.01, -0.015}));
+    EXPECT_EQ(c.scenario.particles[17].position, (tumble::Vec3{-0.01 + 2 * 0.008, -0.01 + 0.008, -0.015}));
+    EXPECT_EQ(c.scenario.particles[17].velocity, (tumble::Vec3{0, 0, 1}));
+    EXPECT_EQ(c.scenario.particles[17].radius, 0.0036);
+
+    expect_error(base + "[[particles]]\nkind = \"lattice\"\nmaterial = \"material-1\"\norigin = [0, 0, 0.01]\n"
+                        "counts = [1000, 1000, 1000]\nspacing = 0.008\n",
+                 "particles[1].counts", "more than 50000000 spheres");
+    expect_error(base + "[[particles]]\nkind = \"lattice\"\nmaterial = \"material-1\"\norigin = [0, 0, 0.01]\n"
+                        "counts = [1, 0, 1]\nspacing = 0.008\n",
+                 "particles[1].counts[1]", "must lie in [1, ");
+    expect_error(base + fill + "velocity = [0, 0, 1]\n", "particles[1].speed", "not both");
+    expect_error(base + replace(fill, "hi = [0.02, 0.02, 0.02]", "hi = [0.02, 0.02, 0.01]"), "particles[1]",
+                 "random fill: the region is thinner than one sphere along z");
+    expect_error(replace(base + fill, "count = 10", "count = 10000000"), "particles[1].count",
+                 "10000000 spheres of radius >= 0.0036 m would fill 8.1e+04 of the region's volume");
+}
+
+// ---------------------------------------------------------------- examples
+
+TEST(ConfigExamples, DemoParses) {
+    const RunConfig c = tumble::io::load_run_config(examples / "demo.toml");
+    const tumble::Scenario& s = c.scenario;
+    ASSERT_EQ(s.materials.size(), 3u);
+    EXPECT_EQ(s.materials[0].name, "material-1");
+    EXPECT_EQ(s.materials[1].name, "material-2");
+    EXPECT_EQ(s.materials[2].name, "wall");
+    EXPECT_EQ(s.materials[0].radius, 3.6e-3);
+    EXPECT_EQ(s.materials[1].radius, 2.4e-3);
+    EXPECT_EQ(s.materials[2].radius, 3.0e-3);
+    EXPECT_EQ(s.materials[0].xi, 500.0);
+    EXPECT_EQ(s.pair_properties[0][0].mu, 0.1);
+    EXPECT_EQ(s.pair_properties[0][1].mu, 0.2);
+    EXPECT_EQ(s.pair_properties[1][1].mu, 0.5);
+    EXPECT_EQ(s.pair_properties[2][1].mu, 0.2);
+    ASSERT_EQ(s.motions.size(), 1u);
+    std::size_t per_material[3] = {0, 0, 0}, kinematic = 0;
+    for (const auto& p : s.particles) {
+        ++per_material[p.material];
+        kinematic += p.motion != tumble::free_motion;
+    }
+    EXPECT_EQ(per_material[0], 100u);
+    EXPECT_EQ(per_material[1], 338u);
+    EXPECT_EQ(per_material[2], 144u + 2 * 48 + 2 * 40);
+    EXPECT_EQ(kinematic, per_material[2]);
+    EXPECT_EQ(c.duration, 0.5);
+    EXPECT_EQ(c.seed, 7u);
+    EXPECT_EQ(c.output.time_series_interval, 0.005);
+    EXPECT_EQ(c.output.snapshot_interval, 0.05);
+    EXPECT_EQ(c.source, examples / "demo.toml");
+}
+
+TEST(ConfigExamples, TwoSpheresAndCsvDemoParse) {
+    const RunConfig two = tumble::io::load_run_config(examples / "two_spheres.toml");
+    ASSERT_EQ(two.scenario.particles.size(), 2u);
+    EXPECT_EQ(two.scenario.particles[0].velocity, (tumble::Vec3{0.5, 0, 0}));
+    EXPECT_EQ(two.scenario.particles[1].velocity, (tumble::Vec3{-0.5, 0, 0}));
+
+    // The CSV path in csv_demo.toml is relative to the TOML file's folder,
+    // wherever the reader is called from.
+    const RunConfig csv = tumble::io::load_run_config(examples / "csv_demo.toml");
+    ASSERT_EQ(csv.scenario.particles.size(), 28u);
+    std::size_t fixed = 0;
+    for (const auto& p : csv.scenario.particles) fixed += p.motion == 0;
+    EXPECT_EQ(fixed, 25u);
+    EXPECT_EQ(csv.scenario.particles[27].radius, 0.003);
+    EXPECT_EQ(csv.scenario.particles[26].velocity, (tumble::Vec3{0, 0, -0.2}));
+}

@@ -1,0 +1,416 @@
+// SPDX-License-Identifier: MIT
+// The contact kernels, each against its formula (SPEC-NOTES "Forces and
+// couple") at a state worked out by hand, with the signs of the convention:
+// n from j to i, repulsive positive, attraction negative, viscosity against
+// the approach. Then the composition contact_law(): torques that conserve
+// angular momentum and terms that switch off one by one.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tumble/contact/contact_law.hpp"
+#include "tumble/core/constants.hpp"
+#include "tumble/materials/pair_table.hpp"
+#include "tumble/setup/paper_materials.hpp"
+
+namespace tumble {
+namespace {
+
+// Kernels and hand formulas differ only in the order of a few multiplications
+// and a pow() against a sqrt(): a few ulp. 1e-12 relative leaves room for
+// that and nothing else.
+constexpr double round_off = 1e-12;
+
+void expect_vec_near(const Vec3& a, const Vec3& b, double tolerance) {
+    EXPECT_NEAR(a.x, b.x, tolerance);
+    EXPECT_NEAR(a.y, b.y, tolerance);
+    EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+// The paper's material-1 pair: E* = 533333.33 Pa, G* = 85714.29 Pa,
+// B* = 571.43 Pa s, mu = 0.1, W = 0.2 J/m^2.
+PairCoefficients material_one_pair() {
+    return make_pair_coefficients(paper::material_1(), paper::material_1(), paper::pair_properties()[0][0]);
+}
+
+// A hand state: R_i = 3.6 mm, R_j = 2.4 mm, so R* = 1.44 mm; h = 0.1 mm.
+constexpr double R_i = 3.6e-3, R_j = 2.4e-3, R_star = 1.44e-3, h = 1.0e-4;
+
+TEST(ContactTerms, HertzForceIsFourThirdsEStarSqrtRStarHToThreeHalves) {
+    const double E_star = 533333.3333333333;
+    const double a = std::sqrt(R_star * h);
+    // Independent route: h^(3/2) through pow, sqrt(R*) separately.
+    const double expected = 4.0 / 3.0 * E_star * std::sqrt(R_star) * std::pow(h, 1.5);
+    EXPECT_NEAR(hertz_force(E_star, a, h), expected, expected * round_off);
+    EXPECT_GT(hertz_force(E_star, a, h), 0.0);  // repulsive: along +n on i
+    // Energy 8/15 E* sqrt(R*) h^(5/2), whose h-derivative is the force.
+    const double energy = 8.0 / 15.0 * E_star * std::sqrt(R_star) * std::pow(h, 2.5);
+    EXPECT_NEAR(hertz_energy(E_star, a, h), energy, energy * round_off);
+}
+
+TEST(ContactTerms, KuwabaraKonoOpposesTheNormalRelativeVelocity) {
+    const double B_star = 571.4285714285714;
+    const double a = std::sqrt(R_star * h);
+    const double v_n = -0.3;  // approaching
+    const double expected = -2.0 * B_star * std::sqrt(R_star) * std::pow(h, 0.5) * v_n;
+    EXPECT_NEAR(kuwabara_kono_force(B_star, a, v_n), expected, std::abs(expected) * round_off);
+    // Approach (v_n < 0) pushes apart, separation (v_n > 0) pulls together.
+    EXPECT_GT(kuwabara_kono_force(B_star, a, -0.3), 0.0);
+    EXPECT_LT(kuwabara_kono_force(B_star, a, +0.3), 0.0);
+    EXPECT_EQ(kuwabara_kono_force(B_star, a, 0.0), 0.0);
+}
+
+TEST(ContactTerms, AttractionUsesRStarToTheThreeQuarters) {
+    const PairCoefficients c = material_one_pair();
+    const double a = std::sqrt(R_star * h);
+    const double prefactor = std::sqrt(4.0 / 3.0 * 8.0 * pi * 0.2 * c.E_star);
+    const double expected = -prefactor * std::pow(R_star, 0.75) * std::pow(h, 0.75);
+    EXPECT_NEAR(attraction_force(c.attraction, a), expected, std::abs(expected) * round_off);
+    EXPECT_LT(attraction_force(c.attraction, a), 0.0);  // attractive: along -n on i
+    // The paper's printed (R*)^(1/4) would be larger by (R*)^(-1/2) = 26.4
+    // for R* = 1.44 mm; the engine must not use it.
+    const double printed = -prefactor * std::pow(R_star, 0.25) * std::pow(h, 0.75);
+    EXPECT_GT(std::abs(attraction_force(c.attraction, a) / printed - 1.0), 0.9);
+    // Energy -4/7 prefactor (R*)^(3/4) h^(7/4).
+    const double energy = -4.0 / 7.0 * prefactor * std::pow(R_star, 0.75) * std::pow(h, 1.75);
+    EXPECT_NEAR(attraction_energy(c.attraction, a, h), energy, std::abs(energy) * round_off);
+}
+
+TEST(ContactTerms, GeometryOfAHeadOnApproach) {
+    // j at the origin, i on the +x axis moving toward it at 0.5 m/s.
+    const double distance = R_i + R_j - h;
+    const Vec3 d{distance, 0.0, 0.0};
+    const ContactGeometry g = make_contact_geometry(d, distance, R_i, R_j, {-0.5, 0, 0}, {}, {}, {});
+    expect_vec_near(g.n, {1.0, 0.0, 0.0}, 1e-15);  // from j to i
+    // h = R_i + R_j - |d| loses the digits of R_i + R_j: 1e-18 m of 1e-4.
+    EXPECT_NEAR(g.overlap, h, 1e-17);
+    EXPECT_NEAR(g.R_star, R_star, R_star * 1e-15);
+    EXPECT_NEAR(g.contact_radius, std::sqrt(R_star * h), 1e-12 * std::sqrt(R_star * h));
+    EXPECT_NEAR(g.lever_i, R_i - h / 2, 1e-17);
+    EXPECT_NEAR(g.lever_j, R_j - h / 2, 1e-17);
+    EXPECT_NEAR(g.v_n, -0.5, 1e-15);  // negative while approaching
+    expect_vec_near(g.v_t, {}, 1e-15);
+    EXPECT_EQ(g.w_n, 0.0);
+}
+
+TEST(ContactTerms, GeometryOfPureRotation) {
+    // j at the origin, i on +x, both at rest; i spins about z at 20 rad/s,
+    // j about z at -5 rad/s and about x at 7 rad/s.
+    const double distance = R_i + R_j - h;
+    const Vec3 d{distance, 0.0, 0.0};
+    const Vec3 omega_i{0, 0, 20.0}, omega_j{7.0, 0, -5.0};
+    const ContactGeometry g = make_contact_geometry(d, distance, R_i, R_j, {}, {}, omega_i, omega_j);
+    // Contact point at -L_i x from i and +L_j x from j, L = R - h/2.
+    // As part of i it moves at omega_i x (-L_i x) = (0, -20 L_i, 0);
+    // as part of j at omega_j x (L_j x) = (0, -5 L_j, 0) (the spin about x
+    // moves no point on the x axis). Relative: (0, -20 L_i + 5 L_j, 0).
+    const double L_i = R_i - h / 2, L_j = R_j - h / 2;
+    expect_vec_near(g.v_t, {0.0, -20.0 * L_i + 5.0 * L_j, 0.0}, 1e-15);
+    EXPECT_NEAR(g.v_n, 0.0, 1e-15);
+    // w_n = (omega_i - omega_j) . n = -7 rad/s.
+    EXPECT_NEAR(g.w_n, -7.0, 1e-14);
+
+    // Rolling without slip: the surfaces move together, v_t = 0, when
+    // omega_i L_i = -omega_j L_j about the same axis.
+    const ContactGeometry rolling =
+        make_contact_geometry(d, distance, R_i, R_j, {}, {}, {0, 0, 10.0}, {0, 0, -10.0 * L_i / L_j});
+    expect_vec_near(rolling.v_t, {}, 1e-15);
+}
+
+TEST(ContactTerms, MindlinSlipBelowTheStaticLimit) {
+    const PairCoefficients c = material_one_pair();
+    const double a = std::sqrt(R_star * h);
+    const double F_n = 1.0;            // N, so the limit mu F_n = 0.1 N is far
+    const Vec3 v_t{0.0, 0.03, -0.04};  // |v_t| = 0.05 m/s, well above v_reg
+    const double dt = 1e-5, v_reg = 1e-4;
+    double ds = 2e-7;  // slip so far, m
+    const Vec3 F = mindlin_slip_force(c.G_star, c.mu, a, F_n, v_t, dt, v_reg, ds);
+    // The slip grows by |v_t| dt = 5e-7 m.
+    EXPECT_NEAR(ds, 7e-7, 1e-20);  // 1e-14 relative: one addition's round-off
+    // Magnitude 16/3 G* ds sqrt(R* h), direction -v_t / |v_t|.
+    const double magnitude = 16.0 / 3.0 * c.G_star * 7e-7 * std::sqrt(R_star) * std::pow(h, 0.5);
+    ASSERT_LT(magnitude, c.mu * F_n);  // the state really is below the limit
+    expect_vec_near(F, (-magnitude / 0.05) * v_t, magnitude * round_off);
+    EXPECT_NEAR(norm(F), magnitude, magnitude * round_off);
+    EXPECT_LT(dot(F, v_t), 0.0);  // against the sliding
+}
+
+TEST(ContactTerms, MindlinSlipCapsAtTheStaticLimitAndResets) {
+    const PairCoefficients c = material_one_pair();
+    const double a = std::sqrt(R_star * h);
+    const double F_n = 1e-3;  // N: limit mu F_n = 1e-4 N
+    const Vec3 v_t{0.02, 0.0, 0.0};  // slip grows 2e-7 m per step
+    const double dt = 1e-5, v_reg = 1e-4;
+    // 16/3 G* a ds reaches 1e-4 N at ds = 1e-4 / (16/3 G* a) = 5.8e-7 m;
+    // start 1e-7 m below it so this step crosses the limit.
+    double ds = 1e-4 / (16.0 / 3.0 * c.G_star * a) - 1e-7;
+    const Vec3 F = mindlin_slip_force(c.G_star, c.mu, a, F_n, v_t, dt, v_reg, ds);
+    expect_vec_near(F, {-c.mu * F_n, 0.0, 0.0}, c.mu * F_n * round_off);  // |F| = mu |F_n|, against v_t
+    EXPECT_EQ(ds, 0.0);  // the contact slipped: the slip starts again
+
+    // Next step the force starts again from the bottom of the sawtooth.
+    const Vec3 F2 = mindlin_slip_force(c.G_star, c.mu, a, F_n, v_t, dt, v_reg, ds);
+    EXPECT_NEAR(ds, 2e-7, 1e-20);  // 1e-13 relative: round-off of |v_t| dt
+    const double expected = 16.0 / 3.0 * c.G_star * 2e-7 * a;
+    ASSERT_LT(expected, c.mu * F_n);
+    expect_vec_near(F2, {-expected, 0.0, 0.0}, expected * round_off);
+}
+
+TEST(ContactTerms, MindlinSlipIsRegularisedBelowTheSlipSpeed) {
+    const PairCoefficients c = material_one_pair();
+    const double a = std::sqrt(R_star * h);
+    const double v_reg = 1e-4;
+    const Vec3 v_t{0.0, 0.0, 2.5e-5};  // a quarter of the slip speed
+    double ds = 1e-7;
+    const Vec3 F = mindlin_slip_force(c.G_star, c.mu, a, 1.0, v_t, 1e-5, v_reg, ds);
+    // Below v_reg the direction -v_t/|v_t| is scaled by |v_t|/v_reg = 1/4.
+    const double magnitude = 16.0 / 3.0 * c.G_star * ds * a;
+    expect_vec_near(F, {0.0, 0.0, -0.25 * magnitude}, magnitude * round_off);
+    // At v_t = 0 there is no force and no NaN.
+    double ds0 = 1e-7;
+    const Vec3 F0 = mindlin_slip_force(c.G_star, c.mu, a, 1.0, {}, 1e-5, v_reg, ds0);
+    EXPECT_EQ(F0, Vec3{});
+    EXPECT_EQ(ds0, 1e-7);
+}
+
+TEST(ContactTerms, MindlinSpringRotatesIntoTheContactPlaneKeepingItsLength) {
+    const PairCoefficients c = material_one_pair();
+    const double a = std::sqrt(R_star * h);
+    // The normal has turned: the old spring has a component along the new n.
+    const Vec3 n = (1.0 / std::sqrt(3.0)) * Vec3{1.0, 1.0, 1.0};
+    Vec3 spring{1e-7, -2e-7, 0.5e-7};
+    const double length = norm(spring);
+    const Vec3 F = mindlin_spring_force(c.G_star, c.mu, a, 1.0, n, {}, 1e-5, spring);
+    EXPECT_NEAR(dot(spring, n), 0.0, 1e-22);  // in the plane, to round-off of 1e-7 m
+    EXPECT_NEAR(norm(spring), length, length * 1e-14);
+    // F = -16/3 G* a spring (far below the limit 0.1 N).
+    const double k = 16.0 / 3.0 * c.G_star * a;
+    expect_vec_near(F, -k * spring, k * length * round_off);
+}
+
+TEST(ContactTerms, MindlinSpringTruncatesAtTheCoulombLimit) {
+    const PairCoefficients c = material_one_pair();
+    const double a = std::sqrt(R_star * h);
+    const Vec3 n{0.0, 0.0, 1.0};
+    const double F_n = 2e-3;  // limit mu F_n = 2e-4 N
+    const double k = 16.0 / 3.0 * c.G_star * a;
+    Vec3 spring{3e-4 / k, 0.0, 0.0};  // already carries 3e-4 N > the limit
+    const Vec3 v_t{0.0, 0.1, 0.0};
+    const Vec3 F = mindlin_spring_force(c.G_star, c.mu, a, F_n, n, v_t, 1e-5, spring);
+    const double limit = c.mu * F_n;
+    EXPECT_NEAR(norm(F), limit, limit * round_off);
+    // The spring is shortened to what carries the limit, same direction.
+    expect_vec_near(F, -k * spring, limit * round_off);
+    const Vec3 stretched = Vec3{3e-4 / k, 1e-6, 0.0};
+    expect_vec_near(F, (-limit / norm(stretched)) * stretched, limit * round_off);
+    // Sustained sliding holds |F| at mu |F_n| (no sawtooth).
+    for (int step = 0; step < 5; ++step) {
+        const Vec3 Fs = mindlin_spring_force(c.G_star, c.mu, a, F_n, n, v_t, 1e-5, spring);
+        EXPECT_NEAR(norm(Fs), limit, limit * round_off);
+    }
+}
+
+TEST(ContactTerms, SpringAndSlipModelsAgreeBeforeTheFirstSlip) {
+    // Same stiffness; for a fixed sliding direction from a fresh contact the
+    // two shear models give the same force until the static limit.
+    const PairCoefficients c = material_one_pair();
+    const double a = std::sqrt(R_star * h);
+    const Vec3 n{1.0, 0.0, 0.0}, v_t{0.0, 0.01, 0.02};
+    double ds = 0.0;
+    Vec3 spring;
+    for (int step = 0; step < 10; ++step) {
+        const Vec3 slip = mindlin_slip_force(c.G_star, c.mu, a, 1.0, v_t, 1e-5, 1e-4, ds);
+        const Vec3 spr = mindlin_spring_force(c.G_star, c.mu, a, 1.0, n, v_t, 1e-5, spring);
+        ASSERT_LT(norm(slip), 0.1);
+        expect_vec_near(slip, spr, norm(slip) * round_off);
+    }
+}
+
+TEST(ContactTerms, TwistingCoupleFormulaCapAndSign) {
+    const PairCoefficients c = material_one_pair();
+    const double a = std::sqrt(R_star * h);
+    const double v_reg = 1e-4, dt = 1e-5;
+    // Below the limit: 8/3 G* da (R* h)^(3/2), sign -sign(w_n).
+    double da = 1e-3;
+    const double w_n = 4.0;  // rad/s; the rim slides at w_n a = 1.5 mm/s >> v_reg
+    const double M = twisting_couple(c.G_star, c.mu, a, 1.0, w_n, dt, v_reg, da);
+    EXPECT_NEAR(da, 1e-3 + 4e-5, 1e-18);
+    const double elastic = 8.0 / 3.0 * c.G_star * da * std::pow(R_star * h, 1.5);
+    ASSERT_LT(elastic, 3.0 * pi / 16.0 * a * c.mu * 1.0);
+    EXPECT_NEAR(M, -elastic, elastic * round_off);
+    double da_neg = 1e-3;
+    EXPECT_NEAR(twisting_couple(c.G_star, c.mu, a, 1.0, -w_n, dt, v_reg, da_neg), elastic, elastic * round_off);
+
+    // At the limit: 3 pi/16 sqrt(R* h) mu |F_n|, and da resets.
+    const double F_n = 1e-4;
+    double big = 10.0;  // rad, far past the limit
+    const double cap = 3.0 * pi / 16.0 * std::sqrt(R_star * h) * c.mu * F_n;
+    EXPECT_NEAR(twisting_couple(c.G_star, c.mu, a, F_n, -w_n, dt, v_reg, big), cap, cap * round_off);
+    EXPECT_EQ(big, 0.0);
+
+    // Regularised: the rim speed |w_n| a below v_reg scales the couple by it.
+    double slow = 1e-3;
+    const double w_slow = 0.25 * v_reg / a;
+    const double M_slow = twisting_couple(c.G_star, c.mu, a, 1.0, w_slow, dt, v_reg, slow);
+    const double elastic_slow = 8.0 / 3.0 * c.G_star * slow * a * a * a;
+    EXPECT_NEAR(M_slow, -0.25 * elastic_slow, elastic_slow * round_off);
+}
+
+// A generic contact: unequal radii, oblique normal, every velocity nonzero.
+struct GenericContact {
+    Vec3 X_i{1.0e-3, 2.0e-3, -0.5e-3}, X_j;
+    ContactGeometry g;
+    GenericContact() {
+        const Vec3 dir = (1.0 / std::sqrt(1.0 + 4.0 + 0.25)) * Vec3{1.0, -2.0, 0.5};
+        X_j = X_i - (R_i + R_j - h) * dir;
+        const Vec3 d = X_i - X_j;
+        g = make_contact_geometry(d, norm(d), R_i, R_j, {0.1, -0.2, 0.05}, {-0.03, 0.07, 0.02}, {30.0, -12.0, 8.0},
+                                  {-5.0, 17.0, 40.0});
+    }
+};
+
+TEST(ContactTerms, ContactLawConservesAngularMomentum) {
+    const PairCoefficients c = material_one_pair();
+    const GenericContact contact;
+    for (ShearModel shear : {ShearModel::IntegratedSlip, ShearModel::TangentialSpring}) {
+        ContactModel model;
+        model.shear = shear;
+        ContactHistory history;
+        history.integrated_slip = 3e-7;
+        history.integrated_angular_slip = 2e-3;
+        history.tangential_spring = Vec3{1e-7, 2e-7, 0.0};
+        for (int step = 0; step < 3; ++step) {
+            const ContactForces f = contact_law(c, contact.g, model, 1e-5, history);
+            ASSERT_GT(norm(f.force_i - dot(f.force_i, contact.g.n) * contact.g.n), 0.0);  // shear present
+            ASSERT_NE(f.twisting_couple, 0.0);
+            // Total torque about the origin: X_i x F + X_j x (-F) + T_i + T_j.
+            const Vec3 total = cross(contact.X_i - contact.X_j, f.force_i) + f.torque_i + f.torque_j;
+            // Each term is ~ |F| R ~ 1e-2 N x 4e-3 m; round-off 1e-16 of that.
+            const double scale = norm(f.force_i) * R_i + std::abs(f.twisting_couple);
+            expect_vec_near(total, {}, 1e-13 * scale);
+        }
+    }
+}
+
+TEST(ContactTerms, ContactLawTorquesFromTheContactPoint) {
+    // Torque on i = (contact point - X_i) x F_t + M n, with the contact point
+    // at -L_i n from i; on j it is +L_j n from j and the force is -F_t.
+    const PairCoefficients c = material_one_pair();
+    const GenericContact contact;
+    const ContactGeometry& g = contact.g;
+    ContactHistory history;
+    history.integrated_slip = 3e-7;
+    history.integrated_angular_slip = 2e-3;
+    const ContactForces f = contact_law(c, g, ContactModel{}, 1e-5, history);
+    const Vec3 F_t = f.force_i - f.normal_force * g.n;
+    const double scale = norm(F_t) * R_i + std::abs(f.twisting_couple);
+    expect_vec_near(f.torque_i, cross(-g.lever_i * g.n, F_t) + f.twisting_couple * g.n, 1e-13 * scale);
+    expect_vec_near(f.torque_j, cross(g.lever_j * g.n, -F_t) - f.twisting_couple * g.n, 1e-13 * scale);
+    // The twisting couple on i opposes w_n.
+    EXPECT_LT(f.twisting_couple * g.w_n, 0.0);
+}
+
+TEST(ContactTerms, ContactLawSwitchingATermOffRemovesExactlyIt) {
+    const PairCoefficients c = material_one_pair();
+    const GenericContact contact;
+    const ContactGeometry& g = contact.g;
+    const double dt = 1e-5;
+    ContactHistory start;  // small slips so that no cap is reached
+    start.integrated_slip = 1e-8;
+    start.integrated_angular_slip = 1e-5;
+    auto run = [&](const ContactModel& model) {
+        ContactHistory history = start;
+        return contact_law(c, g, model, dt, history);
+    };
+    const ContactModel all;
+    const ContactForces full = run(all);
+    const double a = g.contact_radius;
+    const double hertz = hertz_force(c.E_star, a, g.overlap);
+    const double viscous = kuwabara_kono_force(c.B_star, a, g.v_n);
+    const double attraction = attraction_force(c.attraction, a);
+    // Every normal term is present in the full model.
+    EXPECT_NEAR(full.normal_force, hertz + viscous + attraction, std::abs(hertz) * round_off);
+
+    const Vec3 F_t_full = full.force_i - full.normal_force * g.n;
+    // Shear below its cap, so it does not depend on the normal terms.
+    ASSERT_LT(norm(F_t_full), 0.5 * c.mu * std::abs(full.normal_force));
+    ASSERT_LT(std::abs(full.twisting_couple), 0.5 * 3.0 * pi / 16.0 * a * c.mu * std::abs(full.normal_force));
+    const double tol = std::abs(hertz) * round_off;
+
+    ContactModel m = all;
+    m.elastic = false;
+    ContactForces off = run(m);
+    EXPECT_NEAR(off.normal_force, full.normal_force - hertz, tol);
+    expect_vec_near(off.force_i - off.normal_force * g.n, F_t_full, tol);
+
+    m = all;
+    m.viscous = false;
+    off = run(m);
+    EXPECT_NEAR(off.normal_force, full.normal_force - viscous, tol);
+    expect_vec_near(off.force_i - off.normal_force * g.n, F_t_full, tol);
+
+    m = all;
+    m.attraction = false;
+    off = run(m);
+    EXPECT_NEAR(off.normal_force, full.normal_force - attraction, tol);
+    expect_vec_near(off.force_i - off.normal_force * g.n, F_t_full, tol);
+
+    m = all;
+    m.shear = ShearModel::Off;
+    off = run(m);
+    EXPECT_EQ(off.normal_force, full.normal_force);
+    expect_vec_near(off.force_i, full.normal_force * g.n, tol);
+    // Only the twisting couple is left in the torques.
+    expect_vec_near(off.torque_i, full.twisting_couple * g.n, std::abs(full.twisting_couple) * round_off);
+    expect_vec_near(off.torque_j, -full.twisting_couple * g.n, std::abs(full.twisting_couple) * round_off);
+    EXPECT_EQ(off.twisting_couple, full.twisting_couple);
+
+    m = all;
+    m.twisting = false;
+    off = run(m);
+    EXPECT_EQ(off.twisting_couple, 0.0);
+    expect_vec_near(off.force_i, full.force_i, tol);
+    const double torque_tol = norm(full.torque_i) * round_off;
+    expect_vec_near(off.torque_i, full.torque_i - full.twisting_couple * g.n, torque_tol);
+    expect_vec_near(off.torque_j, full.torque_j + full.twisting_couple * g.n, torque_tol);
+
+    // Everything off: nothing at all.
+    m.elastic = m.viscous = m.attraction = false;
+    m.shear = ShearModel::Off;
+    off = run(m);
+    EXPECT_EQ(off.force_i, Vec3{});
+    EXPECT_EQ(off.torque_i, Vec3{});
+    EXPECT_EQ(off.torque_j, Vec3{});
+}
+
+TEST(ContactTerms, ContactLawFrictionLimitUsesTheNetNormalForce) {
+    // F_n is the sum of elements 1-3 (SPEC-NOTES item 4): with a large
+    // integrated slip the shear force is mu |F_n| of that sum.
+    const PairCoefficients c = material_one_pair();
+    const GenericContact contact;
+    ContactHistory history;
+    history.integrated_slip = 1.0;  // far past the limit
+    const ContactForces f = contact_law(c, contact.g, ContactModel{}, 1e-5, history);
+    const Vec3 F_t = f.force_i - f.normal_force * contact.g.n;
+    const double limit = c.mu * std::abs(f.normal_force);
+    EXPECT_NEAR(norm(F_t), limit, limit * round_off);
+    EXPECT_EQ(history.integrated_slip, 0.0);
+    // Direction against v_t.
+    EXPECT_NEAR(dot(F_t, contact.g.v_t), -limit * norm(contact.g.v_t), limit * norm(contact.g.v_t) * round_off);
+}
+
+TEST(ContactTerms, SwappedHistoryFlipsOnlyTheSpring) {
+    ContactHistory h;
+    h.integrated_slip = 1.5e-7;
+    h.integrated_angular_slip = 3e-3;
+    h.tangential_spring = {1e-7, -2e-7, 3e-7};
+    const ContactHistory s = h.swapped();
+    EXPECT_EQ(s.integrated_slip, h.integrated_slip);
+    EXPECT_EQ(s.integrated_angular_slip, h.integrated_angular_slip);
+    EXPECT_EQ(s.tangential_spring, (Vec3{-1e-7, 2e-7, -3e-7}));
+    EXPECT_TRUE(ContactHistory{}.is_zero());
+    EXPECT_FALSE(h.is_zero());
+}
+
+}  // namespace
+}  // namespace tumble
