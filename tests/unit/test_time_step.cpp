@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The time-step check against the hand formulas of time_step.hpp for the
 // paper's material 1 (R = 3.6 mm) at a reference speed of 1 m/s:
-//   h_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5), t_c = 2.9432 h_max / v,
+//   h_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5), t_c = 2.943275 h_max / v,
 //   viscous time m* / (2 B* sqrt(R* h_max)),
 //   Rayleigh time pi R sqrt(rho/G) / (0.1631 nu + 0.8766).
 #include <gtest/gtest.h>
@@ -51,7 +51,7 @@ Hand hand_times() {
     const double m_star = m / 2.0, R_star = R / 2.0;
     // Energy balance 1/2 m* v^2 = 8/15 E* sqrt(R*) h_max^(5/2).
     const double h_max = std::pow(0.5 * m_star * v * v / (8.0 / 15.0 * E_star * std::sqrt(R_star)), 0.4);
-    return {2.9432 * h_max / v, m_star / (2.0 * B_star * std::sqrt(R_star * h_max)),
+    return {2.943275 * h_max / v, m_star / (2.0 * B_star * std::sqrt(R_star * h_max)),
             pi * R * std::sqrt(rho / G) / (0.1631 * nu + 0.8766)};
 }
 

@@ -38,7 +38,7 @@ TimeStepReport assess_time_step(const Scenario& s) {
     auto consider = [&](const std::string& pair, const PairCoefficients& c, double R_star, double m_star) {
         if (!s.model.elastic || c.E_star <= 0.0) return;
         const double h_max = std::pow(15.0 * m_star * v * v / (16.0 * c.E_star * std::sqrt(R_star)), 0.4);
-        const double t_c = 2.9432 * h_max / v;
+        const double t_c = 2.943275 * h_max / v;
         if (t_c < collision) { collision = t_c; collision_pair = pair; }
         if (!s.model.viscous || c.B_star <= 0.0) return;
         const double damping = 2.0 * c.B_star * std::sqrt(R_star * h_max);  // N s/m

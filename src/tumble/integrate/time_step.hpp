@@ -4,7 +4,7 @@
 // For every pair of materials present (each at its smallest radius, with the
 // reduced mass of two free grains, which is the conservative case):
 //  - Hertz collision time at the reference impact speed v (no damping):
-//      h_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5),  t_c = 2.9432 h_max / v;
+//      h_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5),  t_c = 2.943275 h_max / v;
 //  - viscous time m*/c with c = 2 B* sqrt(R* h_max), the Kuwabara-Kono
 //    damping at the deepest overlap; the half-step kick is stable only for
 //    dt < 2 m*/c;

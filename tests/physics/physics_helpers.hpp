@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: MIT
+// Shared pieces of the physics tests: the paper's materials written out again
+// from SPEC-NOTES (not taken from the engine, so a typo there would show),
+// the pair constants E*, G*, B*, R*, m* worked out by hand from the
+// SPEC-NOTES formulas, and small scenario builders.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "tumble/sim/scenario.hpp"
+#include "tumble/sim/simulation.hpp"
+
+namespace physics_test {
+
+using tumble::Vec3;
+
+inline constexpr double pi = 3.14159265358979323846;
+
+// SPEC-NOTES "The materials": E, G, nu, xi, eta, rho, R (SI; 5000 poise = 500 Pa s).
+inline tumble::Material paper_material(const char* name, double radius) {
+    return {name, 1.0e6, 0.3e6, 0.25, 500.0, 500.0, 1000.0, radius};
+}
+inline constexpr double R1 = 3.6e-3, R2 = 2.4e-3, R3 = 3.0e-3;  // m
+
+inline std::vector<tumble::Material> paper_materials() {
+    return {paper_material("material-1", R1), paper_material("material-2", R2), paper_material("wall", R3)};
+}
+
+// mu and W per pair: 1-1 0.1, 1-2 0.2, 2-2 0.5, anything with 3: 0.2; W = 0.2 J/m^2.
+inline std::vector<std::vector<tumble::PairProperties>> paper_pairs() {
+    const double W = 0.2;
+    return {{{0.1, W}, {0.2, W}, {0.2, W}}, {{0.2, W}, {0.5, W}, {0.2, W}}, {{0.2, W}, {0.2, W}, {0.2, W}}};
+}
+
+// ---- Pair constants by hand (SPEC-NOTES "Notation") ----------------------
+
+inline double e_star(const tumble::Material& i, const tumble::Material& j) {
+    return i.E * j.E / (i.E * (1.0 - j.nu * j.nu) + j.E * (1.0 - i.nu * i.nu));
+}
+inline double g_star(const tumble::Material& i, const tumble::Material& j) {
+    return i.G * j.G / (i.G * (2.0 - j.nu) + j.G * (2.0 - i.nu));
+}
+// B = 9 xi eta / (3 xi + eta); corrected viscous Poisson ratio
+// s = (3 xi - 2 eta) / (2 (3 xi + eta)) (SPEC-NOTES "Corrections").
+inline double viscous_B(const tumble::Material& m) { return 9.0 * m.xi * m.eta / (3.0 * m.xi + m.eta); }
+inline double viscous_s(const tumble::Material& m) { return (3.0 * m.xi - 2.0 * m.eta) / (2.0 * (3.0 * m.xi + m.eta)); }
+inline double b_star(const tumble::Material& i, const tumble::Material& j) {
+    const double Bi = viscous_B(i), Bj = viscous_B(j), si = viscous_s(i), sj = viscous_s(j);
+    return Bi * Bj / (Bi * (1.0 - sj * sj) + Bj * (1.0 - si * si));
+}
+// Prefactor of the attraction: sqrt(4/3 * 8 pi W E*), so F = -A (R* h)^(3/4).
+inline double attraction_prefactor(double W, double E_star) { return std::sqrt(4.0 / 3.0 * 8.0 * pi * W * E_star); }
+
+inline double reduced(double a, double b) { return a * b / (a + b); }
+inline double sphere_mass(double rho, double R) { return 4.0 / 3.0 * pi * rho * R * R * R; }
+
+// Hertz head-on collision, no damping: deepest overlap and duration.
+// t_c = 2 h_max / v * int_0^1 dx / sqrt(1 - x^(5/2)) = (h_max / v) * 4/5 B(2/5, 1/2),
+// worked out here with tgamma instead of the rounded 2.9432.
+inline double hertz_duration_constant() { return 0.8 * std::tgamma(0.4) * std::tgamma(0.5) / std::tgamma(0.9); }
+inline double hertz_max_overlap(double m_star, double E_star, double R_star, double v) {
+    return std::pow(15.0 * m_star * v * v / (16.0 * E_star * std::sqrt(R_star)), 0.4);
+}
+
+// ---- Scenarios -----------------------------------------------------------
+
+// Paper materials, open space (no periodic axes, no walls), no gravity.
+inline tumble::Scenario open_scenario(double dt) {
+    tumble::Scenario s;
+    s.materials = paper_materials();
+    s.pair_properties = paper_pairs();
+    s.domain.lo = {-1.0, -1.0, -1.0};
+    s.domain.hi = {1.0, 1.0, 1.0};
+    s.time_step.dt = dt;
+    return s;
+}
+
+inline tumble::ParticleSpec sphere(Vec3 x, double R, int material, Vec3 v = {}, Vec3 w = {}) {
+    tumble::ParticleSpec p;
+    p.position = x;
+    p.velocity = v;
+    p.angular_velocity = w;
+    p.radius = R;
+    p.material = material;
+    return p;
+}
+
+// Array index of the particle with global id `id` (the store may be re-sorted).
+inline std::size_t index_of(const tumble::ParticleStore& p, std::int64_t id) {
+    for (std::size_t k = 0; k < p.size(); ++k)
+        if (p.id[k] == id) return k;
+    throw std::logic_error("no particle with that id");
+}
+
+// Overlap of two particles by id (open boundaries).
+inline double overlap(const tumble::ParticleStore& p, std::int64_t a, std::int64_t b) {
+    const std::size_t i = index_of(p, a), j = index_of(p, b);
+    return p.radius[i] + p.radius[j] - tumble::norm(p.position[i] - p.position[j]);
+}
+
+inline double relative_difference(double measured, double expected) {
+    return std::abs(measured - expected) / std::abs(expected);
+}
+
+// One line per measured quantity on stdout, so a run of the suite shows how
+// close each experiment came, not just that it passed.
+inline void report(const std::string& what, double measured, double expected, double tolerance) {
+    std::printf("  [measured] %s: %.10g, expected %.10g (rel. diff %.2e, tolerance %.1e)\n", what.c_str(), measured,
+                expected, relative_difference(measured, expected), tolerance);
+}
+
+// Random unit-ish vector with components uniform in [-1, 1].
+inline Vec3 random_vector(std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const double x = u(rng), y = u(rng), z = u(rng);
+    return {x, y, z};
+}
+
+}  // namespace physics_test
