@@ -1,0 +1,156 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# tumble against LIGGGHTS on the paper's dense periodic cube (SPEC-NOTES
+# "Speed"; docs/BENCHMARKS.md). Run from the repository root:
+#
+#   bash bench/compare_peers.sh                      # 21^3 = 9261 spheres, 3 rounds, medians
+#   bash bench/compare_peers.sh --size 21 --size 46  # also 46^3 = 97336
+#   bash bench/compare_peers.sh --peers-only         # LIGGGHTS alone (no tumble needed)
+#   TUMBLE=/path/to/tumble bash bench/compare_peers.sh
+#
+# Options:
+#   --size N        lattice edge (repeatable; default 21)
+#   --steps N       timed steps per run (default 2000)
+#   --warmup N      untimed steps before them (default 200)
+#   --repeats N     rounds; the table shows medians (default 3)
+#   --peers-only    skip tumble
+#   --mpi           also LIGGGHTS under `mpirun -np 2` (needs mpirun)
+#   --lean          also LIGGGHTS without rolling friction (the only model
+#                   combination near ours that this LIGGGHTS build compiles
+#                   into an optimised template)
+#   --out DIR       keep logs and results.jsonl there (default build/compare_peers)
+#
+# Every round runs tumble, then each LIGGGHTS configuration, one after the
+# other (never concurrently), so that background load hits all codes alike.
+set -euo pipefail
+
+invocation_dir=$(pwd)
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+
+sizes=()
+steps=2000
+warmup=200
+repeats=3
+peers_only=0
+mpi=0
+lean=0
+out=""
+
+usage() { awk 'NR > 2 && !/^#/ { exit } NR > 2 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; }
+die() { echo "compare_peers.sh: $*" >&2; exit 1; }
+need_int() { [[ "$2" =~ ^[1-9][0-9]*$ ]] || die "$1 needs a positive integer, got '$2'"; }
+
+while [[ $# -gt 0 ]]; do
+    case "$1" in
+        --size) need_int "$1" "${2:-}"; sizes+=("$2"); shift 2 ;;
+        --steps) need_int "$1" "${2:-}"; steps=$2; shift 2 ;;
+        --warmup) [[ "${2:-}" =~ ^[0-9]+$ ]] || die "--warmup needs an integer"; warmup=$2; shift 2 ;;
+        --repeats) need_int "$1" "${2:-}"; repeats=$2; shift 2 ;;
+        --peers-only) peers_only=1; shift ;;
+        --mpi) mpi=1; shift ;;
+        --lean) lean=1; shift ;;
+        --out) [[ -n "${2:-}" ]] || die "--out needs a directory"; out=$2; shift 2 ;;
+        -h|--help) usage; exit 0 ;;
+        *) die "unknown option '$1' (try --help)" ;;
+    esac
+done
+[[ ${#sizes[@]} -gt 0 ]] || sizes=(21)
+for n in "${sizes[@]}"; do [[ $n -ge 4 ]] || die "--size must be at least 4"; done
+
+# ------------------------------------------------------------------ tools
+command -v python3 >/dev/null || die "python3 is required (JSON parsing and medians)"
+liggghts_bin=${LIGGGHTS:-liggghts}
+command -v "$liggghts_bin" >/dev/null || die "LIGGGHTS not found ('$liggghts_bin'); apt-get install liggghts, or set LIGGGHTS=/path"
+deck="$repo/bench/peers/liggghts_cube.in"
+lib="$repo/bench/peers/peerlib.py"
+[[ -f "$deck" && -f "$lib" ]] || die "missing $deck or $lib"
+
+tumble=""
+if [[ $peers_only -eq 0 ]]; then
+    tumble=${TUMBLE:-build/tumble}
+    # a relative TUMBLE is taken from where the script was started, the
+    # default build/tumble from the repository root
+    if [[ "$tumble" != /* ]]; then
+        if [[ -n "${TUMBLE:-}" && -e "$invocation_dir/$tumble" ]]; then tumble="$invocation_dir/$tumble"
+        else tumble="$repo/$tumble"; fi
+    fi
+    [[ -x "$tumble" ]] || die "tumble binary not found or not executable: $tumble
+  build it first (bash scripts/build.sh, or cmake --build build), set TUMBLE=/path/to/tumble,
+  or run the LIGGGHTS side alone with --peers-only"
+fi
+
+mpirun_cmd=()
+if [[ $mpi -eq 1 ]]; then
+    command -v mpirun >/dev/null || die "--mpi: mpirun not found (OpenMPI comes with the liggghts package's mpi-default-bin)"
+    mpirun_cmd=(mpirun -np 2)
+    [[ $(id -u) -eq 0 ]] && mpirun_cmd+=(--allow-run-as-root)
+fi
+
+out=${out:-$repo/build/compare_peers}
+[[ "$out" == /* ]] || out="$invocation_dir/$out"
+mkdir -p "$out"
+results="$out/results.jsonl"
+: > "$results"
+
+# ------------------------------------------------------------------ runners
+run_tumble() {  # size round
+    local log="$out/tumble_N$1_r$2.out"
+    if ! python3 "$lib" exec "$log.time" "$log" "$log.err" -- \
+            "$tumble" bench --json --size "$1" --steps "$steps" --warmup "$warmup"; then
+        cat "$log.err" >&2
+        die "tumble bench failed (size $1), see $log.err"
+    fi
+    python3 "$lib" tumble "$log" tumble "1 thread" "$log.time" >> "$results"
+}
+
+run_liggghts() {  # size round config-name rolling np label
+    local log="$out/liggghts_N$1_r$2_$3.log" cmd=()
+    [[ $5 -gt 1 ]] && cmd+=("${mpirun_cmd[@]}")
+    cmd+=("$liggghts_bin" -in "$deck" -log "$log" -screen none -nocite
+          -var N "$1" -var steps "$steps" -var warmup "$warmup" -var rolling "$4")
+    # run inside $out so that nothing LIGGGHTS writes lands in the repository
+    if ! (cd "$out" && python3 "$lib" exec "$log.time" "$log.screen" "$log.screen" -- "${cmd[@]}"); then
+        tail -5 "$log" >&2 || true
+        die "LIGGGHTS failed (size $1, $3), see $log"
+    fi
+    python3 "$lib" liggghts "$log" liggghts "$6" "$log.time" >> "$results"
+}
+
+configs=("full 1p|cdt|1|hertz+history+sjkr+cdt, 1 proc")
+[[ $lean -eq 1 ]] && configs+=("lean 1p|off|1|hertz+history+sjkr, no rolling, 1 proc")
+[[ $mpi -eq 1 ]] && configs+=("full 2p|cdt|2|hertz+history+sjkr+cdt, mpirun -np 2")
+
+# ------------------------------------------------------------------ machine
+# total and steal jiffies of all CPUs (steal: time the hypervisor gave our
+# virtual CPUs to someone else; 0 on bare metal)
+cpu_jiffies() { awk '/^cpu /{print $2+$3+$4+$5+$6+$7+$8+$9, $9}' /proc/stat 2>/dev/null || echo "0 0"; }
+read -r jiffies0 steal0 <<< "$(cpu_jiffies)"
+cpu=$(lscpu 2>/dev/null | sed -n 's/^Model name:[[:space:]]*//p' | head -1)
+echo "== tumble vs LIGGGHTS, dense periodic cube (SPEC-NOTES \"Speed\")"
+echo "machine : ${cpu:-unknown CPU}, $(nproc) logical cores, $(free -g 2>/dev/null | awk '/^Mem:/{print $2" GiB"}') memory, $(uname -sr)"
+echo "date    : $(date -u '+%Y-%m-%d %H:%M:%S UTC')   load average at start: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "liggghts: $(dpkg-query -W -f='${Package} ${Version}' liggghts 2>/dev/null || echo "$liggghts_bin")  deck: bench/peers/liggghts_cube.in"
+[[ -n "$tumble" ]] && echo "tumble  : $tumble"
+echo "runs    : sizes ${sizes[*]}, $steps timed steps after $warmup warm-up steps, $repeats rounds, logs in $out"
+echo
+
+for n in "${sizes[@]}"; do
+    for ((r = 1; r <= repeats; r++)); do
+        if [[ -n "$tumble" ]]; then
+            echo "  N=$n^3 round $r/$repeats: tumble" >&2
+            run_tumble "$n" "$r"
+        fi
+        for c in "${configs[@]}"; do
+            IFS='|' read -r name rolling np label <<< "$c"
+            echo "  N=$n^3 round $r/$repeats: liggghts $name" >&2
+            run_liggghts "$n" "$r" "${name// /_}" "$rolling" "$np" "$label"
+        done
+    done
+done
+
+echo
+python3 "$lib" table "$results"
+read -r jiffies1 steal1 <<< "$(cpu_jiffies)"
+steal_pct=$(awk -v t=$((jiffies1 - jiffies0)) -v s=$((steal1 - steal0)) 'BEGIN{ p = 0; if (t > 0) p = 100*s/t; printf "%.1f", p }')
+echo "load average at end: $(cut -d' ' -f1-3 /proc/loadavg); CPU steal during the runs: ${steal_pct} %"
+echo "paper (Kohring 1995, table 1): 24.1-45.2 thousand updates/s (Sparc-10 .. IBM Power2), 9261 spheres"

@@ -1,0 +1,193 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Helpers for bench/compare_peers.sh (python3 standard library only).
+
+  peerlib.py exec TIMING STDOUT STDERR -- CMD...
+                                        run CMD, write {"wall", "cpu"} of the whole
+                                        process tree to TIMING; exit status of CMD
+  peerlib.py liggghts LOG CODE CONFIG [TIMING]   one JSON result line from a LIGGGHTS log
+  peerlib.py tumble STDOUT CODE CONFIG [TIMING]  one JSON result line from `tumble bench --json`
+  peerlib.py table RESULTS.jsonl        the comparison table (medians per config)
+
+cpu/wall of a whole process (setup and warm-up included) is the contention
+indicator: about 1 per process when it had a core to itself, lower when it
+waited for one (other jobs on the machine).
+
+A result line has: code, config, size, particles, steps, seconds,
+updates_per_second, contacts_per_particle, neighbor_builds, procs.
+updates/s = particles * steps / wall time of the timed run.
+"""
+import json
+import os
+import re
+import resource
+import statistics
+import subprocess
+import sys
+import time
+
+LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
+BUILDS = re.compile(r"Neighbor list builds = (\d+)")
+DANGEROUS = re.compile(r"Dangerous builds = (\d+)")
+THERMO_HEAD = re.compile(r"^\s*Step\s+Atoms\s+KinEng\s+rke\s+zavg\s*$")
+
+
+def fail(msg):
+    print(f"peerlib: {msg}", file=sys.stderr)
+    sys.exit(1)
+
+
+def parse_liggghts(path, code, config):
+    text = open(path, encoding="utf-8", errors="replace").read()
+    if "ERROR" in text:
+        line = next(l for l in text.splitlines() if "ERROR" in l)
+        fail(f"{path}: LIGGGHTS stopped: {line.strip()}")
+    loops = LOOP.findall(text)
+    if not loops:
+        fail(f"{path}: no 'Loop time of ...' line (did LIGGGHTS finish?)")
+    seconds, procs, steps, atoms = loops[-1]  # the last run is the timed one
+    seconds, procs, steps, atoms = float(seconds), int(procs), int(steps), int(atoms)
+    builds = BUILDS.findall(text)
+    dangerous = DANGEROUS.findall(text)
+    # last thermo line of the timed run: step atoms ke rke zavg
+    lines = text.splitlines()
+    z = None
+    atoms_end = None
+    for i, l in enumerate(lines):
+        if THERMO_HEAD.match(l):
+            j = i + 1
+            while j < len(lines) and re.match(r"^\s*\d+\s", lines[j]):
+                f = lines[j].split()
+                atoms_end, z = int(f[1]), float(f[4])
+                j += 1
+    size = round(atoms ** (1.0 / 3.0))
+    return {
+        "code": code, "config": config, "size": size, "particles": atoms,
+        "particles_end": atoms_end, "steps": steps, "seconds": seconds,
+        "updates_per_second": atoms * steps / seconds,
+        "contacts_per_particle": z,
+        "neighbor_builds": int(builds[-1]) if builds else None,
+        "dangerous_builds": int(dangerous[-1]) if dangerous else None,
+        "procs": procs,
+    }
+
+
+def parse_tumble(path, code, config):
+    lines = [l for l in open(path, encoding="utf-8", errors="replace").read().splitlines() if l.strip()]
+    if not lines:
+        fail(f"{path}: tumble bench printed nothing")
+    try:
+        d = json.loads(lines[-1])
+    except json.JSONDecodeError as e:
+        fail(f"{path}: last line of `tumble bench --json` is not JSON ({e}): {lines[-1][:200]}")
+    for k in ("particles", "steps", "seconds", "updates_per_second", "contacts_per_particle"):
+        if k not in d:
+            fail(f"{path}: tumble bench JSON lacks '{k}'")
+    n = int(d["particles"])
+    return {
+        "code": code, "config": config, "size": round(n ** (1.0 / 3.0)), "particles": n,
+        "particles_end": n, "steps": int(d["steps"]), "seconds": float(d["seconds"]),
+        "updates_per_second": float(d["updates_per_second"]),
+        "contacts_per_particle": float(d["contacts_per_particle"]),
+        "neighbor_builds": d.get("neighbor_builds"), "dangerous_builds": None,
+        "procs": int(d.get("threads", 1)), "version": d.get("version"),
+    }
+
+
+def run_timed(timing, stdout, stderr, cmd):
+    t0 = time.monotonic()
+    with open(stdout, "wb") as o:
+        if os.path.abspath(stderr) == os.path.abspath(stdout):
+            rc = subprocess.call(cmd, stdout=o, stderr=subprocess.STDOUT)
+        else:
+            with open(stderr, "wb") as e:
+                rc = subprocess.call(cmd, stdout=o, stderr=e)
+    wall = time.monotonic() - t0
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)  # all waited-for descendants
+    with open(timing, "w") as f:
+        json.dump({"wall": wall, "cpu": ru.ru_utime + ru.ru_stime, "rc": rc}, f)
+    return rc
+
+
+def add_timing(result, timing):
+    if timing and os.path.exists(timing):
+        t = json.load(open(timing))
+        result["process_wall"] = t["wall"]
+        result["process_cpu"] = t["cpu"]
+        result["cpu_per_wall"] = t["cpu"] / t["wall"] if t["wall"] > 0 else None
+    return result
+
+
+def fmt_rate(x):
+    return f"{x / 1e6:.3f} M" if x >= 1e6 else f"{x / 1e3:.1f} k"
+
+
+def table(path):
+    rows = [json.loads(l) for l in open(path, encoding="utf-8") if l.strip()]
+    if not rows:
+        fail(f"{path}: no results")
+    groups = {}
+    for r in rows:
+        groups.setdefault((r["size"], r["code"], r["config"]), []).append(r)
+    summary = []
+    for (size, code, config), rs in groups.items():
+        ups = [r["updates_per_second"] for r in rs]
+        summary.append({
+            "size": size, "code": code, "config": config, "particles": rs[0]["particles"],
+            "steps": rs[0]["steps"], "runs": len(rs), "median": statistics.median(ups),
+            "min": min(ups), "max": max(ups),
+            "seconds": statistics.median(r["seconds"] for r in rs),
+            "z": rs[-1]["contacts_per_particle"], "builds": rs[-1]["neighbor_builds"],
+            "lost": any(r["particles_end"] not in (None, r["particles"]) for r in rs),
+            "cpu_wall": [r["cpu_per_wall"] for r in rs if r.get("cpu_per_wall") is not None],
+        })
+    summary.sort(key=lambda s: (s["size"], s["code"] != "tumble", s["code"], s["config"]))
+    hdr = ("N", "code", "config", "runs", "median updates/s", "min..max", "wall s",
+           "cpu/wall", "contacts/sphere", "nbr builds", "tumble/peer")
+    out = []
+    for s in summary:
+        t = [x for x in summary if x["size"] == s["size"] and x["code"] == "tumble"]
+        if s["code"] == "tumble":
+            ratio = "-"
+        elif t:
+            ratio = f"{t[0]['median'] / s['median']:.2f}"
+        else:
+            ratio = "n/a"
+        out.append((f"{s['particles']}", s["code"], s["config"], str(s["runs"]), fmt_rate(s["median"]),
+                    f"{fmt_rate(s['min'])}..{fmt_rate(s['max'])}", f"{s['seconds']:.2f}",
+                    "?" if not s["cpu_wall"] else f"{min(s['cpu_wall']):.2f}..{max(s['cpu_wall']):.2f}",
+                    "?" if s["z"] is None else f"{s['z']:.3f}",
+                    "?" if s["builds"] is None else str(s["builds"]), ratio))
+    widths = [max(len(h), *(len(r[i]) for r in out)) for i, h in enumerate(hdr)]
+    line = lambda cells: "  ".join(c.ljust(w) for c, w in zip(cells, widths)).rstrip()
+    print(line(hdr))
+    print(line(["-" * w for w in widths]))
+    for r in out:
+        print(line(r))
+    bad = [s for s in summary if s["lost"]]
+    for s in bad:
+        print(f"WARNING: {s['code']} {s['config']} N={s['particles']}: atom count changed during the run")
+    for s in summary:
+        if s["z"] is not None and not (5.0 <= s["z"] <= 7.0):
+            print(f"WARNING: {s['code']} {s['config']} N={s['particles']}: "
+                  f"{s['z']:.3f} contacts per sphere, expected about 6")
+    print("steps per run: " + ", ".join(sorted({f"{s['steps']}" for s in summary})) +
+          "; updates/s = particles x steps / wall time of the timed steps; ratio = tumble median / peer median")
+    print("cpu/wall: CPU time over wall time of each whole process, about 1 per process when it had"
+          " its cores to itself; lower values mean it waited for a CPU and its numbers are low")
+
+
+def main(argv):
+    if len(argv) >= 7 and argv[1] == "exec" and argv[5] == "--":
+        sys.exit(run_timed(argv[2], argv[3], argv[4], argv[6:]))
+    elif len(argv) in (5, 6) and argv[1] in ("liggghts", "tumble"):
+        f = parse_liggghts if argv[1] == "liggghts" else parse_tumble
+        print(json.dumps(add_timing(f(argv[2], argv[3], argv[4]), argv[5] if len(argv) == 6 else None)))
+    elif len(argv) == 3 and argv[1] == "table":
+        table(argv[2])
+    else:
+        fail(__doc__)
+
+
+if __name__ == "__main__":
+    main(sys.argv)
