@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <string>
 
+#include "io/drum_config.hpp"
+
 namespace tumble::cli {
 
 struct RunOptions {
@@ -23,5 +25,15 @@ struct BenchOptions {
     bool json = false;
 };
 int bench_command(const BenchOptions& options);
+
+struct DrumOptions {
+    io::DrumSettings settings;  // from --config and the command line
+    bool force = false;
+    bool quiet = false;
+};
+int drum_command(const DrumOptions& options);
+
+// Re-analyse a drum run directory: summary.json, summary.txt.
+int analyze_command(const std::string& directory);
 
 }  // namespace tumble::cli

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The tumble command line: run, bench.
+#include <optional>
+
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -28,10 +30,69 @@ int main(int argc, char** argv) {
     bench_cmd->add_option("--seed", bench.seed, "Seed of the random initial velocities");
     bench_cmd->add_flag("--json", bench.json, "Print one JSON object instead of the table");
 
+    // tumble drum: every setting of the drum file can be given here too.
+    DrumOptions drum;
+    std::string drum_config;
+    std::optional<double> omega, rpm, froude, revolutions, length, diameter, wall_radius, dt, fill;
+    std::optional<std::size_t> grains;
+    std::optional<std::uint64_t> seed;
+    std::optional<int> samples, bins;
+    std::optional<std::string> mode, out;
+    CLI::App* drum_cmd = app.add_subcommand(
+        "drum", "The paper's rotating-drum diffusion experiment (defaults: the paper's set-up, two components, "
+                "5 rad/s, 5 revolutions; see docs/DRUM.md)");
+    drum_cmd->add_option("--config", drum_config, "Drum settings file (TOML; examples/drum_*.toml)");
+    drum_cmd->add_option("--mode", mode, "two-component or self");
+    auto* grains_opt = drum_cmd->add_option("--grains", grains, "Total number of grains (default 1000)");
+    drum_cmd->add_option("--fill", fill, "Fill fraction of the drum to aim at, instead of --grains")->excludes(grains_opt);
+    auto* omega_opt = drum_cmd->add_option("--omega", omega, "Rotation speed, rad/s");
+    auto* rpm_opt = drum_cmd->add_option("--rpm", rpm, "Rotation speed, revolutions per minute");
+    auto* froude_opt = drum_cmd->add_option("--froude", froude, "Rotation speed as Froude number omega^2 R / g");
+    omega_opt->excludes(rpm_opt)->excludes(froude_opt);
+    rpm_opt->excludes(froude_opt);
+    drum_cmd->add_option("--revolutions", revolutions, "Revolutions after settling");
+    drum_cmd->add_option("--samples", samples, "Samples per revolution (default 20)");
+    drum_cmd->add_option("--bins", bins, "Axial bins of the concentration profile (default 12)");
+    drum_cmd->add_option("--length", length, "Inner length of the drum, m (default 0.12)");
+    drum_cmd->add_option("--diameter", diameter, "Inner diameter of the drum, m (default 0.08)");
+    drum_cmd->add_option("--wall-radius", wall_radius, "Radius of the wall particles, m (default 0.003)");
+    drum_cmd->add_option("--dt", dt, "Time step, s (default: chosen from the materials)");
+    drum_cmd->add_option("--seed", seed, "Seed of the random filling");
+    drum_cmd->add_option("-o,--out", out, "Run directory (default drum-out)");
+    drum_cmd->add_flag("--force", drum.force, "Overwrite an earlier run in that directory");
+    drum_cmd->add_flag("-q,--quiet", drum.quiet, "Print nothing but errors");
+
+    std::string analyze_dir;
+    CLI::App* analyze_cmd = app.add_subcommand("analyze", "Analyse a drum run directory again (summary.json, summary.txt)");
+    analyze_cmd->add_option("directory", analyze_dir, "Run directory of tumble drum")->required();
+
     CLI11_PARSE(app, argc, argv);
     try {
         if (run_cmd->parsed()) return run_command(run);
         if (bench_cmd->parsed()) return bench_command(bench);
+        if (analyze_cmd->parsed()) return analyze_command(analyze_dir);
+        if (drum_cmd->parsed()) {
+            tumble::io::DrumSettings& d = drum.settings;
+            if (!drum_config.empty()) d = tumble::io::load_drum_settings(drum_config);
+            using tumble::io::SpeedUnit;
+            if (omega) d.speed = *omega, d.speed_unit = SpeedUnit::rad_per_s;
+            if (rpm) d.speed = *rpm, d.speed_unit = SpeedUnit::rpm;
+            if (froude) d.speed = *froude, d.speed_unit = SpeedUnit::froude;
+            if (mode) d.mode = *mode;
+            if (grains) d.grains = *grains, d.fill_fraction = 0.0;
+            if (fill) d.fill_fraction = *fill;
+            if (revolutions) d.revolutions = *revolutions;
+            if (samples) d.samples_per_revolution = *samples;
+            if (bins) d.profile_bins = *bins;
+            if (length) d.geometry.length = *length;
+            if (diameter) d.geometry.diameter = *diameter;
+            if (wall_radius) d.geometry.wall_radius = *wall_radius;
+            if (dt) d.dt = *dt;
+            if (seed) d.seed = *seed;
+            if (out) d.output = *out;
+            tumble::io::check_drum_settings(d, "command line");
+            return drum_command(drum);
+        }
     } catch (const tumble::Error& e) {
         fmt::print(stderr, "tumble: error: {}\n", e.what());
         return 2;

@@ -26,10 +26,13 @@ std::string format_seconds(double t) { return format(t, "s"); }
 }  // namespace
 
 TimeStepReport assess_time_step(const Scenario& s) {
+    // Smallest radius per material, among free and among kinematic particles.
     const std::size_t n_materials = s.materials.size();
-    std::vector<double> smallest_radius(n_materials, inf);
-    for (const auto& p : s.particles)
-        smallest_radius[p.material] = std::min(smallest_radius[p.material], p.radius);
+    std::vector<double> free_radius(n_materials, inf), kinematic_radius(n_materials, inf);
+    for (const auto& p : s.particles) {
+        double& r = p.motion == free_motion ? free_radius[p.material] : kinematic_radius[p.material];
+        r = std::min(r, p.radius);
+    }
 
     double collision = inf, viscous = inf, rayleigh = inf;
     std::string collision_pair, viscous_pair, rayleigh_material;
@@ -44,29 +47,32 @@ TimeStepReport assess_time_step(const Scenario& s) {
         const double damping = 2.0 * c.B_star * std::sqrt(R_star * h_max);  // N s/m
         if (m_star / damping < viscous) { viscous = m_star / damping; viscous_pair = pair; }
     };
-    auto mass = [&](std::size_t a) {
-        const double R = smallest_radius[a];
-        return 4.0 / 3.0 * pi * s.materials[a].rho * R * R * R;
+    auto mass = [&](std::size_t a, double R) { return 4.0 / 3.0 * pi * s.materials[a].rho * R * R * R; };
+    auto coefficients = [&](std::size_t a, std::size_t b) {
+        return make_pair_coefficients(s.materials[a], s.materials[b], s.pair_properties[a][b]);
     };
     const auto& walls = s.domain.walls;
     const bool any_wall = walls[0] || walls[1] || walls[2];
     for (std::size_t a = 0; a < n_materials; ++a) {
-        if (smallest_radius[a] == inf) continue;  // no particle of this material
+        const double Ra = free_radius[a];
+        if (Ra == inf) continue;  // no free particle of this material
         const Material& ma = s.materials[a];
-        const double t_R = pi * smallest_radius[a] * std::sqrt(ma.rho / ma.G) / (0.1631 * ma.nu + 0.8766);
+        const double t_R = pi * Ra * std::sqrt(ma.rho / ma.G) / (0.1631 * ma.nu + 0.8766);
         if (t_R < rayleigh) { rayleigh = t_R; rayleigh_material = ma.name; }
-        for (std::size_t b = a; b < n_materials; ++b) {
-            if (smallest_radius[b] == inf) continue;
-            const Material& mb = s.materials[b];
-            const double Ra = smallest_radius[a], Rb = smallest_radius[b];
-            consider(ma.name + "-" + mb.name, make_pair_coefficients(ma, mb, s.pair_properties[a][b]),
-                     Ra * Rb / (Ra + Rb), mass(a) * mass(b) / (mass(a) + mass(b)));
+        for (std::size_t b = 0; b < n_materials; ++b) {
+            const std::string pair = ma.name + "-" + s.materials[b].name;
+            // Two free grains: the reduced mass.
+            if (const double Rb = free_radius[b]; b >= a && Rb != inf)
+                consider(pair, coefficients(a, b), Ra * Rb / (Ra + Rb), mass(a, Ra) * mass(b, Rb) / (mass(a, Ra) + mass(b, Rb)));
+            // A free grain against a kinematic one, whose motion is prescribed
+            // (infinite mass): m* = m. Two kinematic particles never interact.
+            if (const double Rb = kinematic_radius[b]; Rb != inf)
+                consider(pair + " (kinematic)", coefficients(a, b), Ra * Rb / (Ra + Rb), mass(a, Ra));
         }
         if (any_wall) {
             // A flat wall: infinite radius and mass, so R* = R and m* = m.
             const auto w = static_cast<std::size_t>(s.domain.wall_material);
-            consider(ma.name + "-flat wall", make_pair_coefficients(ma, s.materials[w], s.pair_properties[a][w]),
-                     smallest_radius[a], mass(a));
+            consider(ma.name + "-flat wall", coefficients(a, w), Ra, mass(a, Ra));
         }
     }
 
@@ -85,7 +91,7 @@ TimeStepReport assess_time_step(const Scenario& s) {
                        "), above which the damping is unstable");
     limit(0.5 * rayleigh, "half the Rayleigh time (" + format_seconds(rayleigh) + ", material " +
                               rayleigh_material + ")");
-    if (r.recommended == inf) throw Error("time step: no particles to derive a time step from");
+    if (r.recommended == inf) throw Error("time step: no free particles to derive a time step from");
 
     const double given = s.time_step.dt;
     if (given == 0.0) {

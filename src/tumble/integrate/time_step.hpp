@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: MIT
 // Choosing and checking the time step from the materials.
 //
-// For every pair of materials present (each at its smallest radius, with the
-// reduced mass of two free grains, which is the conservative case):
+// For every pair of materials that can touch (each at the smallest radius of
+// its free, or of its kinematic, particles; the reduced mass for two free
+// grains, the grain's own mass against a kinematic particle or a flat wall,
+// whose motion is prescribed; two kinematic particles never touch):
 //  - Hertz collision time at the reference impact speed v (no damping):
 //      h_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5),  t_c = 2.943275 h_max / v;
 //  - viscous time m*/c with c = 2 B* sqrt(R* h_max), the Kuwabara-Kono
 //    damping at the deepest overlap; the half-step kick is stable only for
 //    dt < 2 m*/c;
-// and for every material the Rayleigh time
+// and for every material of free particles the Rayleigh time
 //      t_R = pi R sqrt(rho/G) / (0.1631 nu + 0.8766).
 // Recommended step: min(t_c/50, 0.2 m*/c, 0.2 t_R).
 // Largest step accepted: min(t_c/10, m*/c, 0.5 t_R).

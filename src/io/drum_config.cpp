@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: MIT
+#include "io/drum_config.hpp"
+
+#include <cmath>
+
+#include "io/toml_reader.hpp"
+#include "tumble/core/constants.hpp"
+#include "tumble/setup/paper_materials.hpp"
+
+namespace tumble::io {
+
+namespace {
+constexpr double g = 9.81;  // m/s^2, as the drum's gravity
+}
+
+double DrumSettings::omega() const {
+    switch (speed_unit) {
+        case SpeedUnit::rpm: return speed * 2.0 * pi / 60.0;
+        case SpeedUnit::froude: return std::sqrt(speed * g / (0.5 * geometry.diameter));
+        case SpeedUnit::rad_per_s: break;
+    }
+    return speed;
+}
+
+std::size_t DrumSettings::grain_count() const {
+    if (!(fill_fraction > 0.0)) return grains;
+    constexpr double packing = 0.6;
+    const double R = 0.5 * geometry.diameter;
+    const double solid = packing * fill_fraction * pi * R * R * geometry.length;  // m^3 of grains
+    const auto volume = [](double r) { return 4.0 / 3.0 * pi * r * r * r; };
+    const Material m1 = paper::material_1(), m2 = paper::material_2();
+    if (mode == "self") return static_cast<std::size_t>(std::llround(solid / volume(m1.radius)));
+    // Equal masses (same density): half the volume in each material.
+    return static_cast<std::size_t>(std::llround(0.5 * solid / volume(m1.radius)) +
+                                    std::llround(0.5 * solid / volume(m2.radius)));
+}
+
+void check_drum_settings(const DrumSettings& s, const std::string& source) {
+    auto fail = [&](const char* key, const std::string& reason) { throw ConfigError(source, key, reason); };
+    if (s.mode != "two-component" && s.mode != "self")
+        fail("mode", "must be \"two-component\" or \"self\", got \"" + s.mode + "\"");
+    if (!(s.speed > 0.0) || !std::isfinite(s.speed))
+        fail("speed", "the rotation speed must be > 0, got " + show(s.speed));
+    if (!(s.revolutions > 0.0) || !std::isfinite(s.revolutions))
+        fail("revolutions", "must be > 0, got " + show(s.revolutions));
+    if (s.grains < 2) fail("grains", "need at least 2 grains");
+    if (!(s.fill_fraction >= 0.0 && s.fill_fraction <= 1.0))
+        fail("fill_fraction", "must lie in (0, 1], got " + show(s.fill_fraction));
+    if (s.grains > 10'000'000) fail("grains", "at most 10^7 grains");
+    if (s.samples_per_revolution < 1) fail("samples_per_revolution", "must be >= 1");
+    if (s.profile_bins < 2) fail("profile_bins", "must be >= 2");
+    if (!(s.settle_speed > 0.0)) fail("settle_speed", "must be > 0");
+    if (!(s.settle_max_time > 0.0)) fail("settle_max_time", "must be > 0");
+    if (!(s.dt >= 0.0)) fail("dt", "must be >= 0 (0: automatic)");
+    for (auto [key, value] : {std::pair{"length", s.geometry.length}, std::pair{"diameter", s.geometry.diameter},
+                              std::pair{"wall_radius", s.geometry.wall_radius}})
+        if (!(value > 0.0) || !std::isfinite(value)) fail(key, "must be > 0, got " + show(value));
+}
+
+DrumSettings load_drum_settings(const std::filesystem::path& file) {
+    const toml::table root = parse_toml(read_text_file(file), file);
+    const Reader r(file);
+    DrumSettings s;
+    r.only_keys(root, "", {"drum", "fill", "rotation", "measure", "settle", "time_step", "output"});
+    if (const toml::table* t = r.table(root, "drum", false)) {
+        r.only_keys(*t, "drum", {"length", "diameter", "wall_radius"});
+        s.geometry.length = r.number(*t, "drum", "length", Bound::positive, s.geometry.length);
+        s.geometry.diameter = r.number(*t, "drum", "diameter", Bound::positive, s.geometry.diameter);
+        s.geometry.wall_radius = r.number(*t, "drum", "wall_radius", Bound::positive, s.geometry.wall_radius);
+    }
+    if (const toml::table* t = r.table(root, "fill", false)) {
+        r.only_keys(*t, "fill", {"mode", "grains", "fill_fraction", "seed"});
+        if (t->get("grains") && t->get("fill_fraction"))
+            r.fail("fill", "give either grains or fill_fraction, not both", t);
+        if (auto f = r.number(*t, "fill", "fill_fraction", Bound::positive)) {
+            if (*f > 1.0) r.fail("fill.fill_fraction", "must lie in (0, 1], got " + show(*f), t->get("fill_fraction"));
+            s.fill_fraction = *f;
+        }
+        if (const toml::node* n = t->get("mode")) s.mode = r.string(*n, "fill.mode");
+        if (const toml::node* n = t->get("grains"))
+            s.grains = static_cast<std::size_t>(r.integer(*n, "fill.grains", 2, 10'000'000));
+        if (const toml::node* n = t->get("seed"))
+            s.seed = static_cast<std::uint64_t>(r.integer(*n, "fill.seed", 0, INT64_MAX));
+    }
+    if (const toml::table* t = r.table(root, "rotation", false)) {
+        r.only_keys(*t, "rotation", {"omega", "rpm", "froude", "revolutions"});
+        int given = 0;
+        for (auto [key, unit] : {std::pair{"omega", SpeedUnit::rad_per_s}, std::pair{"rpm", SpeedUnit::rpm},
+                                 std::pair{"froude", SpeedUnit::froude}})
+            if (auto v = r.number(*t, "rotation", key, Bound::positive)) {
+                s.speed = *v;
+                s.speed_unit = unit;
+                ++given;
+            }
+        if (given > 1) r.fail("rotation", "give the speed once: omega (rad/s), rpm or froude");
+        s.revolutions = r.number(*t, "rotation", "revolutions", Bound::positive, s.revolutions);
+    }
+    if (const toml::table* t = r.table(root, "measure", false)) {
+        r.only_keys(*t, "measure", {"samples_per_revolution", "profile_bins"});
+        if (const toml::node* n = t->get("samples_per_revolution"))
+            s.samples_per_revolution = static_cast<int>(r.integer(*n, "measure.samples_per_revolution", 1, 100000));
+        if (const toml::node* n = t->get("profile_bins"))
+            s.profile_bins = static_cast<int>(r.integer(*n, "measure.profile_bins", 2, 10000));
+    }
+    if (const toml::table* t = r.table(root, "settle", false)) {
+        r.only_keys(*t, "settle", {"speed", "max_time"});
+        s.settle_speed = r.number(*t, "settle", "speed", Bound::positive, s.settle_speed);
+        s.settle_max_time = r.number(*t, "settle", "max_time", Bound::positive, s.settle_max_time);
+    }
+    if (const toml::table* t = r.table(root, "time_step", false)) {
+        r.only_keys(*t, "time_step", {"dt"});
+        s.dt = r.number(*t, "time_step", "dt", Bound::positive, 0.0);
+    }
+    if (const toml::table* t = r.table(root, "output", false)) {
+        r.only_keys(*t, "output", {"directory"});
+        if (const toml::node* n = t->get("directory")) s.output = r.string(*n, "output.directory");
+    }
+    check_drum_settings(s, file.string());
+    return s;
+}
+
+}  // namespace tumble::io

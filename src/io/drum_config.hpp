@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: MIT
+// Settings of the drum experiment (`tumble drum`), from an optional TOML file
+// (examples/drum_*.toml; docs/DRUM.md lists every key) and the command line,
+// which wins. Defaults are the paper's set-up with a reduced number of
+// revolutions.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "tumble/setup/drum.hpp"
+
+namespace tumble::io {
+
+enum class SpeedUnit { rad_per_s, rpm, froude };
+
+struct DrumSettings {
+    DrumGeometry geometry;             // inner length, inner diameter, wall-particle radius (m)
+    std::string mode = "two-component";  // or "self"
+    std::size_t grains = 1000;         // total number of grains
+    // If > 0, the fill fraction (bed cross-section over drum cross-section)
+    // to aim at instead of `grains`: the grain count is chosen so that the
+    // grains at a packing fraction of 0.6 fill that fraction of the drum.
+    double fill_fraction = 0.0;
+    std::uint64_t seed = 1;
+    double speed = 5.0;                // in `speed_unit`
+    SpeedUnit speed_unit = SpeedUnit::rad_per_s;
+    double revolutions = 5.0;          // after the bed has settled
+    int samples_per_revolution = 20;
+    int profile_bins = 12;
+    double settle_speed = 0.01;        // m/s: settled when the rms grain speed is below this
+    double settle_max_time = 3.0;      // s: give up settling (with a warning) after this
+    double dt = 0.0;                   // s; 0: chosen from the materials
+    std::filesystem::path output = "drum-out";
+
+    // Angular velocity in rad/s: from rpm (2 pi / 60) or from the Froude
+    // number Fr = omega^2 R / g with R the inner radius and g = 9.81 m/s^2.
+    double omega() const;
+
+    // The number of grains to make: `grains`, or the count that gives
+    // `fill_fraction` (see above).
+    std::size_t grain_count() const;
+};
+
+// Reads a drum TOML file over the defaults; ConfigError names file, key, reason.
+DrumSettings load_drum_settings(const std::filesystem::path& file);
+
+// Checks values that the command line may have set; ConfigError with
+// `source` (e.g. "command line") as the file.
+void check_drum_settings(const DrumSettings& s, const std::string& source);
+
+}  // namespace tumble::io

@@ -1,0 +1,381 @@
+// SPDX-License-Identifier: MIT
+#include "io/drum_output.hpp"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "io/toml_reader.hpp"
+#include "tumble/analysis/hogg.hpp"
+#include "tumble/core/constants.hpp"
+#include "tumble/core/error.hpp"
+
+namespace tumble::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::ofstream open_output(const fs::path& file) {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error(file.string() + ": cannot open for writing");
+    return out;
+}
+void check(std::ofstream& out, const fs::path& file) {
+    out.flush();
+    if (!out) throw Error(file.string() + ": write failed (disk full or file system error)");
+}
+
+// A CSV file with a header row, as numbers by column name.
+struct Csv {
+    std::vector<std::string> header;
+    std::vector<std::vector<std::string>> rows;
+
+    std::size_t column(const std::string& name, const fs::path& file) const {
+        for (std::size_t k = 0; k < header.size(); ++k)
+            if (header[k] == name) return k;
+        throw Error(file.string() + ": no column \"" + name + "\"");
+    }
+};
+
+std::vector<std::string> split(const std::string& line) {
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    std::string cell;
+    while (std::getline(s, cell, ',')) cells.push_back(cell);
+    return cells;
+}
+
+Csv read_csv(const fs::path& file) {
+    std::ifstream in(file);
+    if (!in) throw Error(file.string() + ": cannot read (is this a drum run directory?)");
+    Csv csv;
+    std::string line;
+    std::getline(in, line);
+    csv.header = split(line);
+    while (std::getline(in, line)) {
+        if (line.empty()) continue;
+        csv.rows.push_back(split(line));
+        if (csv.rows.back().size() != csv.header.size())
+            throw Error(file.string() + ": line " + std::to_string(csv.rows.size() + 1) + " has " +
+                        std::to_string(csv.rows.back().size()) + " cells, the header " +
+                        std::to_string(csv.header.size()));
+    }
+    return csv;
+}
+
+double number(const std::string& cell, const fs::path& file) {
+    try {
+        std::size_t used = 0;
+        const double v = std::stod(cell, &used);
+        if (used == cell.size()) return v;
+    } catch (const std::exception&) {
+    }
+    if (cell == "nan") return std::numeric_limits<double>::quiet_NaN();
+    throw Error(file.string() + ": \"" + cell + "\" is not a number");
+}
+
+std::vector<double> column(const Csv& csv, const std::string& name, const fs::path& file) {
+    const std::size_t k = csv.column(name, file);
+    std::vector<double> out;
+    for (const auto& row : csv.rows) out.push_back(number(row[k], file));
+    return out;
+}
+
+}  // namespace
+
+void write_drum_run_info(const fs::path& file, const DrumRunInfo& info) {
+    toml::array components;
+    for (const DrumComponent& c : info.components)
+        components.push_back(toml::table{{"name", c.name},
+                                         {"grains", static_cast<std::int64_t>(c.grains)},
+                                         {"mass", c.mass},
+                                         {"start_side", c.start_side}});
+    const toml::table t{{"mode", info.mode},
+                        {"omega", info.omega},
+                        {"froude", info.froude},
+                        {"revolutions", info.revolutions},
+                        {"seed", static_cast<std::int64_t>(info.seed)},
+                        {"wall_particles", static_cast<std::int64_t>(info.wall_particles)},
+                        {"inner_radius", info.inner_radius},
+                        {"inner_length", info.inner_length},
+                        {"solid_fraction", info.solid_fraction},
+                        {"fill_fraction", info.fill_fraction},
+                        {"dt", info.dt},
+                        {"samples_per_revolution", info.samples_per_revolution},
+                        {"profile_bins", info.profile_bins},
+                        {"settle_time", info.settle_time},
+                        {"settled", info.settled},
+                        {"wall_seconds", info.wall_seconds},
+                        {"grain_updates_per_second", info.grain_updates_per_second},
+                        {"component", components}};
+    std::ofstream out = open_output(file);
+    out << "# tumble drum run: what was run (read by `tumble analyze`)\n" << t << '\n';
+    check(out, file);
+}
+
+DrumRunInfo read_drum_run_info(const fs::path& file) {
+    const toml::table t = parse_toml(read_text_file(file), file);
+    const Reader r(file);
+    DrumRunInfo info;
+    info.mode = r.string(r.required(t, "", "mode"), "mode");
+    auto num = [&](const char* key) { return r.required_number(t, "", key, Bound::any); };
+    info.omega = num("omega");
+    info.froude = num("froude");
+    info.revolutions = num("revolutions");
+    info.seed = static_cast<std::uint64_t>(r.integer(r.required(t, "", "seed"), "seed", 0, INT64_MAX));
+    info.wall_particles = static_cast<std::size_t>(num("wall_particles"));
+    info.inner_radius = num("inner_radius");
+    info.inner_length = r.required_number(t, "", "inner_length", Bound::positive);
+    info.solid_fraction = num("solid_fraction");
+    info.fill_fraction = num("fill_fraction");
+    info.dt = num("dt");
+    info.samples_per_revolution = static_cast<int>(num("samples_per_revolution"));
+    info.profile_bins = static_cast<int>(r.integer(r.required(t, "", "profile_bins"), "profile_bins", 1, 1 << 20));
+    info.settle_time = num("settle_time");
+    info.settled = r.boolean(r.required(t, "", "settled"), "settled");
+    info.wall_seconds = num("wall_seconds");
+    info.grain_updates_per_second = num("grain_updates_per_second");
+    const auto entries = r.tables(t, "", "component");
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        const std::string p = at("component", i);
+        DrumComponent c;
+        c.name = r.string(r.required(*entries[i], p, "name"), join(p, "name"));
+        c.grains = static_cast<std::size_t>(r.required_number(*entries[i], p, "grains", Bound::non_negative));
+        c.mass = r.required_number(*entries[i], p, "mass", Bound::non_negative);
+        c.start_side = r.required_number(*entries[i], p, "start_side", Bound::any);
+        info.components.push_back(c);
+    }
+    if (info.components.empty()) r.fail("component", "no components");
+    return info;
+}
+
+DrumSeriesWriter::DrumSeriesWriter(const fs::path& directory, const DrumRunInfo& info)
+    : series_path_(directory / "drum_series.csv"), profiles_path_(directory / "profiles.csv"),
+      series_(open_output(series_path_)), profiles_(open_output(profiles_path_)), inner_length_(info.inner_length) {
+    series_ << "revolutions,time,angle_of_repose,fill_fraction,bed_centre_x,bed_centre_y";
+    for (const DrumComponent& c : info.components)
+        series_ << fmt::format(",grains_{0},mean_z_{0},mean_z_stderr_{0},kinetic_energy_{0},kinetic_per_grain_{0}",
+                               c.name);
+    series_ << '\n';
+    profiles_ << "revolutions,component,bin,z,concentration\n";
+    check(series_, series_path_);
+    check(profiles_, profiles_path_);
+}
+
+void DrumSeriesWriter::write(double revolutions, double time, const analysis::DrumState& s) {
+    series_ << fmt::format("{},{},{},{},{},{}", revolutions, time, s.angle_of_repose, s.fill_fraction,
+                           s.bed_centre.x, s.bed_centre.y);
+    for (const analysis::ComponentState& c : s.components)
+        series_ << fmt::format(",{},{},{},{},{}", c.grains, c.mean_z, c.mean_z_stderr, c.kinetic_energy,
+                               c.kinetic_per_grain);
+    series_ << '\n';
+    for (std::size_t c = 0; c < s.components.size(); ++c) {
+        const auto& C = s.components[c].concentration;
+        for (std::size_t b = 0; b < C.size(); ++b)
+            profiles_ << fmt::format("{},{},{},{},{}\n", revolutions, c, b,
+                                     -0.5 * inner_length_ + (b + 0.5) * inner_length_ / static_cast<double>(C.size()),
+                                     C[b]);
+    }
+    check(series_, series_path_);
+    check(profiles_, profiles_path_);
+}
+
+DrumSeries read_drum_series(const fs::path& file, std::size_t components) {
+    const Csv csv = read_csv(file);
+    DrumSeries s;
+    s.revolutions = column(csv, "revolutions", file);
+    s.time = column(csv, "time", file);
+    s.angle_of_repose = column(csv, "angle_of_repose", file);
+    // Component columns are named after the components, in order after the
+    // six fixed columns, five each.
+    for (std::size_t c = 0; c < components; ++c) {
+        const std::size_t first = 6 + 5 * c;
+        if (first + 5 > csv.header.size()) throw Error(file.string() + ": fewer component columns than components");
+        for (auto [target, offset] : {std::pair{&s.mean_z, 1}, std::pair{&s.mean_z_stderr, 2},
+                                      std::pair{&s.kinetic_energy, 3}, std::pair{&s.kinetic_per_grain, 4}}) {
+            target->push_back(column(csv, csv.header[first + offset], file));
+        }
+    }
+    return s;
+}
+
+DrumProfiles read_drum_profiles(const fs::path& file, std::size_t components, std::size_t bins) {
+    const Csv csv = read_csv(file);
+    const auto N = column(csv, "revolutions", file), c = column(csv, "component", file),
+               b = column(csv, "bin", file), z = column(csv, "z", file), C = column(csv, "concentration", file);
+    DrumProfiles p;
+    p.bin_centre.resize(bins);
+    for (std::size_t row = 0; row < N.size(); ++row) {
+        if (c[row] == 0 && b[row] == 0) {
+            p.revolutions.push_back(N[row]);
+            p.concentration.emplace_back(components, std::vector<double>(bins, -1.0));
+        }
+        if (p.concentration.empty()) throw Error(file.string() + ": rows out of order");
+        const auto ci = static_cast<std::size_t>(c[row]), bi = static_cast<std::size_t>(b[row]);
+        if (ci >= components || bi >= bins) throw Error(file.string() + ": component or bin out of range");
+        p.concentration.back()[ci][bi] = C[row];
+        p.bin_centre[bi] = z[row];
+    }
+    return p;
+}
+
+namespace {
+
+// Time average over the rotating phase of a / b.
+double mean_ratio(const std::vector<double>& a, const std::vector<double>& b, const std::vector<double>& N) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < N.size(); ++k)
+        if (N[k] > 0.0 && b[k] > 0.0) {
+            sum += a[k] / b[k];
+            ++n;
+        }
+    return n ? sum / static_cast<double>(n) : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::size_t nearest_sample(const std::vector<double>& N, double target) {
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < N.size(); ++k)
+        if (std::abs(N[k] - target) < std::abs(N[best] - target)) best = k;
+    return best;
+}
+
+}  // namespace
+
+std::string analyze_drum_run(const fs::path& dir) {
+    const DrumRunInfo info = read_drum_run_info(dir / "drum_run.toml");
+    const std::size_t n_components = info.components.size();
+    const DrumSeries series = read_drum_series(dir / "drum_series.csv", n_components);
+    const DrumProfiles profiles =
+        read_drum_profiles(dir / "profiles.csv", n_components, static_cast<std::size_t>(info.profile_bins));
+    const double L = info.inner_length;
+
+    std::ostringstream text;
+    text << fmt::format("tumble drum run in {}\n", dir.string());
+    text << fmt::format("  mode {}, omega {:.4g} rad/s ({:.3g} rpm, Froude {:.3g}), {:.4g} revolutions\n", info.mode,
+                        info.omega, info.omega * 60.0 / (2.0 * tumble::pi), info.froude,
+                        series.revolutions.empty() ? 0.0 : series.revolutions.back());
+    text << fmt::format("  {} wall particles; inner radius {:.4g} m, bed length L = {:.4g} m\n", info.wall_particles,
+                        info.inner_radius, L);
+    text << fmt::format("  solid fraction {:.3f} of the drum volume; fill fraction {:.3f} (bed cross-section after "
+                        "settling, {})\n",
+                        info.solid_fraction, info.fill_fraction,
+                        info.settled ? fmt::format("settled in {:.3g} s", info.settle_time)
+                                     : fmt::format("NOT settled after {:.3g} s", info.settle_time));
+
+    toml::array components_json;
+    std::vector<analysis::DiffusionFit> fits;
+    for (std::size_t c = 0; c < n_components; ++c) {
+        const DrumComponent& comp = info.components[c];
+        // The Hogg solution describes the component that starts at z > 0;
+        // mirror the other.
+        std::vector<double> N, z;
+        for (std::size_t k = 0; k < series.revolutions.size(); ++k)
+            if (series.revolutions[k] >= 0.0) {
+                N.push_back(series.revolutions[k]);
+                z.push_back(comp.start_side * series.mean_z[c][k]);
+            }
+        const analysis::DiffusionFit fit = analysis::fit_diffusion(N, z, L);
+        fits.push_back(fit);
+        text << fmt::format("  {} ({} grains, started at z {} 0): <z>(0) = {:.4g} m (L/4 = {:.4g} m)\n", comp.name,
+                            comp.grains, comp.start_side > 0 ? ">" : "<", z.empty() ? 0.0 : z.front(), L / 4.0);
+        if (fit.determined)
+            text << fmt::format("    D = {:.3e} +- {:.1e} m^2/rev (full Hogg series); one-term: {:.3e} +- {:.1e}\n",
+                                fit.D, fit.D_stderr, fit.one_term_D, fit.one_term_D_stderr);
+        else
+            text << fmt::format("    D not determined: {} (best estimate {:.3e} m^2/rev)\n", fit.note, fit.D);
+        components_json.push_back(toml::table{{"name", comp.name},
+                                              {"grains", static_cast<std::int64_t>(comp.grains)},
+                                              {"mass", comp.mass},
+                                              {"start_side", comp.start_side},
+                                              {"D", fit.D},
+                                              {"D_stderr", fit.D_stderr},
+                                              {"D_one_term", fit.one_term_D},
+                                              {"D_one_term_stderr", fit.one_term_D_stderr},
+                                              {"determined", fit.determined},
+                                              {"note", fit.note},
+                                              {"residual_rms", fit.residual_rms},
+                                              {"points", static_cast<std::int64_t>(fit.points)}});
+    }
+
+    toml::table summary{{"mode", info.mode},
+                        {"omega", info.omega},
+                        {"froude", info.froude},
+                        {"revolutions", series.revolutions.empty() ? 0.0 : series.revolutions.back()},
+                        {"grains", static_cast<std::int64_t>([&] {
+                             std::size_t n = 0;
+                             for (const auto& c : info.components) n += c.grains;
+                             return n;
+                         }())},
+                        {"wall_particles", static_cast<std::int64_t>(info.wall_particles)},
+                        {"bed_length", L},
+                        {"solid_fraction", info.solid_fraction},
+                        {"fill_fraction", info.fill_fraction},
+                        {"grain_updates_per_second", info.grain_updates_per_second},
+                        {"components", components_json}};
+
+    // Kinetic energy of species 2 over species 1 (component 1 over 0), with
+    // the ratio expected if both had the same mean square velocity.
+    if (n_components == 2) {
+        const DrumComponent &one = info.components[0], &two = info.components[1];
+        const double total = mean_ratio(series.kinetic_energy[1], series.kinetic_energy[0], series.revolutions);
+        const double per_grain =
+            mean_ratio(series.kinetic_per_grain[1], series.kinetic_per_grain[0], series.revolutions);
+        const double total_reference = two.mass / one.mass;
+        const double per_grain_reference = (two.mass / two.grains) / (one.mass / one.grains);
+        text << fmt::format("  kinetic energy {} / {} (mean over the rotation): total {:.3g} (equal velocities: {:.3g}), "
+                            "per grain {:.3g} (equal velocities: {:.3g})\n",
+                            two.name, one.name, total, total_reference, per_grain, per_grain_reference);
+        summary.insert("kinetic_energy_ratio_total", total);
+        summary.insert("kinetic_energy_ratio_total_equal_velocity", total_reference);
+        summary.insert("kinetic_energy_ratio_per_grain", per_grain);
+        summary.insert("kinetic_energy_ratio_per_grain_equal_velocity", per_grain_reference);
+    }
+
+    // Concentration profiles of the component that started at z > 0 against
+    // the Hogg solution with its fitted D, at a quarter, half and all of the run.
+    std::size_t right = 0;
+    for (std::size_t c = 0; c < n_components; ++c)
+        if (info.components[c].start_side > 0) right = c;
+    if (!profiles.revolutions.empty()) {
+        std::ofstream out = open_output(dir / "profile_comparison.csv");
+        out << "revolutions,z,measured,hogg\n";
+        toml::array rms_json;
+        const double last = profiles.revolutions.back();
+        for (double fraction : {0.25, 0.5, 1.0}) {
+            const std::size_t k = nearest_sample(profiles.revolutions, fraction * last);
+            const double N = profiles.revolutions[k];
+            double sum = 0.0;
+            std::size_t n = 0;
+            for (std::size_t b = 0; b < profiles.bin_centre.size(); ++b) {
+                const double measured = profiles.concentration[k][right][b];
+                if (measured < 0.0) continue;  // empty bin
+                const double hogg = analysis::hogg_concentration(profiles.bin_centre[b], fits[right].D, N, L);
+                out << fmt::format("{},{},{},{}\n", N, profiles.bin_centre[b], measured, hogg);
+                sum += (measured - hogg) * (measured - hogg);
+                ++n;
+            }
+            const double rms = n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+            rms_json.push_back(toml::table{{"revolutions", N}, {"rms_difference", rms}});
+            text << fmt::format("  C(z, N = {:.3g}) of {} against Hogg with its D: rms difference {:.3f}\n", N,
+                                info.components[right].name, rms);
+        }
+        check(out, dir / "profile_comparison.csv");
+        summary.insert("profile_comparison", rms_json);
+    }
+
+    {
+        std::ofstream json = open_output(dir / "summary.json");
+        json << toml::json_formatter{summary} << '\n';
+        check(json, dir / "summary.json");
+        std::ofstream txt = open_output(dir / "summary.txt");
+        txt << text.str();
+        check(txt, dir / "summary.txt");
+    }
+    return text.str();
+}
+
+}  // namespace tumble::io

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: MIT
+// The files of a drum run directory (docs/DRUM.md):
+//   drum_run.toml      what was run: settings, geometry, components
+//   drum_series.csv    one row per sample: revolutions N, time, angle of
+//                      repose, bed centre, and per component <z>, its standard
+//                      error, kinetic energy (total and per grain)
+//   profiles.csv       the axial concentration profiles C(z, N)
+//   summary.json, summary.txt   the analysis (`tumble analyze DIR`)
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "tumble/analysis/drum_measure.hpp"
+
+namespace tumble::io {
+
+struct DrumComponent {
+    std::string name;         // "material-1", "material-2", or "left", "right"
+    std::size_t grains = 0;
+    double mass = 0.0;        // kg, all its grains
+    double start_side = 0.0;  // -1: started at z < 0, +1: at z > 0
+};
+
+struct DrumRunInfo {
+    std::string mode;
+    double omega = 0.0;            // rad/s
+    double froude = 0.0;           // omega^2 R / g
+    double revolutions = 0.0;      // asked for
+    std::uint64_t seed = 0;
+    std::size_t wall_particles = 0;
+    double inner_radius = 0.0;     // m
+    double inner_length = 0.0;     // m: the bed length L of the Hogg solution
+    double solid_fraction = 0.0;   // grain volume / drum volume
+    double fill_fraction = 0.0;    // bed cross-section / drum cross-section, measured after settling
+    double dt = 0.0;               // s
+    int samples_per_revolution = 0;
+    int profile_bins = 0;
+    double settle_time = 0.0;      // s of simulated settling
+    bool settled = false;          // reached the settling criterion
+    double wall_seconds = 0.0;     // of the rotating phase
+    double grain_updates_per_second = 0.0;
+    std::vector<DrumComponent> components;
+};
+
+void write_drum_run_info(const std::filesystem::path& file, const DrumRunInfo& info);
+DrumRunInfo read_drum_run_info(const std::filesystem::path& file);
+
+class DrumSeriesWriter {
+public:
+    DrumSeriesWriter(const std::filesystem::path& directory, const DrumRunInfo& info);
+    void write(double revolutions, double time, const analysis::DrumState& state);
+
+private:
+    std::filesystem::path series_path_, profiles_path_;
+    std::ofstream series_, profiles_;
+    double inner_length_;
+};
+
+// The drum_series.csv columns, read back.
+struct DrumSeries {
+    std::vector<double> revolutions, time, angle_of_repose;
+    std::vector<std::vector<double>> mean_z, mean_z_stderr, kinetic_energy, kinetic_per_grain;  // [component][sample]
+};
+DrumSeries read_drum_series(const std::filesystem::path& file, std::size_t components);
+
+// profiles.csv read back: for each sample N, C[component][bin].
+struct DrumProfiles {
+    std::vector<double> revolutions;
+    std::vector<double> bin_centre;  // z, m
+    std::vector<std::vector<std::vector<double>>> concentration;  // [sample][component][bin]
+};
+DrumProfiles read_drum_profiles(const std::filesystem::path& file, std::size_t components, std::size_t bins);
+
+// Fits D per component, the kinetic-energy ratios and the profile comparison;
+// writes summary.json and summary.txt into `directory` and returns the text.
+std::string analyze_drum_run(const std::filesystem::path& directory);
+
+}  // namespace tumble::io

@@ -1,0 +1,454 @@
+// SPDX-License-Identifier: MIT
+#include "tumble/setup/drum.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <queue>
+#include <random>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "tumble/core/constants.hpp"
+#include "tumble/core/error.hpp"
+#include "tumble/setup/paper_materials.hpp"
+
+namespace tumble {
+
+namespace {
+
+std::string metres(double v) {
+    char buffer[48];
+    std::snprintf(buffer, sizeof buffer, "%.4g m", v);
+    return buffer;
+}
+
+// Uniform in [0, 1) from the top 53 bits: the same on every platform, unlike
+// std::uniform_real_distribution.
+double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+// Spheres binned in a hash grid of cubic cells, for overlap tests,
+// neighbourhood visits and nearest-centre queries. Each sphere carries an id
+// (its index in the caller's list).
+class SphereGrid {
+public:
+    explicit SphereGrid(double cell) : cell_(cell) {}
+
+    void add(const Vec3& x, double r, std::size_t id = 0) {
+        cells_[key(coord(x.x), coord(x.y), coord(x.z))].push_back({x, r, id});
+        largest_ = std::max(largest_, r);
+        ++size_;
+    }
+
+    // f(centre, radius, id) for every sphere that may overlap the sphere (x, r).
+    template <class F>
+    void for_each_near(const Vec3& x, double r, F&& f) const {
+        visit(x, static_cast<long>(std::ceil((r + largest_) / cell_)), f);
+    }
+
+    // Whether a sphere (x, r) overlaps none of the spheres held.
+    bool free(const Vec3& x, double r) const {
+        bool clear = true;
+        for_each_near(x, r, [&](const Vec3& y, double ry, std::size_t) {
+            if (norm2(x - y) < (r + ry) * (r + ry)) clear = false;
+        });
+        return clear;
+    }
+
+    // Distance from x to the nearest centre held. Searches blocks of cells of
+    // growing reach k: a centre outside the block is more than k cells away.
+    double nearest_centre(const Vec3& x) const {
+        if (size_ == 0) throw Error("drum: nearest-centre query on an empty grid");
+        for (long reach = 1;; ++reach) {
+            double best2 = INFINITY;
+            visit(x, reach, [&](const Vec3& y, double, std::size_t) { best2 = std::min(best2, norm2(x - y)); });
+            if (best2 <= (reach * cell_) * (reach * cell_)) return std::sqrt(best2);
+        }
+    }
+
+private:
+    struct Entry {
+        Vec3 x;
+        double r;
+        std::size_t id;
+    };
+    template <class F>
+    void visit(const Vec3& x, long reach, F&& f) const {
+        const long cx = coord(x.x), cy = coord(x.y), cz = coord(x.z);
+        for (long dz = -reach; dz <= reach; ++dz)
+            for (long dy = -reach; dy <= reach; ++dy)
+                for (long dx = -reach; dx <= reach; ++dx) {
+                    const auto found = cells_.find(key(cx + dx, cy + dy, cz + dz));
+                    if (found == cells_.end()) continue;
+                    for (const Entry& e : found->second) f(e.x, e.r, e.id);
+                }
+    }
+    long coord(double v) const { return static_cast<long>(std::floor(v / cell_)); }
+    static std::uint64_t key(long x, long y, long z) {
+        return (static_cast<std::uint64_t>(x & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(y & 0x1FFFFF) << 21) |
+               static_cast<std::uint64_t>(z & 0x1FFFFF);
+    }
+    double cell_;
+    double largest_ = 0.0;
+    std::size_t size_ = 0;
+    std::unordered_map<std::uint64_t, std::vector<Entry>> cells_;
+};
+
+// Where fill_drum_region() may put the centres of its grains: the cylinder
+// rho <= rho_max between z_min and z_max.
+struct FillRegion {
+    double rho_max, z_min, z_max;
+
+    Vec3 sample(std::mt19937_64& rng) const {
+        const double rho = rho_max * std::sqrt(uniform(rng));  // uniform in the disc
+        const double phi = 2.0 * pi * uniform(rng);
+        return {rho * std::cos(phi), rho * std::sin(phi), z_min + (z_max - z_min) * uniform(rng)};
+    }
+    Vec3 clamp(Vec3 x) const {
+        const double rho = std::hypot(x.x, x.y);
+        if (rho > rho_max) {
+            x.x *= rho_max / rho;
+            x.y *= rho_max / rho;
+        }
+        x.z = std::clamp(x.z, z_min, z_max);
+        return x;
+    }
+};
+
+// Moves the grains at x (all of `radius`) apart until none overlaps another
+// or a fixed sphere: each sweep pushes every overlapping pair apart to 1.001
+// times contact (half each between grains, all of it for the grain against a
+// fixed sphere), then clamps the grains into the region. Returns whether it
+// got there within max_sweeps.
+bool separate(std::vector<Vec3>& x, double radius, const SphereGrid& fixed, const FillRegion& region,
+              int max_sweeps) {
+    std::vector<Vec3> shift(x.size());
+    for (int sweep = 0; sweep < max_sweeps; ++sweep) {
+        SphereGrid grains(2.0 * radius);
+        for (std::size_t i = 0; i < x.size(); ++i) grains.add(x[i], radius, i);
+        bool overlapping = false;
+        for (std::size_t i = 0; i < x.size(); ++i) {
+            shift[i] = {};
+            auto push = [&](const Vec3& y, double ry, double share) {
+                const double target = 1.001 * (radius + ry);
+                const Vec3 d = x[i] - y;
+                const double distance = norm(d);
+                if (distance >= target) return;
+                if (distance < radius + ry) overlapping = true;
+                // Coincident centres part along z.
+                const Vec3 away = distance > 0.0 ? (1.0 / distance) * d : Vec3{0.0, 0.0, 1.0};
+                shift[i] += share * (target - distance) * away;
+            };
+            grains.for_each_near(x[i], radius, [&](const Vec3& y, double ry, std::size_t j) {
+                if (j != i) push(y, ry, 0.5);
+            });
+            fixed.for_each_near(x[i], radius, [&](const Vec3& y, double ry, std::size_t) { push(y, ry, 1.0); });
+        }
+        if (!overlapping) return true;
+        for (std::size_t i = 0; i < x.size(); ++i) x[i] = region.clamp(x[i] + shift[i]);
+    }
+    return false;
+}
+
+// The fewest spheres on a ring of radius rho whose neighbours are at most
+// `spacing` apart (chord 2 rho sin(pi/n) <= spacing).
+std::size_t ring_count(double rho, double spacing) {
+    if (spacing >= 2.0 * rho) return 2;
+    // The small allowance keeps round-off from adding a sphere when the ring
+    // holds a whole number of them exactly.
+    return static_cast<std::size_t>(std::ceil(pi / std::asin(spacing / (2.0 * rho)) - 1e-9));
+}
+
+// Equal steps of at most `spacing` over `extent`: the number of intervals.
+std::size_t interval_count(double extent, double spacing) {
+    return std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(extent / spacing - 1e-9)));
+}
+
+void add_ring(std::vector<ParticleSpec>& out, double rho, double z, std::size_t n, double phase, double radius,
+              std::int32_t material, std::int32_t motion) {
+    for (std::size_t k = 0; k < n; ++k) {
+        const double phi = phase + 2.0 * pi * static_cast<double>(k) / static_cast<double>(n);
+        ParticleSpec p;
+        p.position = {rho * std::cos(phi), rho * std::sin(phi), z};
+        p.radius = radius;
+        p.material = material;
+        p.motion = motion;
+        p.tag = -1;
+        out.push_back(p);
+    }
+}
+
+// max over the closed surface S (mantle cylinder of radius Rc for |z| <= Zc
+// and the discs of radius Rc at z = +-Zc) of the distance to the nearest
+// wall-sphere centre, as a certified upper bound within `tolerance`.
+//
+// Branch and bound over rectangular patches of surface parameters: (u, z)
+// with u = Rc phi on the mantle (unrolling it; a 3-D chord is never longer
+// than the unrolled distance), (x, y) on each cap. The distance to the
+// nearest centre, f, is 1-Lipschitz, so f <= f(patch centre) + half diagonal
+// on the whole patch. Patches are split, highest bound first, and dropped
+// once their bound is within `tolerance` of the best value found at a point
+// of S; the answer, that best value + tolerance, then bounds f on all of S.
+double largest_hole(const SphereGrid& centres, double Rc, double Zc, double initial_patch, double tolerance) {
+    enum Surface { mantle, cap_high, cap_low };
+    struct Patch {
+        double bound;
+        Surface surface;
+        double a, b;    // centre (u, z) or (x, y)
+        double ha, hb;  // half widths
+        bool operator<(const Patch& o) const { return bound < o.bound; }
+    };
+    auto point = [&](Surface s, double a, double b) -> Vec3 {
+        if (s == mantle) return {Rc * std::cos(a / Rc), Rc * std::sin(a / Rc), b};
+        return {a, b, s == cap_high ? Zc : -Zc};
+    };
+    double best = 0.0;  // f at some point of S
+    std::priority_queue<Patch> queue;
+    auto consider = [&](Surface s, double a, double b, double ha, double hb) {
+        if (s != mantle) {
+            // Drop patches that miss the disc; sample patches whose centre
+            // lies outside it at the nearest point of the rim.
+            const double dx = std::max(0.0, std::abs(a) - ha), dy = std::max(0.0, std::abs(b) - hb);
+            if (dx * dx + dy * dy > Rc * Rc) return;
+        }
+        const double f = centres.nearest_centre(point(s, a, b));
+        const double r = std::hypot(a, b);
+        if (s == mantle || r <= Rc)
+            best = std::max(best, f);
+        else
+            best = std::max(best, centres.nearest_centre(point(s, a * Rc / r, b * Rc / r)));
+        const double bound = f + std::hypot(ha, hb);
+        if (bound > best + tolerance) queue.push({bound, s, a, b, ha, hb});
+    };
+    auto tile = [&](Surface s, double a0, double a1, double b0, double b1) {
+        const std::size_t na = interval_count(a1 - a0, initial_patch), nb = interval_count(b1 - b0, initial_patch);
+        const double ha = 0.5 * (a1 - a0) / na, hb = 0.5 * (b1 - b0) / nb;
+        for (std::size_t i = 0; i < na; ++i)
+            for (std::size_t j = 0; j < nb; ++j)
+                consider(s, a0 + (2 * i + 1) * ha, b0 + (2 * j + 1) * hb, ha, hb);
+    };
+    tile(mantle, 0.0, 2.0 * pi * Rc, -Zc, Zc);
+    tile(cap_high, -Rc, Rc, -Rc, Rc);
+    tile(cap_low, -Rc, Rc, -Rc, Rc);
+    // Every patch dropped had a bound <= best + tolerance at the time.
+    while (!queue.empty() && queue.top().bound > best + tolerance) {
+        const Patch p = queue.top();
+        queue.pop();
+        const double ha = 0.5 * p.ha, hb = 0.5 * p.hb;
+        for (const double sa : {-1.0, 1.0})
+            for (const double sb : {-1.0, 1.0}) consider(p.surface, p.a + sa * ha, p.b + sb * hb, ha, hb);
+    }
+    return best + tolerance;
+}
+
+}  // namespace
+
+DrumWall build_drum_wall(const DrumGeometry& g, std::int32_t wall_material, std::int32_t motion,
+                         double smallest_grain_radius) {
+    auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+    if (!positive(g.length)) throw Error("drum: length must be a positive number of metres");
+    if (!positive(g.diameter)) throw Error("drum: diameter must be a positive number of metres");
+    if (!positive(g.wall_radius)) throw Error("drum: wall_radius must be a positive number of metres");
+    if (g.diameter < 6.0 * g.wall_radius)
+        throw Error("drum: diameter (" + metres(g.diameter) + ") must be at least 6 wall_radius (" +
+                    metres(6.0 * g.wall_radius) + ") for the wall spheres to form a drum");
+    if (wall_material < 0) throw Error("drum: wall_material must be a material index (>= 0)");
+    if (motion < 0) throw Error("drum: the wall's motion must be a prescribed-motion index (>= 0)");
+    if (!positive(smallest_grain_radius)) throw Error("drum: smallest_grain_radius must be positive");
+
+    DrumWall wall;
+    const double rw = g.wall_radius;
+    const double spacing = 2.0 * rw;  // wall spheres touch (or overlap slightly)
+    wall.inner_radius = 0.5 * g.diameter;
+    wall.inner_length = g.length;
+    const double Rc = wall.inner_radius + rw;  // cylinder of the mantle's centres
+    const double Zc = 0.5 * g.length + rw;     // planes of the caps' centres
+
+    // Mantle: rings from cap plane to cap plane, staggered by half a step.
+    const std::size_t per_ring = ring_count(Rc, spacing);
+    const std::size_t intervals = interval_count(2.0 * Zc, spacing);
+    wall.mantle_rings = intervals + 1;
+    wall.axial_step = 2.0 * Zc / static_cast<double>(intervals);
+    for (std::size_t k = 0; k <= intervals; ++k) {
+        const double z = -Zc + static_cast<double>(k) * wall.axial_step;
+        const double phase = (k % 2) * pi / static_cast<double>(per_ring);
+        add_ring(wall.particles, Rc, k == intervals ? Zc : z, per_ring, phase, rw, wall_material, motion);
+    }
+    wall.mantle_particles = wall.particles.size();
+
+    // Caps: concentric rings inside the mantle's end rings, and the axis.
+    const std::size_t cap_steps = interval_count(Rc, spacing);
+    const double radial_step = Rc / static_cast<double>(cap_steps);
+    for (const double z : {-Zc, Zc}) {
+        add_ring(wall.particles, 0.0, z, 1, 0.0, rw, wall_material, motion);
+        for (std::size_t k = 1; k < cap_steps; ++k) {
+            const double rho = static_cast<double>(k) * radial_step;
+            const std::size_t n = ring_count(rho, spacing);
+            add_ring(wall.particles, rho, z, n, (k % 2) * pi / static_cast<double>(n), rw, wall_material, motion);
+        }
+    }
+    wall.cap_particles = wall.particles.size() - wall.mantle_particles;
+
+    SphereGrid centres(spacing);
+    for (const ParticleSpec& p : wall.particles) centres.add(p.position, p.radius);
+    wall.largest_gap = largest_hole(centres, Rc, Zc, 0.5 * spacing, largest_gap_tolerance) - rw;
+    if (wall.largest_gap >= smallest_grain_radius)
+        throw Error("drum: a sphere of radius " + metres(wall.largest_gap) +
+                    " could pass between the wall spheres, not smaller than the smallest grain (smallest_grain_radius " +
+                    metres(smallest_grain_radius) + "); use larger wall spheres (wall_radius)");
+    return wall;
+}
+
+std::vector<ParticleSpec> fill_drum_region(const DrumGeometry& g, double z_lo, double z_hi, std::size_t count,
+                                           double radius, std::int32_t material, std::int32_t tag,
+                                           std::uint64_t seed, const std::vector<ParticleSpec>& existing) {
+    if (!(radius > 0.0) || !std::isfinite(radius)) throw Error("drum fill: radius must be positive");
+    if (!(g.length > 0.0) || !(g.diameter > 0.0)) throw Error("drum fill: length and diameter must be positive");
+    if (!(z_lo < z_hi)) throw Error("drum fill: need z_lo < z_hi");
+    const double clearance = fill_wall_clearance * radius;
+    const double rho_max = 0.5 * g.diameter - radius - clearance;  // for centres
+    const double z_min = std::max(z_lo + radius, -0.5 * g.length + radius + clearance);
+    const double z_max = std::min(z_hi - radius, 0.5 * g.length - radius - clearance);
+    if (rho_max < 0.0)
+        throw Error("drum fill: a grain of radius " + metres(radius) + " does not fit in the drum's diameter (" +
+                    metres(g.diameter) + ")");
+    if (z_min > z_max)
+        throw Error("drum fill: a grain of radius " + metres(radius) + " does not fit between z = " + metres(z_lo) +
+                    " and " + metres(z_hi) + " inside the drum");
+
+    const FillRegion region{rho_max, z_min, z_max};
+    const double grain_volume = 4.0 / 3.0 * pi * radius * radius * radius;
+    const double region_volume = pi * (rho_max + radius) * (rho_max + radius) * (z_max - z_min + 2.0 * radius);
+    // Random close packing of equal spheres is about 64 %; well below it the
+    // separation below converges quickly, near it not at all.
+    constexpr double densest = 0.5;
+    if (static_cast<double>(count) * grain_volume > densest * region_volume)
+        throw Error("drum fill: " + std::to_string(count) + " grains of radius " + metres(radius) + " would fill " +
+                    std::to_string(static_cast<int>(100.0 * count * grain_volume / region_volume)) +
+                    " % of the region between z = " + metres(z_lo) + " and " + metres(z_hi) +
+                    " (at most " + std::to_string(static_cast<int>(100.0 * densest)) +
+                    " % can be placed): the region is too full, ask for fewer grains");
+
+    // Random sequential placement: uniform random positions, each kept if it
+    // overlaps nothing placed so far. It stalls near 30 % solid fraction.
+    SphereGrid fixed(2.0 * radius);
+    for (const ParticleSpec& p : existing) fixed.add(p.position, p.radius);
+    SphereGrid grid = fixed;
+    std::mt19937_64 rng(seed);
+    std::vector<Vec3> x;
+    x.reserve(count);
+    constexpr std::size_t stall = 20000;  // tries in a row that found no room
+    for (std::size_t failures = 0; x.size() < count && failures < stall;) {
+        const Vec3 candidate = region.sample(rng);
+        if (!grid.free(candidate, radius)) {
+            ++failures;
+            continue;
+        }
+        failures = 0;
+        grid.add(candidate, radius);
+        x.push_back(candidate);
+    }
+    // If it stalled: the rest at uniform random positions, overlaps and all,
+    // then every new grain is pushed apart until nothing overlaps.
+    if (x.size() < count) {
+        const std::size_t placed = x.size();
+        while (x.size() < count) x.push_back(region.sample(rng));
+        constexpr int max_sweeps = 2000;
+        if (!separate(x, radius, fixed, region, max_sweeps))
+            throw Error("drum fill: random placement stalled after " + std::to_string(placed) + " of " +
+                        std::to_string(count) + " grains of radius " + metres(radius) + " between z = " +
+                        metres(z_lo) + " and " + metres(z_hi) + ", and pushing the rest apart did not succeed in " +
+                        std::to_string(max_sweeps) + " sweeps: the region is too full, ask for fewer grains");
+    }
+
+    std::vector<ParticleSpec> out(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        out[i].position = x[i];
+        out[i].radius = radius;
+        out[i].material = material;
+        out[i].tag = tag;
+    }
+    return out;
+}
+
+std::size_t equal_mass_count(std::size_t total, double m1, double m2) {
+    if (!(m1 > 0.0) || !(m2 > 0.0)) throw Error("equal_mass_count: masses must be positive");
+    // n1 m1 = (total - n1) m2 at n1 = total m2 / (m1 + m2); take the nearer
+    // of the two whole numbers around it.
+    const double exact = static_cast<double>(total) * m2 / (m1 + m2);
+    const auto low = static_cast<std::size_t>(std::floor(exact));
+    auto imbalance = [&](std::size_t n1) {
+        return std::abs(static_cast<double>(n1) * m1 - static_cast<double>(total - n1) * m2);
+    };
+    if (low >= total) return total;
+    return imbalance(low + 1) < imbalance(low) ? low + 1 : low;
+}
+
+DrumSetup build_drum_scenario(const DrumGeometry& g, const std::string& mode, std::size_t grains, std::uint64_t seed) {
+    const bool two_component = mode == "two-component";
+    if (!two_component && mode != "self")
+        throw Error("drum: unknown mode '" + mode + "' (expected \"two-component\" or \"self\")");
+    if (grains < 2) throw Error("drum: need at least 2 grains (one in each half)");
+
+    DrumSetup setup;
+    Scenario& s = setup.scenario;
+    s.materials = paper::materials();
+    s.pair_properties = paper::pair_properties();
+    const std::int32_t left_material = 0, right_material = two_component ? 1 : 0, wall_material = 2;
+    const double R_left = s.materials[left_material].radius, R_right = s.materials[right_material].radius;
+    auto mass = [&](std::int32_t m) {
+        const double R = s.materials[m].radius;
+        return 4.0 / 3.0 * pi * s.materials[m].rho * R * R * R;
+    };
+
+    s.gravity = {0.0, -9.81, 0.0};
+    RigidMotion rotation;  // about +z through the origin, at rest while the bed settles
+    rotation.axis_point = {0.0, 0.0, 0.0};
+    rotation.axis_direction = {0.0, 0.0, 1.0};
+    rotation.angular_velocity = 0.0;
+    s.motions = {rotation};
+
+    setup.wall = build_drum_wall(g, wall_material, 0, std::min(R_left, R_right));
+    const DrumWall& wall = setup.wall;
+
+    setup.grains_left = two_component ? equal_mass_count(grains, mass(left_material), mass(right_material))
+                                      : grains / 2;
+    setup.grains_right = grains - setup.grains_left;
+    if (setup.grains_left == 0 || setup.grains_right == 0)
+        throw Error("drum: too few grains to put some in each half");
+    // Independent streams for the two halves, both fixed by the seed.
+    std::mt19937_64 seeds(seed);
+    const std::uint64_t seed_left = seeds(), seed_right = seeds();
+    const double half = 0.5 * g.length;
+    auto left = fill_drum_region(g, -half, 0.0, setup.grains_left, R_left, left_material, 0, seed_left, wall.particles);
+    std::vector<ParticleSpec> placed = wall.particles;
+    placed.insert(placed.end(), left.begin(), left.end());
+    auto right = fill_drum_region(g, 0.0, half, setup.grains_right, R_right, right_material, 1, seed_right, placed);
+    s.particles = std::move(left);
+    s.particles.insert(s.particles.end(), right.begin(), right.end());
+    double grain_volume = 0.0;
+    for (const ParticleSpec& p : s.particles) grain_volume += 4.0 / 3.0 * pi * p.radius * p.radius * p.radius;
+    setup.solid_fraction = grain_volume / (pi * wall.inner_radius * wall.inner_radius * wall.inner_length);
+    s.particles.insert(s.particles.end(), wall.particles.begin(), wall.particles.end());
+
+    // Open space around the drum with a margin of one wall sphere (the
+    // domain only bounds where particles start).
+    const double reach_r = wall.inner_radius + 3.0 * g.wall_radius, reach_z = half + 3.0 * g.wall_radius;
+    s.domain.lo = {-reach_r, -reach_r, -reach_z};
+    s.domain.hi = {reach_r, reach_r, reach_z};
+
+    // dt is chosen automatically from the Hertz collision at this impact
+    // speed. The fastest impact in the drum: a grain carried at the wall
+    // speed of a drum turning at its critical speed, omega_c R = sqrt(g R),
+    // that then falls the whole diameter D = 2R, gains 2 g D in v^2, so v^2
+    // <= g R + 4 g R = 5 g R (1.40 m/s for the paper's drum). While the bed
+    // settles grains fall at most D from rest (sqrt(2 g D) = 1.25 m/s).
+    const double R_drum = wall.inner_radius;
+    s.time_step.dt = 0.0;
+    s.time_step.reference_speed = std::sqrt(5.0 * 9.81 * R_drum);
+    return setup;
+}
+
+}  // namespace tumble

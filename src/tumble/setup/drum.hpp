@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: MIT
+// The rotating drum of the paper (section 4; SPEC-NOTES "The drum
+// experiment"): a horizontal cylinder whose mantle and end caps are made of
+// kinematic wall spheres, filled with grains that settle before it turns.
+//
+// Frame (the drum measurement relies on it): the drum axis is the z axis,
+// the drum's centre the origin, gravity (0, -9.81, 0) m/s^2; the drum turns
+// about +z (motion 0, axis through the origin). "Left" is z < 0, "right"
+// z > 0.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tumble/sim/scenario.hpp"
+
+namespace tumble {
+
+// The space the grains live in: a cylinder `length` long (inner, along z)
+// and `diameter` across (inner), walled by spheres of radius wall_radius.
+struct DrumGeometry {
+    double length = 0.12;         // m
+    double diameter = 0.08;       // m
+    double wall_radius = 3.0e-3;  // m, radius of the wall spheres (the paper's material 3)
+};
+
+// The drum wall. Layout (s = 2 wall_radius, the nominal spacing):
+//  - mantle: rings of spheres centred on the cylinder of radius
+//    inner_radius + wall_radius, from z = -(inner_length/2 + wall_radius) to
+//    +(inner_length/2 + wall_radius) at equal axial steps <= s; each ring has
+//    the fewest spheres whose neighbours are at most s apart (chord), and
+//    neighbouring rings are staggered by half that angle. The two end rings
+//    lie in the cap planes and close the corner.
+//  - caps: discs at z = +-(inner_length/2 + wall_radius) of concentric rings
+//    at equal radial steps <= s inside the mantle's end ring, plus one sphere
+//    on the axis, each ring again with neighbours at most s apart.
+// So the inner surface of the wall is the cylinder of radius inner_radius
+// and the planes z = +-inner_length/2 (the innermost points of the wall
+// spheres); no spacing is wider than s, so neighbours touch or overlap
+// slightly (with the defaults each sphere's nearest neighbour is 0.896 s to
+// s away). Grains nestle a little way into the hollows between wall spheres
+// (a settled 2.4 mm grain reaches about 1.5 mm beyond the inner surface).
+struct DrumWall {
+    std::vector<ParticleSpec> particles;  // kinematic (motion as given), tag -1 (not a grain)
+    double inner_radius = 0.0;  // m, distance from the axis to the innermost points of the mantle spheres
+    double inner_length = 0.0;  // m, distance between the inner surfaces of the two caps
+    // Radius (m) of the largest sphere that could pass through the wall: an
+    // upper bound, certified to largest_gap_tolerance, on max over the
+    // closed surface S through all wall-sphere centres (the mantle cylinder
+    // of radius inner_radius + wall_radius and the two cap discs) of the
+    // distance to the nearest wall-sphere centre, minus wall_radius. A grain
+    // leaving the drum must have its centre on S at some instant without
+    // overlapping a wall sphere, so grains larger than this cannot leak.
+    double largest_gap = 0.0;
+    std::size_t mantle_particles = 0;
+    std::size_t cap_particles = 0;  // both caps together
+    std::size_t mantle_rings = 0;
+    double axial_step = 0.0;  // m, between mantle rings
+};
+
+// Absolute accuracy (m) to which build_drum_wall() computes largest_gap
+// (it is an upper bound, at most this much above the true maximum).
+inline constexpr double largest_gap_tolerance = 1e-7;
+
+// Builds the wall. Throws tumble::Error naming the parameter if the geometry
+// is impossible (length, diameter or wall_radius not positive and finite,
+// diameter below 6 wall radii, a negative material or motion index,
+// smallest_grain_radius not positive) or if a grain of
+// smallest_grain_radius could pass through the wall.
+DrumWall build_drum_wall(const DrumGeometry& g, std::int32_t wall_material, std::int32_t motion,
+                         double smallest_grain_radius);
+
+// Clearance (as a fraction of the grain radius) that fill_drum_region()
+// keeps between a new grain and the inner surface of the wall.
+inline constexpr double fill_wall_clearance = 0.02;
+
+// `count` non-overlapping grains of `radius` placed uniformly at random
+// inside the drum and between z_lo and z_hi, whole spheres inside: distance
+// from the axis <= inner radius - radius (1 + fill_wall_clearance), |z| <=
+// length/2 - radius (1 + fill_wall_clearance), z_lo + radius <= z <= z_hi -
+// radius; none overlaps another or a sphere of `existing`. Velocities zero,
+// free motion. Deterministic for a seed.
+// Method: random sequential placement (uniform random positions, each kept
+// if it overlaps nothing). It stalls near 30 % solid fraction; if it does,
+// the remaining grains go to uniform random positions and all new grains are
+// pushed apart (existing spheres stay put) until none overlaps, which works
+// up to about 50 %. Throws tumble::Error if the region cannot hold one grain
+// or is too full: the grains would fill more than 50 % of it, or pushing
+// them apart does not converge.
+std::vector<ParticleSpec> fill_drum_region(const DrumGeometry& g, double z_lo, double z_hi, std::size_t count,
+                                           double radius, std::int32_t material, std::int32_t tag,
+                                           std::uint64_t seed, const std::vector<ParticleSpec>& existing);
+
+// Of `total` grains of masses m1 and m2, how many of the first kind make the
+// two masses most nearly equal (n1 m1 ~ (total - n1) m2): the two masses
+// differ by at most (m1 + m2) / 2.
+std::size_t equal_mass_count(std::size_t total, double m1, double m2);
+
+struct DrumSetup {
+    Scenario scenario;
+    DrumWall wall;
+    std::size_t grains_left = 0;   // tag 0
+    std::size_t grains_right = 0;  // tag 1
+    double solid_fraction = 0.0;   // grain volume / inner drum volume
+};
+
+// The paper's drum experiment, ready to settle:
+//  - materials paper::materials() (0 material-1, 1 material-2, 2 wall) and
+//    paper::pair_properties(), the full contact model;
+//  - gravity (0, -9.81, 0); motion 0 the drum's rotation about +z through
+//    the origin at angular velocity 0 (the bed settles at rest; start the
+//    rotation later with Simulation::set_motion(0, ...));
+//  - an open domain bounding the drum with a margin;
+//  - particles: the grains first (left half, then right half), then the wall.
+// mode "two-component": equal masses of material-1 (tag 0) in the left half
+//   and material-2 (tag 1) in the right half, `grains` in all (so N2/N1 ~
+//   3.375, see equal_mass_count()).
+// mode "self": `grains` of material-1, half in each half, tagged 0 (left)
+//   and 1 (right). (For the same fill level as a two-component drum of
+//   `grains`, pass 2 x equal_mass_count(grains, m1, m2).)
+// Grains start at random, at rest, anywhere in their half; they fall when
+// the simulation begins. Throws tumble::Error for an unknown mode, no grains,
+// or a drum that cannot hold them.
+DrumSetup build_drum_scenario(const DrumGeometry& g = {}, const std::string& mode = "two-component",
+                              std::size_t grains = 1000, std::uint64_t seed = 1);
+
+}  // namespace tumble
