@@ -124,9 +124,14 @@ int drum_command(const DrumOptions& options) {
     const std::int64_t sample_every = std::max<std::int64_t>(1, std::llround(period / s.samples_per_revolution / dt));
     io::write_drum_run_info(s.output / "drum_run.toml", info);
     io::DrumSeriesWriter drum_series(s.output, info);
-    if (talk)
+    if (talk) {
         fmt::print("rotating at {:.4g} rad/s (Froude {:.3g}) for {} revolutions: {} steps, {} samples per revolution\n",
                    omega, info.froude, s.revolutions, steps, s.samples_per_revolution);
+        if (s.revolutions < 10.0)
+            fmt::print("note: {} revolutions is a short run (the default is reduced so that it takes minutes); the "
+                       "paper's runs span tens of revolutions: --revolutions N\n",
+                       s.revolutions);
+    }
     auto sample = [&] {
         const double revolutions = omega * (sim.time() - start) / (2.0 * pi);
         drum_series.write(revolutions, sim.time(), analysis::measure_drum(sim.particles(), frame));

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The tumble command line: run, bench.
+#include <cstdio>
 #include <optional>
 
 #include <CLI/CLI.hpp>
@@ -10,6 +11,7 @@
 
 int main(int argc, char** argv) {
     using namespace tumble::cli;
+    std::setvbuf(stdout, nullptr, _IOLBF, 0);  // each report line reaches a log file at once
     CLI::App app{"tumble: discrete-element simulation of visco-elastic spheres (Kohring's contact model)"};
     app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
     app.require_subcommand(1);

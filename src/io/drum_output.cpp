@@ -368,8 +368,15 @@ std::string analyze_drum_run(const fs::path& dir) {
     }
 
     {
+        // JSON has no NaN or infinity: an undefined number is null.
+        std::ostringstream formatted;
+        formatted << toml::json_formatter{summary};
+        std::string json_text = formatted.str();
+        for (const char* undefined : {"\"NaN\"", "\"nan\"", "\"-Infinity\"", "\"Infinity\"", "\"inf\"", "\"-inf\""})
+            for (std::size_t at = json_text.find(undefined); at != std::string::npos; at = json_text.find(undefined))
+                json_text.replace(at, std::string(undefined).size(), "null");
         std::ofstream json = open_output(dir / "summary.json");
-        json << toml::json_formatter{summary} << '\n';
+        json << json_text << '\n';
         check(json, dir / "summary.json");
         std::ofstream txt = open_output(dir / "summary.txt");
         txt << text.str();

@@ -182,3 +182,55 @@ TEST(CliBench, JsonLastLineHasTheBenchmarkKeys) {
     // Each sphere of the 1.98 R lattice overlaps its six neighbours.
     EXPECT_NE(last.find("\"contacts_per_particle\": 6"), std::string::npos) << last;
 }
+
+TEST_F(Cli, DrumRefusesImpossibleSettingsAndWritesNothing) {
+    const std::string out = " --out " + (dir_ / "drum").string();
+    const std::pair<std::string, std::string> cases[] = {
+        {"drum --omega -1", "speed"},
+        {"drum --omega 0", "speed"},
+        {"drum --fill 1.5", "fill_fraction"},
+        {"drum --revolutions 0", "revolutions"},
+        {"drum --mode mixed", "mode"},
+        {"drum --diameter 0.01", "diameter"},
+    };
+    for (const auto& [arguments, key] : cases) {
+        const Result r = run_tumble(arguments + out);
+        EXPECT_NE(r.exit_code, 0) << arguments;
+        EXPECT_NE(r.output.find(key), std::string::npos) << arguments << ": " << r.output;
+        EXPECT_FALSE(fs::exists(dir_ / "drum")) << arguments;
+    }
+    const fs::path config = write("drum.toml", "[rotation]\nomega = 3.0\nspin = 2\n");
+    const Result r = run_tumble("drum --config " + config.string() + out);
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.output.find("drum.toml: rotation.spin: unknown key"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, DrumRunWritesSeriesAndSummaryAndCanBeAnalysedAgain) {
+    // A small, short drum: 300 grains, 0.3 revolutions at 8 rad/s sampled
+    // 40 times per revolution. It checks the files, not the physics.
+    const fs::path run = dir_ / "drum";
+    const Result r = run_tumble("drum -q --grains 300 --omega 8 --revolutions 0.3 --samples 40 --out " + run.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    for (const char* file : {"drum_run.toml", "drum_series.csv", "profiles.csv", "profile_comparison.csv",
+                             "summary.json", "summary.txt", "time_series.csv"})
+        EXPECT_TRUE(fs::exists(run / file)) << file;
+    const std::string series = read_file(run / "drum_series.csv");
+    // The header, N = 0, 12 samples at 1/40 revolution (and the final state
+    // if the step count does not divide evenly).
+    const auto rows = std::count(series.begin(), series.end(), '\n');
+    EXPECT_GE(rows, 14);
+    EXPECT_LE(rows, 15);
+    const std::string summary = read_file(run / "summary.json");
+    for (const char* key : {"\"D\"", "\"D_stderr\"", "\"D_one_term\"", "\"omega\"", "\"revolutions\"", "\"grains\"",
+                            "\"wall_particles\"", "\"fill_fraction\"", "\"kinetic_energy_ratio_total\"",
+                            "\"kinetic_energy_ratio_per_grain_equal_velocity\""})
+        EXPECT_NE(summary.find(key), std::string::npos) << key;
+    EXPECT_EQ(summary.find("NaN"), std::string::npos) << "JSON has no NaN";
+
+    fs::remove(run / "summary.json");
+    const Result again = run_tumble("analyze " + run.string());
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    EXPECT_NE(again.output.find("material-2"), std::string::npos) << again.output;
+    EXPECT_TRUE(fs::exists(run / "summary.json"));
+    EXPECT_NE(run_tumble("analyze " + (dir_ / "nothing").string()).exit_code, 0);
+}
