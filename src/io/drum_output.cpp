@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "io/output.hpp"
 #include "io/toml_reader.hpp"
 #include "tumble/analysis/hogg.hpp"
 #include "tumble/core/constants.hpp"
@@ -17,16 +18,6 @@ namespace tumble::io {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::ofstream open_output(const fs::path& file) {
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error(file.string() + ": cannot open for writing");
-    return out;
-}
-void check(std::ofstream& out, const fs::path& file) {
-    out.flush();
-    if (!out) throw Error(file.string() + ": write failed (disk full or file system error)");
-}
 
 // A CSV file with a header row, as numbers by column name.
 struct Csv {
@@ -111,9 +102,9 @@ void write_drum_run_info(const fs::path& file, const DrumRunInfo& info) {
                         {"wall_seconds", info.wall_seconds},
                         {"grain_updates_per_second", info.grain_updates_per_second},
                         {"component", components}};
-    std::ofstream out = open_output(file);
+    std::ofstream out = open_for_writing(file);
     out << "# tumble drum run: what was run (read by `tumble analyze`)\n" << t << '\n';
-    check(out, file);
+    check_written(out, file);
 }
 
 DrumRunInfo read_drum_run_info(const fs::path& file) {
@@ -154,15 +145,15 @@ DrumRunInfo read_drum_run_info(const fs::path& file) {
 
 DrumSeriesWriter::DrumSeriesWriter(const fs::path& directory, const DrumRunInfo& info)
     : series_path_(directory / "drum_series.csv"), profiles_path_(directory / "profiles.csv"),
-      series_(open_output(series_path_)), profiles_(open_output(profiles_path_)), inner_length_(info.inner_length) {
+      series_(open_for_writing(series_path_)), profiles_(open_for_writing(profiles_path_)), inner_length_(info.inner_length) {
     series_ << "revolutions,time,angle_of_repose,fill_fraction,bed_centre_x,bed_centre_y";
     for (const DrumComponent& c : info.components)
         series_ << fmt::format(",grains_{0},mean_z_{0},mean_z_stderr_{0},kinetic_energy_{0},kinetic_per_grain_{0}",
                                c.name);
     series_ << '\n';
     profiles_ << "revolutions,component,bin,z,concentration\n";
-    check(series_, series_path_);
-    check(profiles_, profiles_path_);
+    check_written(series_, series_path_);
+    check_written(profiles_, profiles_path_);
 }
 
 void DrumSeriesWriter::write(double revolutions, double time, const analysis::DrumState& s) {
@@ -179,8 +170,8 @@ void DrumSeriesWriter::write(double revolutions, double time, const analysis::Dr
                                      -0.5 * inner_length_ + (b + 0.5) * inner_length_ / static_cast<double>(C.size()),
                                      C[b]);
     }
-    check(series_, series_path_);
-    check(profiles_, profiles_path_);
+    check_written(series_, series_path_);
+    check_written(profiles_, profiles_path_);
 }
 
 DrumSeries read_drum_series(const fs::path& file, std::size_t components) {
@@ -341,7 +332,7 @@ std::string analyze_drum_run(const fs::path& dir) {
     for (std::size_t c = 0; c < n_components; ++c)
         if (info.components[c].start_side > 0) right = c;
     if (!profiles.revolutions.empty()) {
-        std::ofstream out = open_output(dir / "profile_comparison.csv");
+        std::ofstream out = open_for_writing(dir / "profile_comparison.csv");
         out << "revolutions,z,measured,hogg\n";
         toml::array rms_json;
         const double last = profiles.revolutions.back();
@@ -363,7 +354,7 @@ std::string analyze_drum_run(const fs::path& dir) {
             text << fmt::format("  C(z, N = {:.3g}) of {} against Hogg with its D: rms difference {:.3f}\n", N,
                                 info.components[right].name, rms);
         }
-        check(out, dir / "profile_comparison.csv");
+        check_written(out, dir / "profile_comparison.csv");
         summary.insert("profile_comparison", rms_json);
     }
 
@@ -375,12 +366,12 @@ std::string analyze_drum_run(const fs::path& dir) {
         for (const char* undefined : {"\"NaN\"", "\"nan\"", "\"-Infinity\"", "\"Infinity\"", "\"inf\"", "\"-inf\""})
             for (std::size_t at = json_text.find(undefined); at != std::string::npos; at = json_text.find(undefined))
                 json_text.replace(at, std::string(undefined).size(), "null");
-        std::ofstream json = open_output(dir / "summary.json");
+        std::ofstream json = open_for_writing(dir / "summary.json");
         json << json_text << '\n';
-        check(json, dir / "summary.json");
-        std::ofstream txt = open_output(dir / "summary.txt");
+        check_written(json, dir / "summary.json");
+        std::ofstream txt = open_for_writing(dir / "summary.txt");
         txt << text.str();
-        check(txt, dir / "summary.txt");
+        check_written(txt, dir / "summary.txt");
     }
     return text.str();
 }

@@ -13,17 +13,16 @@ namespace tumble::io {
 
 namespace fs = std::filesystem;
 
-namespace {
 std::ofstream open_for_writing(const fs::path& file) {
     std::ofstream out(file, std::ios::binary | std::ios::trunc);
     if (!out) throw Error(file.string() + ": cannot open for writing");
     return out;
 }
+
 void check_written(std::ofstream& out, const fs::path& file) {
     out.flush();
     if (!out) throw Error(file.string() + ": write failed (disk full or file system error)");
 }
-}  // namespace
 
 TimeSeriesWriter::TimeSeriesWriter(const fs::path& file, const std::vector<Material>& materials)
     : path_(file), out_(open_for_writing(file)) {

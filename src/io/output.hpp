@@ -19,6 +19,11 @@
 
 namespace tumble::io {
 
+// Opens a file for writing (truncating it), or tumble::Error naming it.
+std::ofstream open_for_writing(const std::filesystem::path& file);
+// Flushes and reports a failed write (disk full, ...) as tumble::Error naming the file.
+void check_written(std::ofstream& out, const std::filesystem::path& file);
+
 class TimeSeriesWriter {
 public:
     TimeSeriesWriter(const std::filesystem::path& file, const std::vector<Material>& materials);
