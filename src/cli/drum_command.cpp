@@ -122,6 +122,11 @@ int drum_command(const DrumOptions& options) {
     const double period = 2.0 * pi / omega;
     const std::int64_t steps = std::llround(s.revolutions * period / dt);
     const std::int64_t sample_every = std::max<std::int64_t>(1, std::llround(period / s.samples_per_revolution / dt));
+    const std::int64_t snapshot_every =
+        s.snapshots_per_revolution > 0
+            ? std::max<std::int64_t>(1, std::llround(period / s.snapshots_per_revolution / dt))
+            : 0;
+    int snapshot = 0;
     io::write_drum_run_info(s.output / "drum_run.toml", info);
     io::DrumSeriesWriter drum_series(s.output, info);
     if (talk) {
@@ -139,9 +144,11 @@ int drum_command(const DrumOptions& options) {
     };
     Progress progress(steps, grains, talk && progress_wanted());
     sample();
+    if (snapshot_every) io::write_snapshot(s.output, snapshot++, sim);
     for (std::int64_t k = 1; k <= steps; ++k) {
         sim.step();
         if (k % sample_every == 0) sample();
+        if (snapshot_every && k % snapshot_every == 0) io::write_snapshot(s.output, snapshot++, sim);
         progress.update(k);
     }
     if (steps % sample_every != 0) sample();  // always end with the final state

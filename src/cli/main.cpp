@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
     std::optional<double> omega, rpm, froude, revolutions, length, diameter, wall_radius, dt, fill;
     std::optional<std::size_t> grains;
     std::optional<std::uint64_t> seed;
-    std::optional<int> samples, bins;
+    std::optional<int> samples, bins, snapshots;
     std::optional<std::string> mode, out;
     CLI::App* drum_cmd = app.add_subcommand(
         "drum", "The paper's rotating-drum diffusion experiment (defaults: the paper's set-up, two components, "
@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("--revolutions", revolutions, "Revolutions after settling");
     drum_cmd->add_option("--samples", samples, "Samples per revolution (default 20)");
     drum_cmd->add_option("--bins", bins, "Axial bins of the concentration profile (default 12)");
+    drum_cmd->add_option("--snapshots", snapshots, "Particle snapshots per revolution (default 4; 0: none)");
     drum_cmd->add_option("--length", length, "Inner length of the drum, m (default 0.12)");
     drum_cmd->add_option("--diameter", diameter, "Inner diameter of the drum, m (default 0.08)");
     drum_cmd->add_option("--wall-radius", wall_radius, "Radius of the wall particles, m (default 0.003)");
@@ -86,6 +87,7 @@ int main(int argc, char** argv) {
             if (revolutions) d.revolutions = *revolutions;
             if (samples) d.samples_per_revolution = *samples;
             if (bins) d.profile_bins = *bins;
+            if (snapshots) d.snapshots_per_revolution = *snapshots;
             if (length) d.geometry.length = *length;
             if (diameter) d.geometry.diameter = *diameter;
             if (wall_radius) d.geometry.wall_radius = *wall_radius;

@@ -49,6 +49,7 @@ void check_drum_settings(const DrumSettings& s, const std::string& source) {
     if (s.grains > 10'000'000) fail("grains", "at most 10^7 grains");
     if (s.samples_per_revolution < 1) fail("samples_per_revolution", "must be >= 1");
     if (s.profile_bins < 2) fail("profile_bins", "must be >= 2");
+    if (s.snapshots_per_revolution < 0) fail("snapshots_per_revolution", "must be >= 0 (0: none)");
     if (!(s.settle_speed > 0.0)) fail("settle_speed", "must be > 0");
     if (!(s.settle_max_time > 0.0)) fail("settle_max_time", "must be > 0");
     if (!(s.dt >= 0.0)) fail("dt", "must be >= 0 (0: automatic)");
@@ -96,7 +97,9 @@ DrumSettings load_drum_settings(const std::filesystem::path& file) {
         s.revolutions = r.number(*t, "rotation", "revolutions", Bound::positive, s.revolutions);
     }
     if (const toml::table* t = r.table(root, "measure", false)) {
-        r.only_keys(*t, "measure", {"samples_per_revolution", "profile_bins"});
+        r.only_keys(*t, "measure", {"samples_per_revolution", "profile_bins", "snapshots_per_revolution"});
+        if (const toml::node* n = t->get("snapshots_per_revolution"))
+            s.snapshots_per_revolution = static_cast<int>(r.integer(*n, "measure.snapshots_per_revolution", 0, 100000));
         if (const toml::node* n = t->get("samples_per_revolution"))
             s.samples_per_revolution = static_cast<int>(r.integer(*n, "measure.samples_per_revolution", 1, 100000));
         if (const toml::node* n = t->get("profile_bins"))

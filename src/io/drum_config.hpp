@@ -29,6 +29,7 @@ struct DrumSettings {
     double revolutions = 5.0;          // after the bed has settled
     int samples_per_revolution = 20;
     int profile_bins = 12;
+    int snapshots_per_revolution = 4;  // per-particle snapshots (snapshots/NNNNNN.csv, 000000 at N = 0); 0: none
     double settle_speed = 0.01;        // m/s: settled when the rms grain speed is below this
     double settle_max_time = 3.0;      // s: give up settling (with a warning) after this
     double dt = 0.0;                   // s; 0: chosen from the materials
