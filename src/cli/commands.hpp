@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "io/drum_config.hpp"
 
@@ -30,10 +31,17 @@ struct DrumOptions {
     io::DrumSettings settings;  // from --config and the command line
     bool force = false;
     bool quiet = false;
+    bool plot = true;  // draw the figures at the end (tools/plot_drum.py)
 };
 int drum_command(const DrumOptions& options);
 
 // Re-analyse a drum run directory: summary.json, summary.txt.
 int analyze_command(const std::string& directory);
+
+// The figures (tools/plot_drum.py MODE INPUTS... [--out OUT]); mode "run"
+// (a drum run directory), "compare" (several) or "sweep" (a sweep table).
+// Returns the script's exit code (2: bad input, 3: no python3/matplotlib).
+int plot_command(const std::string& mode, const std::vector<std::string>& inputs, const std::string& out,
+                 bool quiet = false);
 
 }  // namespace tumble::cli

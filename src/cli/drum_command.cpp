@@ -4,6 +4,7 @@
 // speed for the asked number of revolutions while sampling <z> per
 // component, then analyse (tumble analyze). docs/DRUM.md explains it all.
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -11,6 +12,7 @@
 #include "cli/progress.hpp"
 #include "io/drum_output.hpp"
 #include "io/output.hpp"
+#include "io/snapshots.hpp"
 #include "tumble/analysis/drum_measure.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/sim/simulation.hpp"
@@ -126,7 +128,8 @@ int drum_command(const DrumOptions& options) {
         s.snapshots_per_revolution > 0
             ? std::max<std::int64_t>(1, std::llround(period / s.snapshots_per_revolution / dt))
             : 0;
-    int snapshot = 0;
+    std::optional<io::SnapshotSeries> snapshots;
+    if (snapshot_every) snapshots.emplace(s.output);
     io::write_drum_run_info(s.output / "drum_run.toml", info);
     io::DrumSeriesWriter drum_series(s.output, info);
     if (talk) {
@@ -144,11 +147,11 @@ int drum_command(const DrumOptions& options) {
     };
     Progress progress(steps, grains, talk && progress_wanted());
     sample();
-    if (snapshot_every) io::write_snapshot(s.output, snapshot++, sim);
+    if (snapshot_every) snapshots->write(sim);
     for (std::int64_t k = 1; k <= steps; ++k) {
         sim.step();
         if (k % sample_every == 0) sample();
-        if (snapshot_every && k % snapshot_every == 0) io::write_snapshot(s.output, snapshot++, sim);
+        if (snapshot_every && k % snapshot_every == 0) snapshots->write(sim);
         progress.update(k);
     }
     if (steps % sample_every != 0) sample();  // always end with the final state
@@ -162,6 +165,13 @@ int drum_command(const DrumOptions& options) {
                    info.wall_seconds, info.grain_updates_per_second, info.wall_seconds / s.revolutions);
     const std::string summary = io::analyze_drum_run(s.output);
     if (talk) fmt::print("{}\nwritten to {}\n", summary, s.output.string());
+    if (options.plot) {
+        // The figures are a convenience: a machine without matplotlib still
+        // has every number in the run directory.
+        if (plot_command("run", {s.output.string()}, "", options.quiet) != 0)
+            fmt::print(stderr, "tumble drum: warning: the figures could not be drawn (tumble plot {})\n",
+                       s.output.string());
+    }
     return 0;
 }
 

@@ -64,16 +64,26 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("-o,--out", out, "Run directory (default drum-out)");
     drum_cmd->add_flag("--force", drum.force, "Overwrite an earlier run in that directory");
     drum_cmd->add_flag("-q,--quiet", drum.quiet, "Print nothing but errors");
+    drum_cmd->add_flag("!--no-plot", drum.plot, "Do not draw the figures at the end");
 
     std::string analyze_dir;
     CLI::App* analyze_cmd = app.add_subcommand("analyze", "Analyse a drum run directory again (summary.json, summary.txt)");
     analyze_cmd->add_option("directory", analyze_dir, "Run directory of tumble drum")->required();
+
+    std::vector<std::string> plot_inputs;
+    std::string plot_out;
+    bool plot_compare = false;
+    CLI::App* plot_cmd = app.add_subcommand("plot", "The paper's figures from drum run directories (PNG and SVG)");
+    plot_cmd->add_option("directories", plot_inputs, "Drum run directories (several with --compare)")->required();
+    plot_cmd->add_flag("--compare", plot_compare, "Overlay <z>(N) of several runs (the paper's figs. 2 and 4)");
+    plot_cmd->add_option("-o,--out", plot_out, "Where the figures go (default DIR/figures)");
 
     CLI11_PARSE(app, argc, argv);
     try {
         if (run_cmd->parsed()) return run_command(run);
         if (bench_cmd->parsed()) return bench_command(bench);
         if (analyze_cmd->parsed()) return analyze_command(analyze_dir);
+        if (plot_cmd->parsed()) return plot_command(plot_compare ? "compare" : "run", plot_inputs, plot_out);
         if (drum_cmd->parsed()) {
             tumble::io::DrumSettings& d = drum.settings;
             if (!drum_config.empty()) d = tumble::io::load_drum_settings(drum_config);

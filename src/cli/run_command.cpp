@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // tumble run FILE: read a scenario, simulate it, write the output directory.
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -8,6 +9,7 @@
 #include "cli/progress.hpp"
 #include "io/config.hpp"
 #include "io/output.hpp"
+#include "io/snapshots.hpp"
 #include "tumble/sim/simulation.hpp"
 
 namespace tumble::cli {
@@ -42,10 +44,11 @@ int run_command(const RunOptions& options) {
                    t.automatic ? "chosen automatically" : "given", t.maximum);
     }
 
-    int snapshot = 0;
+    std::optional<io::SnapshotSeries> snapshots;
+    if (snapshot_every) snapshots.emplace(dir);
     auto sample = [&] {
         if (sample_every && sim.step_count() % sample_every == 0) series.write(sim.observe());
-        if (snapshot_every && sim.step_count() % snapshot_every == 0) io::write_snapshot(dir, snapshot++, sim);
+        if (snapshot_every && sim.step_count() % snapshot_every == 0) snapshots->write(sim);
     };
     Progress progress(steps, free_particles, talk && progress_wanted());
     sample();

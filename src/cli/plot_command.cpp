@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: MIT
+// tumble plot DIR: the paper's figures from a drum run, drawn by the
+// project's matplotlib script tools/plot_drum.py (tools/README.md).
+#include <sys/wait.h>
+#include <cstdio>
+#include <unistd.h>
+
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "cli/commands.hpp"
+
+namespace tumble::cli {
+
+int plot_command(const std::string& mode, const std::vector<std::string>& inputs, const std::string& out, bool quiet) {
+    std::vector<std::string> arguments{"python3", std::string(TUMBLE_TOOLS_DIR) + "/plot_drum.py", mode};
+    arguments.insert(arguments.end(), inputs.begin(), inputs.end());
+    if (!out.empty()) {
+        arguments.push_back("--out");
+        arguments.push_back(out);
+    }
+    std::vector<char*> argv;
+    for (std::string& a : arguments) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const pid_t child = fork();
+    if (child == 0) {
+        if (quiet) freopen("/dev/null", "w", stdout);  // errors still reach stderr
+        execvp(argv[0], argv.data());
+        fmt::print(stderr, "tumble plot: cannot start python3\n");
+        _exit(127);
+    }
+    int status = 0;
+    if (child < 0 || waitpid(child, &status, 0) < 0) return 3;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 3;
+}
+
+}  // namespace tumble::cli

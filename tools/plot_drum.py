@@ -1,0 +1,672 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Plot the figures of Kohring's rotating-drum paper from `tumble drum` output.
+
+    python3 tools/plot_drum.py run DIR [--out FIGDIR]
+    python3 tools/plot_drum.py sweep TABLE.csv [--out FIGDIR]
+    python3 tools/plot_drum.py compare DIR1 DIR2 ... [--out FIGDIR]
+
+See tools/README.md for the figures and the files and columns they read.
+Needs numpy and matplotlib (Agg backend) and the standard library only.
+Exit codes: 0 figures written (some may be skipped with a note), 2 missing or
+unreadable input, 3 numpy/matplotlib not available.
+"""
+
+import argparse
+import csv
+import json
+import math
+import os
+import sys
+
+
+def _import_plotting():
+    """numpy and matplotlib; if this interpreter lacks them, try the system one."""
+    try:
+        import numpy  # noqa: F401
+        import matplotlib  # noqa: F401
+        return
+    except ImportError as error:
+        system = "/usr/bin/python3"
+        if (os.path.exists(system) and os.path.realpath(sys.executable) != os.path.realpath(system)
+                and not os.environ.get("PLOT_DRUM_REEXEC")):
+            os.environ["PLOT_DRUM_REEXEC"] = "1"
+            os.execv(system, [system, os.path.abspath(__file__)] + sys.argv[1:])
+        sys.stderr.write(f"plot_drum.py: error: numpy and matplotlib are needed ({error}); "
+                         "install python3-matplotlib and python3-numpy\n")
+        sys.exit(3)
+
+
+_import_plotting()
+
+import numpy as np  # noqa: E402
+import matplotlib  # noqa: E402
+import matplotlib.ticker  # noqa: E402
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.collections import PatchCollection  # noqa: E402
+from matplotlib.patches import Circle  # noqa: E402
+
+DPI = 150
+COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown"]
+WALL_COLOUR = "0.85"
+RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)
+
+
+class InputError(Exception):
+    """A missing or unreadable input file: reported with its name, exit code 2."""
+
+
+# --------------------------------------------------------------------------- reading
+
+def read_toml(path):
+    if not os.path.isfile(path):
+        raise InputError(f"missing file: {path}")
+    try:
+        try:
+            import tomllib
+            with open(path, "rb") as f:
+                return tomllib.load(f)
+        except ImportError:
+            return _read_simple_toml(path)
+    except InputError:
+        raise
+    except Exception as error:  # noqa: BLE001 - any parse failure names the file
+        raise InputError(f"cannot read {path}: {error}")
+
+
+def _read_simple_toml(path):
+    """The flat subset `tumble drum` writes: key = value, [[component]] tables."""
+    data, table = {}, None
+    with open(path) as f:
+        for line in f:
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            if line.startswith("[[") and line.endswith("]]"):
+                table = {}
+                data.setdefault(line[2:-2].strip(), []).append(table)
+                continue
+            key, _, value = line.partition("=")
+            key, value = key.strip(), value.strip()
+            if value[:1] in ("'", '"'):
+                parsed = value[1:-1]
+            elif value in ("true", "false"):
+                parsed = value == "true"
+            else:
+                try:
+                    parsed = int(value)
+                except ValueError:
+                    parsed = float(value)
+            (table if table is not None else data)[key] = parsed
+    return data
+
+
+def read_json(path):
+    if not os.path.isfile(path):
+        raise InputError(f"missing file: {path}")
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except Exception as error:  # noqa: BLE001
+        raise InputError(f"cannot read {path}: {error}")
+
+
+def _number(text):
+    text = text.strip()
+    if text == "" or text.lower() in ("nan", "null", "none", "-"):
+        return math.nan
+    return float(text)
+
+
+def read_csv(path, comment_lines=False):
+    """Columns of a CSV file as a dict: numeric columns as float arrays, others as lists."""
+    if not os.path.isfile(path):
+        raise InputError(f"missing file: {path}")
+    try:
+        with open(path, newline="") as f:
+            lines = [line for line in f if not (comment_lines and line.startswith("#"))]
+        rows = list(csv.reader(lines))
+        if not rows:
+            raise ValueError("empty file")
+        header = [h.strip() for h in rows[0]]
+        body = [r for r in rows[1:] if r]
+        columns = {}
+        for i, name in enumerate(header):
+            values = [r[i] if i < len(r) else "" for r in body]
+            try:
+                columns[name] = np.array([_number(v) for v in values], dtype=float)
+            except ValueError:
+                columns[name] = [v.strip() for v in values]
+        return columns
+    except InputError:
+        raise
+    except Exception as error:  # noqa: BLE001
+        raise InputError(f"cannot read {path}: {error}")
+
+
+def snapshot_time(path):
+    with open(path) as f:
+        first = f.readline()
+    # "# time = 0.256 s, step = 34304"
+    if first.startswith("#") and "time" in first:
+        try:
+            value = float(first.split("=")[1].split()[0].rstrip(","))
+            return f", t = {value:.3g} s"
+        except (IndexError, ValueError):
+            pass
+    return ""
+
+
+# --------------------------------------------------------------------------- physics
+
+def hogg_mean_z(n_rev, d, length, terms=400):
+    """<z>(N) of the Hogg solution for a component starting in one half of a bed of length L.
+
+    <z>(N) = 8L/pi^3 sum_{n>=1} (-1)^(n+1)/(2n-1)^3 exp(-(2n-1)^2 pi^2 D N / L^2),
+    which is L/4 at N = 0 and decays to 0.
+    """
+    n_rev = np.asarray(n_rev, dtype=float)
+    k = 2.0 * np.arange(1, terms + 1) - 1.0
+    signs = np.where(np.arange(terms) % 2 == 0, 1.0, -1.0)
+    decay = np.exp(-np.outer(n_rev, k ** 2) * math.pi ** 2 * d / length ** 2)
+    return 8.0 * length / math.pi ** 3 * (decay * (signs / k ** 3)).sum(axis=1)
+
+
+# --------------------------------------------------------------------------- output
+
+class Writer:
+    def __init__(self, outdir):
+        self.outdir = outdir
+        self.written = []
+        self.skipped = []
+
+    def save(self, fig, name):
+        os.makedirs(self.outdir, exist_ok=True)
+        for ext in ("png", "svg"):
+            path = os.path.join(self.outdir, f"{name}.{ext}")
+            fig.savefig(path, dpi=DPI, metadata={"Date": None} if ext == "svg" else None)
+            self.written.append(path)
+        plt.close(fig)
+
+    def skip(self, name, reason):
+        print(f"note: {name} skipped: {reason}")
+        self.skipped.append(name)
+
+    def report(self):
+        print(f"{len(self.written)} files written:")
+        for path in self.written:
+            print(f"  {path}")
+
+
+# --------------------------------------------------------------------------- one run
+
+class Run:
+    """A `tumble drum` run directory."""
+
+    def __init__(self, directory):
+        if not os.path.isdir(directory):
+            raise InputError(f"run directory not found: {directory}")
+        self.dir = directory
+        self.config = read_toml(self.path("drum_run.toml"))
+        self.series = read_csv(self.path("drum_series.csv"))
+        self.summary = read_json(self.path("summary.json")) if os.path.isfile(
+            self.path("summary.json")) else None
+        comps = self.config.get("component") or []
+        if not comps and self.summary:
+            comps = self.summary.get("components", [])
+        if not comps:
+            raise InputError(f"no [[component]] tables in {self.path('drum_run.toml')}")
+        self.components = [c["name"] for c in comps]
+        self.start_side = [float(c.get("start_side", -1.0 if i == 0 else 1.0))
+                           for i, c in enumerate(comps)]
+        self.mode = str(self.config.get("mode", "")) or (self.summary or {}).get("mode", "")
+        self.omega = float(self.config.get("omega", math.nan))
+        self.froude = float(self.config.get("froude", math.nan))
+        self.length = float((self.summary or {}).get("bed_length")
+                            or self.config.get("inner_length", 0.12))
+
+    def path(self, name):
+        return os.path.join(self.dir, name)
+
+    def fit(self, index):
+        """(D, D_stderr, determined) of a component from summary.json, or None."""
+        if not self.summary:
+            return None
+        for c in self.summary.get("components", []):
+            if c.get("name") == self.components[index]:
+                if c.get("D") is None:
+                    return None
+                return (float(c["D"]), c.get("D_stderr"), bool(c.get("determined", True)))
+        return None
+
+    def label(self):
+        return f"\u03c9 = {self.omega:g} rad/s ({self.omega * RPM_PER_RAD_S:.3g} rpm)"
+
+    def paper_z_figure(self):
+        return "Fig. 2 (self-diffusion)" if self.mode == "self" else "Fig. 4 (two-component)"
+
+
+def fig_setup(run, w):
+    name = "fig1_setup"
+    snap = run.path(os.path.join("snapshots", "000000.csv"))
+    if not os.path.isfile(snap):
+        w.skip(name, f"no initial snapshot {snap}")
+        return
+    s = read_csv(snap, comment_lines=True)
+    needed = ("x", "y", "z", "radius", "tag", "kinematic")
+    if any(k not in s for k in needed):
+        raise InputError(f"{snap}: expected columns {', '.join(needed)}")
+    wall = (s["kinematic"] > 0) | (s["tag"] < 0)
+    fig, (side, end) = plt.subplots(1, 2, figsize=(12, 4.8),
+                                    gridspec_kw={"width_ratios": [1.45, 1]})
+    handles = []
+    # The wall is drawn behind all grains (a cut-away view); the grains are drawn far to
+    # near: side view (z, y) seen from +x, end view (x, y) seen from +z.
+    for ax, (h, v, depth) in ((side, ("z", "y", "x")), (end, ("x", "y", "z"))):
+        for group, zorder in ((wall, 1), (~wall, 2)):
+            idx = np.flatnonzero(group)
+            idx = idx[np.argsort(s[depth][idx], kind="stable")]
+            patches = [Circle((s[h][i] * 1e3, s[v][i] * 1e3), s["radius"][i] * 1e3) for i in idx]
+            colours = [WALL_COLOUR if wall[i] else COLOURS[int(s["tag"][i]) % len(COLOURS)]
+                       for i in idx]
+            if patches:
+                ax.add_collection(PatchCollection(patches, facecolors=colours,
+                                                  edgecolors="0.55" if zorder == 1 else "0.2",
+                                                  linewidths=0.2 if zorder == 1 else 0.3,
+                                                  zorder=zorder))
+        ax.set_aspect("equal")
+        ax.autoscale_view()
+        ax.set_xlabel(f"{h} (mm)")
+        ax.set_ylabel(f"{v} (mm)")
+    side.set_title("side view (drum axis z horizontal)")
+    end.set_title("end view (seen along the axis)")
+    for i, cname in enumerate(run.components):
+        count = int(np.sum(~wall & (s["tag"] == i)))
+        handles.append(Circle((0, 0), 1, facecolor=COLOURS[i % len(COLOURS)], edgecolor="0.3",
+                              label=f"C{i + 1}: {cname} ({count} grains)"))
+    handles.append(Circle((0, 0), 1, facecolor=WALL_COLOUR, edgecolor="0.3",
+                          label=f"wall ({int(np.sum(wall))} particles)"))
+    fig.legend(handles=handles, loc="lower center", ncol=len(handles), frameon=False)
+    fig.suptitle(f"Fig. 1: set-up, {run.mode} mode, initial state "
+                 f"(snapshots/000000.csv{snapshot_time(snap)}); wall drawn behind the grains")
+    fig.tight_layout(rect=(0, 0.07, 1, 0.95))
+    w.save(fig, name)
+
+
+def _plot_z(ax, run, colour_for, label_prefix="", marker_for=None):
+    n = run.series["revolutions"]
+    n_fine = np.linspace(0.0, max(float(np.nanmax(n)), 1e-9), 400)
+    drew_any = False
+    for i, cname in enumerate(run.components):
+        col = f"mean_z_{cname}"
+        if col not in run.series:
+            continue
+        drew_any = True
+        colour = colour_for(i)
+        z = run.series[col] * 1e3
+        err = run.series.get(f"mean_z_stderr_{cname}")
+        marker = marker_for(i) if marker_for else "o"
+        ax.plot(n, z, marker, ms=3, color=colour, label=f"{label_prefix}{cname} (measured)")
+        if err is not None:
+            ax.errorbar(n, z, yerr=err * 1e3, fmt="none", ecolor=colour, alpha=0.3, lw=0.8)
+        fit = run.fit(i)
+        if fit is None:
+            continue
+        d, d_err, determined = fit
+        curve = run.start_side[i] * hogg_mean_z(n_fine, d, run.length) * 1e3
+        err_text = f" \u00b1 {d_err:.2g}" if d_err is not None else ""
+        note = "" if determined else ", not determined"
+        ax.plot(n_fine, curve, "-", color=colour, lw=1.2,
+                label=f"{label_prefix}{cname}: Hogg, D = {d:.3g}{err_text} m\u00b2/rev{note}")
+    return drew_any
+
+
+def fig_z(run, w):
+    name = "fig_z"
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    if not _plot_z(ax, run, lambda i: COLOURS[i % len(COLOURS)]):
+        plt.close(fig)
+        w.skip(name, f"no mean_z_ columns in {run.path('drum_series.csv')}")
+        return
+    if not run.summary:
+        print(f"note: {name}: no {run.path('summary.json')}, Hogg curves left out")
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set_xlabel("revolutions N")
+    ax.set_ylabel("<z> (mm)")
+    ax.set_title(f"{run.paper_z_figure()}: average position, {run.label()}\n"
+                 f"bed length L = {run.length * 1e3:g} mm", fontsize=10)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    w.save(fig, name)
+
+
+def fig_profiles(run, w):
+    name = "fig_profiles"
+    path = run.path("profile_comparison.csv")
+    if not os.path.isfile(path):
+        w.skip(name, f"no {path}")
+        return
+    p = read_csv(path)
+    if any(k not in p for k in ("revolutions", "z", "measured", "hogg")) or len(p["z"]) == 0:
+        w.skip(name, f"{path} has no revolutions, z, measured, hogg data")
+        return
+    # The component compared is the one that started on the right (DRUM.md).
+    right = [c for c, side in zip(run.components, run.start_side) if side > 0]
+    cname = right[0] if right else run.components[-1]
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    levels = sorted(set(np.round(p["revolutions"], 9)))
+    cmap = plt.get_cmap("viridis")
+    z_step = np.array([-run.length / 2, 0, 0, run.length / 2]) * 1e3
+    ax.plot(z_step, [0, 0, 1, 1], ":", color="0.5", lw=1, label="N = 0 (Hogg initial step)")
+    for k, level in enumerate(levels):
+        sel = np.round(p["revolutions"], 9) == level
+        z = p["z"][sel] * 1e3
+        order = np.argsort(z)
+        measured, hogg = p["measured"][sel][order], p["hogg"][sel][order]
+        z = z[order]
+        colour = cmap(0.1 + 0.8 * k / max(len(levels) - 1, 1))
+        ok = measured >= 0  # -1: empty bin
+        ax.plot(z[ok], measured[ok], "o", color=colour, ms=5, label=f"N = {level:.3g} measured")
+        ax.plot(z, hogg, "-", color=colour, lw=1.3, label=f"N = {level:.3g} Hogg")
+    ax.set_xlim(-run.length / 2 * 1e3, run.length / 2 * 1e3)
+    ax.set_ylim(-0.05, 1.05)
+    ax.set_xlabel("z (mm)")
+    ax.set_ylabel(f"concentration C(z, N) of {cname}")
+    fit = [run.fit(i) for i, c in enumerate(run.components) if c == cname][0]
+    d_text = f", D = {fit[0]:.3g} m\u00b2/rev" if fit else ""
+    ax.set_title(f"Axial concentration profile against the Hogg solution\n"
+                 f"{run.mode} mode, {run.label()}{d_text}", fontsize=10)
+    ax.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    w.save(fig, name)
+
+
+def fig_energy(run, w):
+    name = "fig_energy"
+    n = run.series["revolutions"]
+    cols = [f"kinetic_per_grain_{c}" for c in run.components]
+    if any(c not in run.series for c in cols):
+        w.skip(name, f"no kinetic_per_grain_ columns in {run.path('drum_series.csv')}")
+        return
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 7), sharex=True)
+    for i, cname in enumerate(run.components):
+        top.plot(n, run.series[cols[i]], "-o", ms=2.5, lw=1, color=COLOURS[i % len(COLOURS)],
+                 label=cname)
+    top.set_yscale("log")
+    top.set_ylabel("kinetic energy per grain (J)")
+    top.legend(fontsize=8)
+    top.set_title(f"Translational kinetic energy, {run.mode} mode, {run.label()}", fontsize=10)
+    if len(run.components) >= 2:
+        a, b = run.components[0], run.components[1]
+        rotating = n > 0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            per_grain = run.series[f"kinetic_per_grain_{b}"] / run.series[f"kinetic_per_grain_{a}"]
+            total_b, total_a = (run.series.get(f"kinetic_energy_{b}"),
+                                run.series.get(f"kinetic_energy_{a}"))
+            total = total_b / total_a if total_b is not None and total_a is not None else None
+        s = run.summary or {}
+        lines = [("per grain", per_grain, "kinetic_energy_ratio_per_grain", "tab:green"),
+                 ("total", total, "kinetic_energy_ratio_total", "tab:purple")]
+        for label, ratio, key, colour in lines:
+            if ratio is None:
+                continue
+            bottom.plot(n[rotating], ratio[rotating], "o", ms=2.5, color=colour,
+                        label=f"{label}: {b} / {a}")
+            if s.get(key) is not None:
+                bottom.axhline(s[key], color=colour, lw=1.2,
+                               label=f"{label}: mean over the rotation, {s[key]:.3g}")
+            ref = s.get(f"{key}_equal_velocity")
+            if ref is not None:
+                bottom.axhline(ref, color=colour, ls="--", lw=1.2,
+                               label=f"{label}: equal velocities, {ref:.3g}")
+        bottom.set_yscale("log")
+        bottom.set_ylabel(f"kinetic energy ratio {b} / {a}")
+        bottom.legend(fontsize=7)
+        bottom.set_title("Fig. 6 quantity for one speed: ratio (points), "
+                         "equal-velocity reference (dashed)", fontsize=9)
+    bottom.set_xlabel("revolutions N")
+    fig.tight_layout()
+    w.save(fig, name)
+
+
+def do_run(args):
+    run = Run(args.dir)
+    w = Writer(args.out or os.path.join(args.dir, "figures"))
+    for make in (fig_setup, fig_z, fig_profiles, fig_energy):
+        make(run, w)
+    return w
+
+
+def do_compare(args):
+    runs = [Run(d) for d in args.dirs]
+    w = Writer(args.out or "drum_compare_figures")
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    markers = ["o", "s", "^", "v", "D", "x"]
+    for k, run in enumerate(runs):
+        _plot_z(ax, run, lambda i, k=k: COLOURS[(2 * k + i) % len(COLOURS)],
+                label_prefix=f"\u03c9 = {run.omega:g} rad/s, ",
+                marker_for=lambda i, k=k: markers[k % len(markers)])
+    modes = {r.mode for r in runs}
+    figure = runs[0].paper_z_figure() if len(modes) == 1 else "Figs. 2/4"
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set_xlabel("revolutions N")
+    ax.set_ylabel("<z> (mm)")
+    ax.set_title(f"{figure}: average position for {len(runs)} rotation speeds", fontsize=10)
+    ax.legend(fontsize=6.5)
+    fig.tight_layout()
+    w.save(fig, "fig_z_compare")
+    return w
+
+
+# --------------------------------------------------------------------------- sweep
+
+def _sweep_components(table):
+    names = []
+    for col in table:
+        if col.startswith("D_") and not col.startswith("D_stderr_") \
+                and not col.startswith("D_one_term"):
+            names.append(col[2:])
+    return names
+
+
+def _group(omega, values, errors):
+    """Per distinct omega: mean over seeds, error bar (std over seeds, or the fit error
+    when only one seed has a value), the seed values."""
+    out = []
+    keys = sorted(set(np.round(omega[np.isfinite(omega)], 9)))
+    for key in keys:
+        sel = (np.round(omega, 9) == key) & np.isfinite(values)
+        v = values[sel]
+        if len(v) == 0:
+            continue
+        if len(v) > 1:
+            spread = float(np.std(v, ddof=1))
+        else:
+            e = errors[sel] if errors is not None else np.array([math.nan])
+            spread = float(e[0]) if np.isfinite(e[0]) else 0.0
+        out.append((key, float(np.mean(v)), spread, v))
+    return out
+
+
+def _plot_grouped(ax, x, values, errors, colour, label, marker="o"):
+    groups = _group(x, values, errors)
+    if not groups:
+        return False
+    gx = np.array([g[0] for g in groups])
+    ax.errorbar(gx, [g[1] for g in groups], yerr=[g[2] for g in groups], fmt=marker + "-",
+                color=colour, capsize=3, ms=5, lw=1.2, label=label)
+    for g in groups:
+        ax.plot(np.full(len(g[3]), g[0]), g[3], marker, color=colour, alpha=0.25, ms=3)
+    return True
+
+
+def _d_axis(ax):
+    """D in m^2/rev written out (no offset text, which would collide with the rpm axis)."""
+    ax.yaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:.3g}"))
+    ax.set_ylim(bottom=0)
+
+
+def _rpm_axis(ax):
+    sec = ax.secondary_xaxis("top", functions=(lambda o: o * RPM_PER_RAD_S,
+                                               lambda r: r / RPM_PER_RAD_S))
+    sec.set_xlabel("rotation speed (rpm)")
+
+
+def _self_d(table, rows, comps):
+    """Per row: the mean D of the self-mode tagged halves, and its error."""
+    ds = np.array([table[f"D_{c}"][rows] for c in comps])
+    errs = np.array([table[f"D_stderr_{c}"][rows] if f"D_stderr_{c}" in table
+                     else np.full(rows.sum(), math.nan) for c in comps])
+    with np.errstate(invalid="ignore"):
+        count = np.sum(np.isfinite(ds), axis=0)
+        mean = np.where(count > 0, np.nansum(np.where(np.isfinite(ds), ds, 0), axis=0)
+                        / np.maximum(count, 1), math.nan)
+        err = np.sqrt(np.nansum(np.where(np.isfinite(errs), errs ** 2, 0), axis=0)) \
+            / np.maximum(count, 1)
+    return mean, err
+
+
+def _components_with_data(table, rows, comps):
+    return [c for c in comps if np.any(np.isfinite(table[f"D_{c}"][rows]))]
+
+
+def do_sweep(args):
+    table = read_csv(args.table)
+    missing = [c for c in ("omega", "mode") if c not in table]
+    if missing:
+        raise InputError(f"{args.table}: missing column(s) {', '.join(missing)}")
+    if not isinstance(table["mode"], list):
+        table["mode"] = [str(v) for v in table["mode"]]
+    w = Writer(args.out or os.path.join(os.path.dirname(os.path.abspath(args.table)), "figures"))
+    omega = table["omega"]
+    modes = np.array(table["mode"])
+    comps = _sweep_components(table)
+    self_rows = modes == "self"
+    two_rows = modes == "two-component"
+    self_comps = _components_with_data(table, self_rows, comps) if self_rows.any() else []
+    two_comps = _components_with_data(table, two_rows, comps) if two_rows.any() else []
+
+    def errors_of(c, rows):
+        col = f"D_stderr_{c}"
+        return table[col][rows] if col in table else None
+
+    # Fig. 3: self-diffusion
+    if self_comps:
+        d, e = _self_d(table, self_rows, self_comps)
+        fig, ax = plt.subplots(figsize=(7, 5))
+        _plot_grouped(ax, omega[self_rows], d, e, "tab:blue",
+                      f"self-diffusion ({' and '.join(self_comps)} averaged), mean over seeds")
+        ax.set_xlabel("rotation speed \u03c9 (rad/s)")
+        ax.set_ylabel("self-diffusion coefficient D (m\u00b2/rev)")
+        _rpm_axis(ax)
+        _d_axis(ax)
+        ax.set_title("Fig. 3: self-diffusion coefficient against rotation speed", fontsize=10)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        w.save(fig, "fig3_self_D_vs_omega")
+    else:
+        w.skip("fig3_self_D_vs_omega", f"no self-mode rows with D in {args.table}")
+
+    # Fig. 5: two-component diffusion
+    if two_comps:
+        fig, ax = plt.subplots(figsize=(7, 5))
+        for i, c in enumerate(two_comps):
+            _plot_grouped(ax, omega[two_rows], table[f"D_{c}"][two_rows], errors_of(c, two_rows),
+                          COLOURS[i % len(COLOURS)], f"{c}, mean over seeds", "os^v"[i % 4])
+        ax.set_xlabel("rotation speed \u03c9 (rad/s)")
+        ax.set_ylabel("diffusion coefficient D (m\u00b2/rev)")
+        _rpm_axis(ax)
+        _d_axis(ax)
+        ax.set_title("Fig. 5: two-component diffusion coefficients against rotation speed",
+                     fontsize=10)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        w.save(fig, "fig5_two_component_D_vs_omega")
+    else:
+        w.skip("fig5_two_component_D_vs_omega", f"no two-component rows with D in {args.table}")
+
+    # Fig. 6: kinetic-energy ratio
+    ke_cols = [("per grain", "ke_ratio_per_grain", "tab:green"),
+               ("total", "ke_ratio_total", "tab:purple")]
+    present = [k for k in ke_cols if k[1] in table and two_rows.any()
+               and np.any(np.isfinite(table[k[1]][two_rows]))]
+    if present:
+        fig, ax = plt.subplots(figsize=(7, 5))
+        for label, col, colour in present:
+            _plot_grouped(ax, omega[two_rows], table[col][two_rows], None, colour,
+                          f"{label}: material 2 / material 1, mean over seeds")
+            ref_col = f"{col}_ref"
+            if ref_col in table:
+                groups = _group(omega[two_rows], table[ref_col][two_rows], None)
+                if groups:
+                    gx = [g[0] for g in groups]
+                    gy = [g[1] for g in groups]
+                    if len(gx) == 1:
+                        ax.axhline(gy[0], color=colour, ls="--", lw=1.2,
+                                   label=f"{label}: equal velocities")
+                    else:
+                        ax.plot(gx, gy, "--", color=colour, lw=1.2,
+                                label=f"{label}: equal velocities")
+        ax.set_xlabel("rotation speed \u03c9 (rad/s)")
+        ax.set_ylabel("kinetic energy ratio, material 2 / material 1")
+        _rpm_axis(ax)
+        ax.set_ylim(bottom=0)
+        ax.set_title("Fig. 6: kinetic energy ratio against rotation speed", fontsize=10)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        w.save(fig, "fig6_ke_ratio_vs_omega")
+    else:
+        w.skip("fig6_ke_ratio_vs_omega", f"no two-component rows with ke_ratio_ in {args.table}")
+
+    # D against Froude number, both modes
+    if "froude" in table and (self_comps or two_comps):
+        froude = table["froude"]
+        fig, ax = plt.subplots(figsize=(7, 5))
+        if self_comps:
+            d, e = _self_d(table, self_rows, self_comps)
+            _plot_grouped(ax, froude[self_rows], d, e, "tab:blue", "self-diffusion", "D")
+        for i, c in enumerate(two_comps):
+            _plot_grouped(ax, froude[two_rows], table[f"D_{c}"][two_rows], errors_of(c, two_rows),
+                          COLOURS[(i + 1) % len(COLOURS)], f"two-component: {c}", "os^v"[i % 4])
+        ax.set_xlabel("Froude number Fr = \u03c9\u00b2R/g")
+        ax.set_ylabel("diffusion coefficient D (m\u00b2/rev)")
+        _d_axis(ax)
+        ax.set_title("Diffusion coefficients against Froude number (both modes)", fontsize=10)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        w.save(fig, "fig_D_vs_froude")
+    else:
+        w.skip("fig_D_vs_froude", f"no froude column or no D values in {args.table}")
+    return w
+
+
+# --------------------------------------------------------------------------- main
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(
+        prog="plot_drum.py",
+        description="Figures of Kohring's rotating-drum paper from tumble drum output.")
+    sub = parser.add_subparsers(dest="command", required=True)
+    p = sub.add_parser("run", help="figures of one drum run directory")
+    p.add_argument("dir")
+    p.add_argument("--out", help="figure directory (default DIR/figures)")
+    p = sub.add_parser("sweep", help="figures of a sweep table (tools/README.md)")
+    p.add_argument("table")
+    p.add_argument("--out", help="figure directory (default: figures/ beside the table)")
+    p = sub.add_parser("compare", help="<z>(N) of several runs in one figure")
+    p.add_argument("dirs", nargs="+")
+    p.add_argument("--out", help="figure directory (default ./drum_compare_figures)")
+    args = parser.parse_args(argv)
+    try:
+        writer = {"run": do_run, "sweep": do_sweep, "compare": do_compare}[args.command](args)
+    except InputError as error:
+        sys.stderr.write(f"plot_drum.py: error: {error}\n")
+        return 2
+    writer.report()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
