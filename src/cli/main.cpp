@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
+#include "cli/sweep_command.hpp"
 #include "tumble/core/error.hpp"
 
 int main(int argc, char** argv) {
@@ -78,12 +79,28 @@ int main(int argc, char** argv) {
     plot_cmd->add_flag("--compare", plot_compare, "Overlay <z>(N) of several runs (the paper's figs. 2 and 4)");
     plot_cmd->add_option("-o,--out", plot_out, "Where the figures go (default DIR/figures)");
 
+    SweepOptions sweep;
+    CLI::App* sweep_cmd = app.add_subcommand(
+        "sweep", "The drum experiment over rotation speeds, modes and seeds, one child run per point "
+                 "(resumable; splits over MPI ranks under mpirun; see docs/SWEEP.md)");
+    sweep_cmd->add_option("sweep_file", sweep.sweep_file, "Sweep file (TOML; examples/sweep_*.toml)")->required();
+    sweep_cmd->add_option("-o,--out", sweep.output_directory, "Sweep directory (default: the file's [output] directory)");
+    sweep_cmd->add_option("-j,--jobs", sweep.jobs,
+                          "Points run at once (per MPI rank; default: the cores of this node / its ranks)")
+        ->check(CLI::PositiveNumber);
+    sweep_cmd->add_flag("--list", sweep.list, "Print the points and their state; run nothing");
+    sweep_cmd->add_option("--wait-timeout", sweep.wait_timeout,
+                          "Under MPI: seconds rank 0 waits for the other ranks' points (default 7 days)")
+        ->check(CLI::PositiveNumber);
+    sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "Print nothing but errors and failed points");
+
     CLI11_PARSE(app, argc, argv);
     try {
         if (run_cmd->parsed()) return run_command(run);
         if (bench_cmd->parsed()) return bench_command(bench);
         if (analyze_cmd->parsed()) return analyze_command(analyze_dir);
         if (plot_cmd->parsed()) return plot_command(plot_compare ? "compare" : "run", plot_inputs, plot_out);
+        if (sweep_cmd->parsed()) return sweep_command(sweep);
         if (drum_cmd->parsed()) {
             tumble::io::DrumSettings& d = drum.settings;
             if (!drum_config.empty()) d = tumble::io::load_drum_settings(drum_config);

@@ -1,0 +1,721 @@
+// SPDX-License-Identifier: MIT
+#include "io/sweep.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "io/toml_reader.hpp"
+#include "tumble/core/error.hpp"
+
+extern char** environ;
+
+namespace tumble::io {
+
+namespace fs = std::filesystem;
+
+// ============================================================ sweep file
+
+namespace {
+
+constexpr double g = 9.81;  // m/s^2, as tumble drum
+
+std::vector<double> positive_numbers(const Reader& r, const toml::node& n, const std::string& key) {
+    const auto* a = n.as_array();
+    if (!a) r.fail(key, "expected an array of numbers, got " + type_name(n), &n);
+    if (a->empty()) r.fail(key, "must not be empty", &n);
+    std::vector<double> out;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+        const double v = r.number(*a->get(i), at(key, i), Bound::positive);
+        if (std::find(out.begin(), out.end(), v) != out.end())
+            r.fail(at(key, i), "the value " + show(v) + " is given twice", a->get(i));
+        out.push_back(v);
+    }
+    return out;
+}
+
+}  // namespace
+
+SweepSettings load_sweep_settings(const fs::path& file) {
+    const toml::table root = parse_toml(read_text_file(file), file);
+    const Reader r(file);
+    SweepSettings s;
+    r.only_keys(root, "", {"sweep", "output"});
+    const toml::table& t = *r.table(root, "sweep", true);
+    r.only_keys(t, "sweep",
+                {"omega", "rpm", "froude", "modes", "seeds", "revolutions", "grains_two_component", "grains_self",
+                 "samples_per_revolution", "snapshots_per_revolution", "diameter"});
+    int given = 0;
+    for (auto [key, unit] : {std::pair{"omega", SpeedUnit::rad_per_s}, std::pair{"rpm", SpeedUnit::rpm},
+                             std::pair{"froude", SpeedUnit::froude}})
+        if (const toml::node* n = t.get(key)) {
+            s.speeds = positive_numbers(r, *n, join("sweep", key));
+            s.speed_unit = unit;
+            ++given;
+        }
+    if (given == 0) r.fail("sweep", "missing the speeds: give one of omega (rad/s), rpm or froude as a list", &t);
+    if (given > 1) r.fail("sweep", "give the speeds once: omega (rad/s), rpm or froude, not several", &t);
+    if (const toml::node* n = t.get("modes")) {
+        const auto* a = n->as_array();
+        if (!a) r.fail("sweep.modes", "expected an array of strings, got " + type_name(*n), n);
+        if (a->empty()) r.fail("sweep.modes", "must not be empty", n);
+        s.modes.clear();
+        for (std::size_t i = 0; i < a->size(); ++i) {
+            const std::string key = at("sweep.modes", i);
+            std::string m = r.string(*a->get(i), key);
+            if (m != "self" && m != "two-component")
+                r.fail(key, "must be \"self\" or \"two-component\", got \"" + m + "\"", a->get(i));
+            if (std::find(s.modes.begin(), s.modes.end(), m) != s.modes.end())
+                r.fail(key, "the mode \"" + m + "\" is given twice", a->get(i));
+            s.modes.push_back(std::move(m));
+        }
+    }
+    if (const toml::node* n = t.get("seeds")) {
+        const auto* a = n->as_array();
+        if (!a) r.fail("sweep.seeds", "expected an array of integers, got " + type_name(*n), n);
+        if (a->empty()) r.fail("sweep.seeds", "must not be empty", n);
+        s.seeds.clear();
+        for (std::size_t i = 0; i < a->size(); ++i) {
+            const auto v = static_cast<std::uint64_t>(r.integer(*a->get(i), at("sweep.seeds", i), 0, INT64_MAX));
+            if (std::find(s.seeds.begin(), s.seeds.end(), v) != s.seeds.end())
+                r.fail(at("sweep.seeds", i), fmt::format("the seed {} is given twice", v), a->get(i));
+            s.seeds.push_back(v);
+        }
+    }
+    s.revolutions = r.number(t, "sweep", "revolutions", Bound::positive, s.revolutions);
+    if (const toml::node* n = t.get("grains_two_component"))
+        s.grains_two_component =
+            static_cast<std::size_t>(r.integer(*n, "sweep.grains_two_component", 2, 10'000'000));
+    if (const toml::node* n = t.get("grains_self"))
+        s.grains_self = static_cast<std::size_t>(r.integer(*n, "sweep.grains_self", 2, 10'000'000));
+    if (const toml::node* n = t.get("samples_per_revolution"))
+        s.samples_per_revolution = static_cast<int>(r.integer(*n, "sweep.samples_per_revolution", 1, 100000));
+    if (const toml::node* n = t.get("snapshots_per_revolution"))
+        s.snapshots_per_revolution = static_cast<int>(r.integer(*n, "sweep.snapshots_per_revolution", 0, 100000));
+    s.diameter = r.number(t, "sweep", "diameter", Bound::positive, s.diameter);
+    if (t.get("diameter") && s.speed_unit != SpeedUnit::froude)
+        r.fail("sweep.diameter", "only used to turn froude into omega; give it with froude only", t.get("diameter"));
+    if (const toml::table* o = r.table(root, "output", false)) {
+        r.only_keys(*o, "output", {"directory"});
+        if (const toml::node* n = o->get("directory")) s.output = r.string(*n, "output.directory");
+    }
+    return s;
+}
+
+// ============================================================ points
+
+std::string sweep_point_name(const std::string& mode, double omega, std::uint64_t seed) {
+    return fmt::format("{}_omega{:.3f}_seed{}", mode, omega, seed);
+}
+
+std::vector<SweepPoint> expand_sweep(const SweepSettings& s, const fs::path& directory) {
+    std::vector<SweepPoint> out;
+    std::set<std::string> names;
+    for (const std::string& mode : s.modes)
+        for (double speed : s.speeds)
+            for (std::uint64_t seed : s.seeds) {
+                SweepPoint p;
+                p.index = out.size();
+                p.mode = mode;
+                DrumSettings d;
+                d.geometry.diameter = s.diameter;
+                d.speed = speed;
+                d.speed_unit = s.speed_unit;
+                p.omega = d.omega();
+                p.froude = p.omega * p.omega * 0.5 * s.diameter / g;
+                p.seed = seed;
+                p.revolutions = s.revolutions;
+                p.grains = mode == "self" ? s.grains_self : s.grains_two_component;
+                p.samples_per_revolution = s.samples_per_revolution;
+                p.snapshots_per_revolution = s.snapshots_per_revolution;
+                p.name = sweep_point_name(mode, p.omega, seed);
+                p.directory = directory / "points" / p.name;
+                if (!names.insert(p.name).second)
+                    throw Error("sweep: two speeds give the same point directory " + p.name +
+                                " (omega is named to 3 decimals); make the speeds differ more");
+                out.push_back(std::move(p));
+            }
+    return out;
+}
+
+std::vector<std::string> drum_arguments(const SweepPoint& p) {
+    return {"drum",
+            "-q",
+            "--mode",
+            p.mode,
+            "--omega",
+            fmt::format("{}", p.omega),  // shortest form that reads back exactly
+            "--seed",
+            std::to_string(p.seed),
+            "--revolutions",
+            fmt::format("{}", p.revolutions),
+            "--grains",
+            std::to_string(p.grains),
+            "--samples",
+            std::to_string(p.samples_per_revolution),
+            "--snapshots",
+            std::to_string(p.snapshots_per_revolution),
+            "--out",
+            p.directory.string(),
+            "--force"};
+}
+
+// ============================================================ state on disk
+
+const char* to_string(PointState s) {
+    switch (s) {
+        case PointState::pending: return "pending";
+        case PointState::unfinished: return "unfinished";
+        case PointState::failed: return "failed";
+        case PointState::finished: return "finished";
+    }
+    return "?";
+}
+
+PointState point_state(const fs::path& dir) {
+    std::error_code ec;
+    if (fs::exists(dir / point_summary_file, ec)) return PointState::finished;
+    if (fs::exists(dir / point_failed_file, ec)) return PointState::failed;
+    if (fs::is_directory(dir, ec)) return PointState::unfinished;
+    return PointState::pending;
+}
+
+void write_failure_marker(const fs::path& dir, int exit_code, const std::string& job) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    std::ofstream out(dir / point_failed_file, std::ios::trunc);
+    out << "exit code " << exit_code << "\njob " << job << "\n";
+    if (!out) throw Error((dir / point_failed_file).string() + ": cannot write the failure marker");
+}
+
+std::optional<std::string> failure_marker_job(const fs::path& dir) {
+    std::ifstream in(dir / point_failed_file);
+    if (!in) return std::nullopt;
+    std::string line, job;
+    while (std::getline(in, line))
+        if (line.rfind("job ", 0) == 0) job = line.substr(4);
+    return job;
+}
+
+// ============================================================ MPI
+
+RankInfo detect_rank(const std::function<const char*(const char*)>& getenv) {
+    auto number = [&](const char* name) -> std::optional<int> {
+        const char* v = getenv(name);
+        if (!v || !*v) return std::nullopt;
+        int out = 0;
+        const char* end = v + std::strlen(v);
+        auto [p, ec] = std::from_chars(v, end, out);
+        if (ec != std::errc() || p != end) throw Error(fmt::format("{}={}: not an integer", name, v));
+        return out;
+    };
+    RankInfo info;
+    std::optional<int> rank = number("OMPI_COMM_WORLD_RANK"), size = number("OMPI_COMM_WORLD_SIZE");
+    std::optional<int> local = number("OMPI_COMM_WORLD_LOCAL_SIZE");
+    if (!rank || !size) {
+        rank = number("PMI_RANK"), size = number("PMI_SIZE");
+        local = number("MPI_LOCALNRANKS");
+    }
+    if (rank && size) {
+        if (*size < 1 || *rank < 0 || *rank >= *size)
+            throw Error(fmt::format("MPI rank {} of {} from the environment makes no sense", *rank, *size));
+        info.rank = *rank;
+        info.size = *size;
+        info.local_size = local && *local >= 1 ? *local : 1;
+    }
+    for (const char* name : {"PMIX_NAMESPACE", "OMPI_MCA_ess_base_jobid", "PMI_JOBID", "SLURM_JOB_ID"})
+        if (const char* v = getenv(name); v && *v) {
+            info.job = v;
+            break;
+        }
+    return info;
+}
+
+RankInfo detect_rank() {
+    return detect_rank([](const char* name) -> const char* { return std::getenv(name); });
+}
+
+std::vector<std::size_t> points_of_rank(std::size_t points, int rank, int size) {
+    std::vector<std::size_t> out;
+    for (std::size_t i = static_cast<std::size_t>(rank); i < points; i += static_cast<std::size_t>(size))
+        out.push_back(i);
+    return out;
+}
+
+// ============================================================ child processes
+
+int spawn_process(const std::vector<std::string>& argv, const fs::path& log) {
+    if (argv.empty()) throw Error("spawn: empty command line");
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    pid_t pid = 0;
+    const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (rc != 0) throw Error(fmt::format("cannot start {}: {}", argv[0], std::strerror(rc)));
+    return pid;
+}
+
+int decode_wait_status(int status) {
+    if (WIFEXITED(status)) return WEXITSTATUS(status);
+    if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+    return 255;
+}
+
+fs::path self_executable() {
+    std::error_code ec;
+    fs::path p = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) throw Error("cannot find the running executable (/proc/self/exe): " + ec.message());
+    return p;
+}
+
+std::vector<PointOutcome> run_jobs(const std::vector<PointJob>& jobs, unsigned parallel,
+                                   const std::function<void(const PointJob&)>& on_start,
+                                   const std::function<void(const PointJob&, const PointOutcome&)>& on_finish) {
+    using Clock = std::chrono::steady_clock;
+    struct Running {
+        std::size_t job;
+        pid_t pid;
+        Clock::time_point start;
+    };
+    parallel = std::max(1u, parallel);
+    std::vector<PointOutcome> outcomes;
+    std::vector<Running> running;
+    std::size_t next = 0;
+    auto finish = [&](std::size_t job, int code, Clock::time_point start) {
+        const PointOutcome o{jobs[job].point, code, std::chrono::duration<double>(Clock::now() - start).count()};
+        outcomes.push_back(o);
+        if (on_finish) on_finish(jobs[job], o);
+    };
+    while (next < jobs.size() || !running.empty()) {
+        while (next < jobs.size() && running.size() < parallel) {
+            const PointJob& job = jobs[next];
+            if (on_start) on_start(job);
+            const auto start = Clock::now();
+            {
+                std::error_code ec;
+                fs::create_directories(job.log.parent_path(), ec);
+                std::ofstream header(job.log, std::ios::trunc);
+                header << "# tumble sweep:";
+                for (const std::string& a : job.argv) header << ' ' << a;
+                header << '\n';
+            }
+            try {
+                running.push_back({next, static_cast<pid_t>(spawn_process(job.argv, job.log)), start});
+            } catch (const Error& e) {
+                std::ofstream(job.log, std::ios::app) << e.what() << '\n';
+                finish(next, 127, start);
+            }
+            ++next;
+        }
+        bool reaped = false;
+        for (std::size_t k = 0; k < running.size();) {
+            int status = 0;
+            const pid_t r = waitpid(running[k].pid, &status, WNOHANG);
+            if (r == running[k].pid || (r < 0 && errno != EINTR)) {
+                finish(running[k].job, r < 0 ? 255 : decode_wait_status(status), running[k].start);
+                running.erase(running.begin() + static_cast<std::ptrdiff_t>(k));
+                reaped = true;
+            } else {
+                ++k;
+            }
+        }
+        if (!reaped && !running.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return outcomes;
+}
+
+// ============================================================ JSON
+
+const Json* Json::find(std::string_view key) const {
+    if (type != Type::object) return nullptr;
+    for (const auto& [k, v] : object)
+        if (k == key) return &v;
+    return nullptr;
+}
+
+std::optional<double> Json::number_at(std::string_view key) const {
+    const Json* v = find(key);
+    if (!v || v->type == Type::null) return std::nullopt;
+    if (v->type != Type::number) throw Error("json: \"" + std::string(key) + "\" is not a number");
+    return v->number;
+}
+
+namespace {
+
+class JsonParser {
+public:
+    JsonParser(std::string_view text, const std::string& name) : s_(text), name_(name) {}
+
+    Json document() {
+        Json v = value(0);
+        space();
+        if (i_ != s_.size()) fail("unexpected text after the JSON value");
+        return v;
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& reason) const {
+        std::size_t line = 1, column = 1;
+        for (std::size_t k = 0; k < i_ && k < s_.size(); ++k) {
+            if (s_[k] == '\n') ++line, column = 1;
+            else ++column;
+        }
+        throw Error(fmt::format("{}: line {}, column {}: {}", name_, line, column, reason));
+    }
+    void space() {
+        while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\t' || s_[i_] == '\n' || s_[i_] == '\r')) ++i_;
+    }
+    bool eat(char c) {
+        space();
+        if (i_ < s_.size() && s_[i_] == c) return ++i_, true;
+        return false;
+    }
+    void expect(char c) {
+        if (!eat(c)) fail(fmt::format("expected '{}'", c));
+    }
+    bool word(std::string_view w) {
+        if (s_.substr(i_, w.size()) != w) return false;
+        i_ += w.size();
+        return true;
+    }
+
+    Json value(int depth) {
+        if (depth > 64) fail("nested too deeply");
+        space();
+        if (i_ >= s_.size()) fail("unexpected end of the text");
+        Json v;
+        const char c = s_[i_];
+        if (c == '{') {
+            ++i_;
+            v.type = Json::Type::object;
+            if (eat('}')) return v;
+            do {
+                space();
+                if (i_ >= s_.size() || s_[i_] != '"') fail("expected a string key");
+                std::string key = string();
+                expect(':');
+                v.object.emplace_back(std::move(key), value(depth + 1));
+            } while (eat(','));
+            expect('}');
+        } else if (c == '[') {
+            ++i_;
+            v.type = Json::Type::array;
+            if (eat(']')) return v;
+            do v.array.push_back(value(depth + 1));
+            while (eat(','));
+            expect(']');
+        } else if (c == '"') {
+            v.type = Json::Type::string;
+            v.string = string();
+        } else if (word("true")) {
+            v.type = Json::Type::boolean;
+            v.boolean = true;
+        } else if (word("false")) {
+            v.type = Json::Type::boolean;
+        } else if (word("null")) {
+            v.type = Json::Type::null;
+        } else if (c == '-' || (c >= '0' && c <= '9')) {
+            v.type = Json::Type::number;
+            v.number = number();
+        } else {
+            fail(fmt::format("unexpected character '{}'", c));
+        }
+        return v;
+    }
+
+    double number() {
+        // JSON grammar: -? (0 | [1-9][0-9]*) (. [0-9]+)? ([eE] [+-]? [0-9]+)?
+        const std::size_t start = i_;
+        auto digits = [&] {
+            const std::size_t from = i_;
+            while (i_ < s_.size() && s_[i_] >= '0' && s_[i_] <= '9') ++i_;
+            return i_ - from;
+        };
+        if (s_[i_] == '-') ++i_;
+        if (i_ < s_.size() && s_[i_] == '0') ++i_;
+        else if (digits() == 0) fail("malformed number");
+        if (i_ < s_.size() && s_[i_] == '.') {
+            ++i_;
+            if (digits() == 0) fail("malformed number: digits expected after '.'");
+        }
+        if (i_ < s_.size() && (s_[i_] == 'e' || s_[i_] == 'E')) {
+            ++i_;
+            if (i_ < s_.size() && (s_[i_] == '+' || s_[i_] == '-')) ++i_;
+            if (digits() == 0) fail("malformed number: digits expected in the exponent");
+        }
+        double out = 0.0;
+        const auto [p, ec] = std::from_chars(s_.data() + start, s_.data() + i_, out);
+        if (p != s_.data() + i_ || (ec != std::errc() && ec != std::errc::result_out_of_range))
+            fail("malformed number");
+        if (ec == std::errc::result_out_of_range) fail("number out of range");
+        return out;
+    }
+
+    unsigned hex4() {
+        if (i_ + 4 > s_.size()) fail("truncated \\u escape");
+        unsigned v = 0;
+        for (int k = 0; k < 4; ++k) {
+            const char c = s_[i_++];
+            v <<= 4;
+            if (c >= '0' && c <= '9') v |= static_cast<unsigned>(c - '0');
+            else if (c >= 'a' && c <= 'f') v |= static_cast<unsigned>(c - 'a' + 10);
+            else if (c >= 'A' && c <= 'F') v |= static_cast<unsigned>(c - 'A' + 10);
+            else fail("bad hex digit in \\u escape");
+        }
+        return v;
+    }
+
+    static void utf8(std::string& out, unsigned cp) {
+        if (cp < 0x80) {
+            out += static_cast<char>(cp);
+        } else if (cp < 0x800) {
+            out += static_cast<char>(0xC0 | (cp >> 6));
+            out += static_cast<char>(0x80 | (cp & 0x3F));
+        } else if (cp < 0x10000) {
+            out += static_cast<char>(0xE0 | (cp >> 12));
+            out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+            out += static_cast<char>(0x80 | (cp & 0x3F));
+        } else {
+            out += static_cast<char>(0xF0 | (cp >> 18));
+            out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
+            out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+            out += static_cast<char>(0x80 | (cp & 0x3F));
+        }
+    }
+
+    std::string string() {
+        ++i_;  // the opening quote
+        std::string out;
+        while (true) {
+            if (i_ >= s_.size()) fail("unterminated string");
+            const char c = s_[i_++];
+            if (c == '"') return out;
+            if (static_cast<unsigned char>(c) < 0x20) fail("control character in a string");
+            if (c != '\\') {
+                out += c;
+                continue;
+            }
+            if (i_ >= s_.size()) fail("unterminated string");
+            switch (const char e = s_[i_++]) {
+                case '"': out += '"'; break;
+                case '\\': out += '\\'; break;
+                case '/': out += '/'; break;
+                case 'b': out += '\b'; break;
+                case 'f': out += '\f'; break;
+                case 'n': out += '\n'; break;
+                case 'r': out += '\r'; break;
+                case 't': out += '\t'; break;
+                case 'u': {
+                    unsigned cp = hex4();
+                    if (cp >= 0xD800 && cp <= 0xDBFF) {
+                        if (!word("\\u")) fail("lone high surrogate in \\u escape");
+                        const unsigned low = hex4();
+                        if (low < 0xDC00 || low > 0xDFFF) fail("bad low surrogate in \\u escape");
+                        cp = 0x10000 + ((cp - 0xD800) << 10) + (low - 0xDC00);
+                    } else if (cp >= 0xDC00 && cp <= 0xDFFF) {
+                        fail("lone low surrogate in \\u escape");
+                    }
+                    utf8(out, cp);
+                    break;
+                }
+                default: --i_; fail(fmt::format("bad escape '\\{}'", e));
+            }
+        }
+    }
+
+    std::string_view s_;
+    std::string name_;
+    std::size_t i_ = 0;
+};
+
+}  // namespace
+
+Json parse_json(std::string_view text, const std::string& name) { return JsonParser(text, name).document(); }
+
+// ============================================================ aggregation
+
+std::vector<std::string> components_of_mode(const std::string& mode) {
+    if (mode == "self") return {"left", "right"};
+    return {"material-1", "material-2"};
+}
+
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+// Empty for undefined numbers: a CSV reader makes them NaN.
+std::string cell(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string(); }
+
+bool has_numbers(const PointResult& r) { return r.state == PointState::finished && r.note.empty(); }
+
+}  // namespace
+
+PointResult read_point_result(const SweepPoint& p) {
+    PointResult r{p, point_state(p.directory), "", {}, nan, nan, nan, nan, nan};
+    if (r.state == PointState::failed) {
+        std::ifstream in(p.directory / point_failed_file);
+        std::string line;
+        std::getline(in, line);
+        r.note = "failed (" + line + "); log: " + (p.directory / point_log_file).string();
+        return r;
+    }
+    if (r.state != PointState::finished) {
+        r.note = std::string(to_string(r.state)) + ": no summary.json";
+        return r;
+    }
+    try {
+        const fs::path file = p.directory / point_summary_file;
+        const Json j = parse_json(read_text_file(file), file.string());
+        if (j.type != Json::Type::object) throw Error(file.string() + ": not a JSON object");
+        auto num = [&](const Json& o, std::string_view key) { return o.number_at(key).value_or(nan); };
+        if (const Json* comps = j.find("components"); comps && comps->type == Json::Type::array)
+            for (const Json& c : comps->array) {
+                const Json* name = c.find("name");
+                if (!name || name->type != Json::Type::string) throw Error(file.string() + ": a component without a name");
+                const Json* det = c.find("determined");
+                r.components[name->string] = {num(c, "D"), num(c, "D_stderr"), num(c, "D_one_term"),
+                                              det && det->type == Json::Type::boolean && det->boolean};
+            }
+        else
+            throw Error(file.string() + ": no \"components\" array");
+        r.ke_ratio_total = num(j, "kinetic_energy_ratio_total");
+        r.ke_ratio_total_ref = num(j, "kinetic_energy_ratio_total_equal_velocity");
+        r.ke_ratio_per_grain = num(j, "kinetic_energy_ratio_per_grain");
+        r.ke_ratio_per_grain_ref = num(j, "kinetic_energy_ratio_per_grain_equal_velocity");
+        r.grain_updates_per_second = num(j, "grain_updates_per_second");
+    } catch (const Error& e) {
+        r.note = std::string("unreadable summary.json: ") + e.what();
+    }
+    return r;
+}
+
+std::size_t write_sweep_tables(const fs::path& directory, const std::vector<PointResult>& results) {
+    // Component columns: those of the modes present, in order of appearance.
+    std::vector<std::string> components;
+    for (const PointResult& r : results)
+        for (const std::string& c : components_of_mode(r.point.mode))
+            if (std::find(components.begin(), components.end(), c) == components.end()) components.push_back(c);
+    const auto component = [](const PointResult& r, const std::string& c) -> const PointResult::Component* {
+        auto it = r.components.find(c);
+        return it == r.components.end() ? nullptr : &it->second;
+    };
+
+    std::size_t missing = 0;
+    {
+        std::ostringstream out;
+        out << "mode,omega,froude,seed,revolutions,grains";
+        for (const std::string& c : components)
+            out << fmt::format(",D_{0},D_stderr_{0},D_one_term_{0},determined_{0}", c);
+        out << ",ke_ratio_total,ke_ratio_total_ref,ke_ratio_per_grain,ke_ratio_per_grain_ref,"
+               "grain_updates_per_second,status\n";
+        for (const PointResult& r : results) {
+            const SweepPoint& p = r.point;
+            const bool ok = has_numbers(r);
+            if (!ok) ++missing;
+            out << fmt::format("{},{},{},{},{},{}", p.mode, p.omega, p.froude, p.seed, p.revolutions, p.grains);
+            for (const std::string& c : components) {
+                const PointResult::Component* k = ok ? component(r, c) : nullptr;
+                if (k)
+                    out << fmt::format(",{},{},{},{}", cell(k->D), cell(k->D_stderr), cell(k->D_one_term),
+                                       k->determined ? "true" : "false");
+                else
+                    out << ",,,,";
+            }
+            for (double v : {r.ke_ratio_total, r.ke_ratio_total_ref, r.ke_ratio_per_grain, r.ke_ratio_per_grain_ref,
+                             r.grain_updates_per_second})
+                out << ',' << (ok ? cell(v) : std::string());
+            out << ',' << (ok ? "finished" : to_string(r.state)) << '\n';
+        }
+        std::ofstream f(directory / "sweep.csv", std::ios::trunc);
+        f << out.str();
+        if (!f) throw Error((directory / "sweep.csv").string() + ": cannot write");
+    }
+
+    {
+        // Quantities averaged over the seeds of one (mode, omega): D and
+        // D_one_term over the seeds where D was determined, the rest over all
+        // finished seeds with a defined value.
+        using Get = std::function<double(const PointResult&)>;
+        std::vector<std::pair<std::string, Get>> quantities;
+        for (const std::string& c : components) {
+            quantities.emplace_back("D_" + c, [c, component](const PointResult& r) {
+                const auto* k = component(r, c);
+                return k && k->determined ? k->D : nan;
+            });
+            quantities.emplace_back("D_one_term_" + c, [c, component](const PointResult& r) {
+                const auto* k = component(r, c);
+                return k && k->determined ? k->D_one_term : nan;
+            });
+        }
+        quantities.emplace_back("ke_ratio_total", [](const PointResult& r) { return r.ke_ratio_total; });
+        quantities.emplace_back("ke_ratio_total_ref", [](const PointResult& r) { return r.ke_ratio_total_ref; });
+        quantities.emplace_back("ke_ratio_per_grain", [](const PointResult& r) { return r.ke_ratio_per_grain; });
+        quantities.emplace_back("ke_ratio_per_grain_ref",
+                                [](const PointResult& r) { return r.ke_ratio_per_grain_ref; });
+        quantities.emplace_back("grain_updates_per_second",
+                                [](const PointResult& r) { return r.grain_updates_per_second; });
+
+        std::ostringstream out;
+        out << "mode,omega,froude,seeds,finished";
+        for (const auto& [name, get] : quantities) out << fmt::format(",{0}_mean,{0}_std,{0}_n", name);
+        out << '\n';
+        std::vector<bool> done(results.size(), false);
+        for (std::size_t i = 0; i < results.size(); ++i) {
+            if (done[i]) continue;
+            std::vector<const PointResult*> group;
+            for (std::size_t k = i; k < results.size(); ++k)
+                if (!done[k] && results[k].point.mode == results[i].point.mode &&
+                    results[k].point.omega == results[i].point.omega) {
+                    group.push_back(&results[k]);
+                    done[k] = true;
+                }
+            std::size_t finished = 0;
+            for (const PointResult* r : group) finished += has_numbers(*r);
+            const SweepPoint& p = results[i].point;
+            out << fmt::format("{},{},{},{},{}", p.mode, p.omega, p.froude, group.size(), finished);
+            for (const auto& [name, get] : quantities) {
+                std::vector<double> v;
+                for (const PointResult* r : group)
+                    if (has_numbers(*r))
+                        if (const double x = get(*r); std::isfinite(x)) v.push_back(x);
+                double mean = nan, sd = nan;
+                if (!v.empty()) {
+                    mean = 0.0;
+                    for (double x : v) mean += x;
+                    mean /= static_cast<double>(v.size());
+                }
+                if (v.size() > 1) {
+                    double ss = 0.0;
+                    for (double x : v) ss += (x - mean) * (x - mean);
+                    sd = std::sqrt(ss / static_cast<double>(v.size() - 1));
+                }
+                out << fmt::format(",{},{},{}", cell(mean), cell(sd), v.size());
+            }
+            out << '\n';
+        }
+        std::ofstream f(directory / "sweep_summary.csv", std::ios::trunc);
+        f << out.str();
+        if (!f) throw Error((directory / "sweep_summary.csv").string() + ": cannot write");
+    }
+    return missing;
+}
+
+}  // namespace tumble::io

@@ -1,0 +1,194 @@
+// SPDX-License-Identifier: MIT
+// tumble sweep (docs/SWEEP.md): the drum experiment over a list of rotation
+// speeds, modes and seeds. This header holds the parts that do not need the
+// command line: the sweep file, the expansion into points and their run
+// directories, the state of a point on disk (resume), the split of the
+// points over MPI ranks, the running of child processes, a small JSON
+// reader for the points' summary.json, and the aggregation into sweep.csv
+// and sweep_summary.csv.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/drum_config.hpp"
+
+namespace tumble::io {
+
+// ---------------------------------------------------------------- sweep file
+
+struct SweepSettings {
+    std::vector<double> speeds;                  // in speed_unit, file order
+    SpeedUnit speed_unit = SpeedUnit::rad_per_s;  // [sweep] omega / rpm / froude
+    std::vector<std::string> modes{"self", "two-component"};
+    std::vector<std::uint64_t> seeds{1};
+    double revolutions = 5.0;
+    std::size_t grains_two_component = 1000;
+    std::size_t grains_self = 458;
+    int samples_per_revolution = 20;
+    int snapshots_per_revolution = 0;  // per point; 0: none (a sweep keeps its directories small)
+    double diameter = 0.08;            // m: only to turn froude into omega (the drum's default diameter)
+    std::filesystem::path output = "sweep-out";
+};
+
+// Reads a sweep TOML file; ConfigError names file, key and reason.
+SweepSettings load_sweep_settings(const std::filesystem::path& file);
+
+// ---------------------------------------------------------------- points
+
+struct SweepPoint {
+    std::size_t index = 0;     // position in the plan (deterministic order)
+    std::string mode;          // "self" or "two-component"
+    double omega = 0.0;        // rad/s
+    double froude = 0.0;       // omega^2 R / g, R = diameter / 2
+    std::uint64_t seed = 0;
+    double revolutions = 0.0;
+    std::size_t grains = 0;
+    int samples_per_revolution = 20;
+    int snapshots_per_revolution = 0;
+    std::string name;          // e.g. "two-component_omega5.000_seed1"
+    std::filesystem::path directory;  // DIR/points/NAME
+};
+
+// "MODE_omegaW.WWW_seedS".
+std::string sweep_point_name(const std::string& mode, double omega, std::uint64_t seed);
+
+// All points, in the order: modes (file order), speeds (file order), seeds
+// (file order). Throws tumble::Error if two points would share a directory.
+std::vector<SweepPoint> expand_sweep(const SweepSettings& s, const std::filesystem::path& directory);
+
+// The arguments after the program name of the child run:
+// drum -q --mode M --omega W --seed S --revolutions R --grains G --samples K
+//      --snapshots P --out DIR --force
+std::vector<std::string> drum_arguments(const SweepPoint& p);
+
+// ---------------------------------------------------------------- state on disk
+
+// Files in a point's directory.
+inline constexpr const char* point_summary_file = "summary.json";
+inline constexpr const char* point_log_file = "log.txt";
+inline constexpr const char* point_failed_file = "failed.txt";  // written by the sweep when the child failed
+
+enum class PointState {
+    pending,     // no directory yet
+    unfinished,  // a directory without summary.json (interrupted): rerun from the start
+    failed,      // failed.txt (and no summary.json): rerun on resume
+    finished,    // summary.json: skipped
+};
+const char* to_string(PointState s);
+PointState point_state(const std::filesystem::path& point_directory);
+
+// The failure marker: "exit code N\njob TOKEN\n". The token tells a marker
+// of this MPI job from a stale one (empty outside MPI).
+void write_failure_marker(const std::filesystem::path& point_directory, int exit_code, const std::string& job);
+// The job token of the marker, or nullopt if there is none.
+std::optional<std::string> failure_marker_job(const std::filesystem::path& point_directory);
+
+// ---------------------------------------------------------------- MPI
+
+struct RankInfo {
+    int rank = 0;
+    int size = 1;
+    int local_size = 1;  // ranks on this node (for the default -j)
+    std::string job;     // shared by the ranks of one mpirun; empty if unknown
+    bool under_mpi() const { return size > 1; }
+};
+// From OMPI_COMM_WORLD_RANK/SIZE/LOCAL_SIZE, or PMI_RANK/PMI_SIZE (MPICH,
+// Intel MPI; MPI_LOCALNRANKS), and PMIX_NAMESPACE / OMPI_MCA_ess_base_jobid
+// / PMI_JOBID / SLURM_JOB_ID for the job token. `getenv` is injectable for tests.
+RankInfo detect_rank(const std::function<const char*(const char*)>& getenv);
+RankInfo detect_rank();
+
+// The indices of the points that `rank` of `size` runs: index % size == rank.
+std::vector<std::size_t> points_of_rank(std::size_t points, int rank, int size);
+
+// ---------------------------------------------------------------- child processes
+
+// Starts `argv` (argv[0] the program path) with stdout and stderr appended
+// to `log` and stdin from /dev/null; returns the pid. Throws tumble::Error
+// if the process cannot be started.
+int spawn_process(const std::vector<std::string>& argv, const std::filesystem::path& log);
+
+// Exit code of a finished child: its exit status, or 128 + signal.
+int decode_wait_status(int status);
+
+// The path of the running executable (/proc/self/exe).
+std::filesystem::path self_executable();
+
+struct PointJob {
+    std::size_t point;              // index into the plan
+    std::vector<std::string> argv;  // the full command line
+    std::filesystem::path log;      // stdout + stderr of the child
+};
+
+struct PointOutcome {
+    std::size_t point;
+    int exit_code;
+    double seconds;
+};
+
+// Runs `jobs` with up to `parallel` at once, in order. `on_start(job)` and
+// `on_finish(job, outcome)` are called from the calling thread. Returns the
+// outcomes in the order the jobs finished.
+std::vector<PointOutcome> run_jobs(const std::vector<PointJob>& jobs, unsigned parallel,
+                                   const std::function<void(const PointJob&)>& on_start,
+                                   const std::function<void(const PointJob&, const PointOutcome&)>& on_finish);
+
+// ---------------------------------------------------------------- JSON
+
+// A JSON value: null, bool, number, string, array or object (keys in file
+// order). Enough for summary.json; not a general-purpose library.
+struct Json {
+    enum class Type { null, boolean, number, string, array, object };
+    Type type = Type::null;
+    bool boolean = false;
+    double number = 0.0;
+    std::string string;
+    std::vector<Json> array;
+    std::vector<std::pair<std::string, Json>> object;
+
+    const Json* find(std::string_view key) const;  // nullptr if absent or not an object
+    // A number member, nullopt if absent or null; throws if of another type.
+    std::optional<double> number_at(std::string_view key) const;
+};
+
+// Parses one JSON document (RFC 8259, with \u escapes incl. surrogate pairs);
+// throws tumble::Error "NAME: line L, column C: reason" on malformed input.
+Json parse_json(std::string_view text, const std::string& name = "json");
+
+// ---------------------------------------------------------------- aggregation
+
+// The components of a mode, in column order.
+std::vector<std::string> components_of_mode(const std::string& mode);
+
+struct PointResult {
+    SweepPoint point;
+    PointState state = PointState::pending;
+    std::string note;  // why there are no numbers (failed, unreadable summary.json)
+    // Per component name: D, D_stderr, D_one_term, determined (NaN: null / absent).
+    struct Component {
+        double D, D_stderr, D_one_term;
+        bool determined;
+    };
+    std::map<std::string, Component> components;
+    double ke_ratio_total, ke_ratio_total_ref, ke_ratio_per_grain, ke_ratio_per_grain_ref;
+    double grain_updates_per_second;
+};
+
+// Reads the point's summary.json if it is finished (state and note otherwise).
+PointResult read_point_result(const SweepPoint& p);
+
+// Writes DIR/sweep.csv (one row per point, plan order) and
+// DIR/sweep_summary.csv (mean, standard deviation and count over seeds per
+// mode and omega). Returns the number of points without results.
+std::size_t write_sweep_tables(const std::filesystem::path& directory, const std::vector<PointResult>& results);
+
+}  // namespace tumble::io
