@@ -3,6 +3,8 @@
 // same input and seed give byte-identical output files.
 #include <gtest/gtest.h>
 
+#include "test_support.hpp"
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -14,43 +16,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int exit_code;
-    std::string output;  // stdout and stderr
-};
+using tumble::test_support::read_file;
+using Result = tumble::test_support::CommandResult;
 
 Result run_tumble(const std::string& arguments) {
-    const std::string command = std::string(TUMBLE_BINARY) + " " + arguments + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    std::string output;
-    char buffer[4096];
-    while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
-    const int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+    return tumble::test_support::run_command(std::string(TUMBLE_BINARY) + " " + arguments);
 }
 
-std::string read_file(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-class Cli : public ::testing::Test {
-protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("tumble-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    fs::path write(const std::string& name, const std::string& text) {
-        std::ofstream(dir_ / name) << text;
-        return dir_ / name;
-    }
-    fs::path dir_;
-};
+class Cli : public tumble::test_support::ScratchTest {};
 
 // A small, fast scenario: 60 grains of the paper's material 1 falling onto a
 // flat floor, with random velocities so the run exercises the RNG.

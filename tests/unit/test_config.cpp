@@ -4,6 +4,8 @@
 // input gives exactly the values written.
 #include <gtest/gtest.h>
 
+#include "test_support.hpp"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -100,21 +102,7 @@ void expect_error(const std::string& text, const std::string& key, const std::st
 }
 
 // A scratch directory per test for CSV files.
-class ConfigFiles : public ::testing::Test {
-protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("tumble-config-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    fs::path write(const std::string& name, const std::string& text) {
-        std::ofstream(dir_ / name) << text;
-        return dir_ / name;
-    }
-    fs::path dir_;
-};
+class ConfigFiles : public tumble::test_support::ScratchTest {};
 
 const fs::path examples = fs::path(TUMBLE_SOURCE_DIR) / "examples";
 

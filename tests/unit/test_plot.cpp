@@ -4,6 +4,8 @@
 // the file). Skipped where no python3 with numpy and matplotlib is found.
 #include <gtest/gtest.h>
 
+#include "test_support.hpp"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,20 +20,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int exit_code;
-    std::string output;  // stdout and stderr
-};
-
-Result run_command(const std::string& command) {
-    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-    if (!pipe) return {-1, "popen failed"};
-    std::string output;
-    char buffer[4096];
-    while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
-    const int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using Result = tumble::test_support::CommandResult;
+using tumble::test_support::run_command;
 
 std::string quoted(const fs::path& p) {
     std::string q(1, '\'');

@@ -5,6 +5,8 @@
 // last test runs the real command end to end.
 #include <gtest/gtest.h>
 
+#include "test_support.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -59,20 +61,8 @@ std::map<std::string, std::string> row_map(const std::vector<std::vector<std::st
     return out;
 }
 
-class Sweep : public ::testing::Test {
+class Sweep : public tumble::test_support::ScratchTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("tumble-sweep-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    fs::path write(const std::string& name, const std::string& text) {
-        fs::create_directories((dir_ / name).parent_path());
-        std::ofstream(dir_ / name) << text;
-        return dir_ / name;
-    }
     // Loads a sweep file expected to be refused; returns "KEY: REASON".
     std::string refusal(const std::string& text) {
         const fs::path f = write("bad.toml", text);
@@ -85,7 +75,6 @@ protected:
         ADD_FAILURE() << "accepted:\n" << text;
         return {};
     }
-    fs::path dir_;
 };
 
 // ------------------------------------------------------------ sweep file
@@ -540,19 +529,8 @@ TEST_F(Sweep, ReadsTheSummaryJsonOfARealAnalysis) {
 
 // ------------------------------------------------------------ end to end
 
-struct Result {
-    int exit_code;
-    std::string output;
-};
-
-Result run(const std::string& command) {
-    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-    std::string output;
-    char buffer[4096];
-    while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
-    const int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using Result = tumble::test_support::CommandResult;
+const auto run = tumble::test_support::run_command;
 
 // The tumble binary to test the sweep command with: TUMBLE_BINARY, or
 // TUMBLE_SWEEP_TEST_BINARY from the environment (a build with the command).

@@ -7,6 +7,8 @@
 // loop's own records.
 #include <gtest/gtest.h>
 
+#include "test_support.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -158,12 +160,9 @@ Readout read_with_vtk(const fs::path& dir, const std::vector<std::pair<std::stri
     std::ofstream(script) << reader_script;
     std::string command = python + " " + script.string();
     for (const auto& [tag, file] : files) command += " " + tag + "=" + file.string();
-    command += " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    char buffer[1 << 16];
-    while (std::fgets(buffer, sizeof buffer, pipe)) raw += buffer;
-    const int status = pclose(pipe);
-    EXPECT_EQ(status, 0) << raw;
+    const tumble::test_support::CommandResult result = tumble::test_support::run_command(command);
+    raw = result.output;
+    EXPECT_EQ(result.exit_code, 0) << raw;
     Readout out;
     std::istringstream lines(raw);
     std::string line;
@@ -177,17 +176,7 @@ Readout read_with_vtk(const fs::path& dir, const std::vector<std::pair<std::stri
     return out;
 }
 
-class VtkOutput : public ::testing::Test {
-protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("tumble-vtk-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    fs::path dir_;
-};
+class VtkOutput : public tumble::test_support::ScratchTest {};
 
 }  // namespace
 

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+// What several unit tests share: running a command, reading a file, and a
+// scratch directory per test.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace tumble::test_support {
+
+struct CommandResult {
+    int exit_code;       // -1 if the command did not exit normally
+    std::string output;  // stdout and stderr
+};
+
+// Runs a shell command line and collects what it prints.
+inline CommandResult run_command(const std::string& command) {
+    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+    if (!pipe) return {-1, "popen failed"};
+    std::string output;
+    char buffer[4096];
+    while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+    const int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+inline std::string read_file(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// A fresh directory per test, removed afterwards:
+// <tmp>/tumble-<suite>-<test>.
+class ScratchTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = std::filesystem::temp_directory_path() /
+               ("tumble-" + std::string(info->test_suite_name()) + "-" + info->name());
+        std::filesystem::remove_all(dir_);
+        std::filesystem::create_directories(dir_);
+    }
+    void TearDown() override { std::filesystem::remove_all(dir_); }
+    std::filesystem::path write(const std::string& name, const std::string& text) {
+        std::filesystem::create_directories((dir_ / name).parent_path());
+        std::ofstream(dir_ / name) << text;
+        return dir_ / name;
+    }
+    std::filesystem::path dir_;
+};
+
+}  // namespace tumble::test_support
