@@ -82,7 +82,9 @@ TEST(HertzCollisionConstant, IsFourFifthsBetaTwoFifthsOneHalf) {
     EXPECT_NEAR(hertz_duration_constant(), 2.943275, 1e-6);
 }
 
-struct HertzCase {
+// A head-on collision: sphere a (radius, material index) against sphere b
+// at relative speed v (m/s). Used by the Hertz and the restitution tests.
+struct CollisionCase {
     double Ra;
     int ma;
     double Rb;
@@ -90,17 +92,17 @@ struct HertzCase {
     double v;
 };
 
-std::ostream& operator<<(std::ostream& out, const HertzCase& k) {
+std::ostream& operator<<(std::ostream& out, const CollisionCase& k) {
     return out << "R " << k.Ra << " m (material " << k.ma + 1 << ") against R " << k.Rb << " m (material " << k.mb + 1
                << ") at " << k.v << " m/s";
 }
 
-class HertzCollision : public ::testing::TestWithParam<HertzCase> {};
+class HertzCollision : public ::testing::TestWithParam<CollisionCase> {};
 
 // Elastic spheres, no viscosity, attraction or friction: duration and
 // deepest overlap are Hertz's, and the kinetic energy comes back.
 TEST_P(HertzCollision, MatchesAnalyticDurationOverlapAndEnergy) {
-    const HertzCase k = GetParam();
+    const CollisionCase k = GetParam();
     const auto materials = paper_materials();
     const double E_star = e_star(materials[k.ma], materials[k.mb]);
     const double m_star = reduced(sphere_mass(1000.0, k.Ra), sphere_mass(1000.0, k.Rb));
@@ -128,8 +130,8 @@ TEST_P(HertzCollision, MatchesAnalyticDurationOverlapAndEnergy) {
 }
 
 INSTANTIATE_TEST_SUITE_P(PaperMaterials, HertzCollision,
-                         ::testing::Values(HertzCase{R1, 0, R1, 0, 1.0},   // 1-1 at 1 m/s
-                                           HertzCase{R1, 0, R2, 1, 0.3}),  // 1-2 at 0.3 m/s
+                         ::testing::Values(CollisionCase{R1, 0, R1, 0, 1.0},   // 1-1 at 1 m/s
+                                           CollisionCase{R1, 0, R2, 1, 0.3}),  // 1-2 at 0.3 m/s
                          [](const auto& info) { return info.index == 0 ? "Material11At1" : "Material12At0p3"; });
 
 // ---- Restitution with the paper's internal friction ----------------------
@@ -167,26 +169,13 @@ double reference_separation_speed(double m_star, double E_star, double B_star, d
     return 0.0;
 }
 
-struct RestitutionCase {
-    double Ra;
-    int ma;
-    double Rb;
-    int mb;
-    double v;
-};
-
-std::ostream& operator<<(std::ostream& out, const RestitutionCase& k) {
-    return out << "R " << k.Ra << " m (material " << k.ma + 1 << ") against R " << k.Rb << " m (material " << k.mb + 1
-               << ") at " << k.v << " m/s";
-}
-
-std::string restitution_case_name(const ::testing::TestParamInfo<RestitutionCase>& info) {
+std::string restitution_case_name(const ::testing::TestParamInfo<CollisionCase>& info) {
     static const char* names[] = {"Material11At0p1", "Material11At0p3", "Material11At1", "Material11At3",
                                   "Material12At1"};
     return names[info.index];
 }
 
-class Restitution : public ::testing::TestWithParam<RestitutionCase> {};
+class Restitution : public ::testing::TestWithParam<CollisionCase> {};
 
 // What to expect first. For material 1 at 1 m/s: m* = 9.8e-5 kg, Hertz time
 // 1.3 ms, but the viscous time m*/(2 B* sqrt(R* h_max)) is only 0.1 ms: the
@@ -200,7 +189,7 @@ class Restitution : public ::testing::TestWithParam<RestitutionCase> {};
 // after 40 t_c counts as e = 0 (the engine side then fails ASSERT separated,
 // since the reference says they do separate at these speeds).
 TEST_P(Restitution, MatchesIndependentIntegrationOfTheNormalEquation) {
-    const RestitutionCase k = GetParam();
+    const CollisionCase k = GetParam();
     const auto materials = paper_materials();
     const tumble::Material& a = materials[k.ma];
     const tumble::Material& b = materials[k.mb];
@@ -246,9 +235,9 @@ TEST_P(Restitution, MatchesIndependentIntegrationOfTheNormalEquation) {
 }
 
 INSTANTIATE_TEST_SUITE_P(PaperViscosity, Restitution,
-                         ::testing::Values(RestitutionCase{R1, 0, R1, 0, 0.1}, RestitutionCase{R1, 0, R1, 0, 0.3},
-                                           RestitutionCase{R1, 0, R1, 0, 1.0}, RestitutionCase{R1, 0, R1, 0, 3.0},
-                                           RestitutionCase{R1, 0, R2, 1, 1.0}),
+                         ::testing::Values(CollisionCase{R1, 0, R1, 0, 0.1}, CollisionCase{R1, 0, R1, 0, 0.3},
+                                           CollisionCase{R1, 0, R1, 0, 1.0}, CollisionCase{R1, 0, R1, 0, 3.0},
+                                           CollisionCase{R1, 0, R2, 1, 1.0}),
                          restitution_case_name);
 
 }  // namespace
