@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "cli/checkpointing.hpp"
+#include "io/checkpoint.hpp"
 #include "io/drum_config.hpp"
 
 namespace tumble::cli {
@@ -15,6 +17,7 @@ struct RunOptions {
     std::string output_directory;  // empty: the scenario's [output] directory
     bool force = false;            // overwrite an earlier run's output
     bool quiet = false;
+    CheckpointPolicy checkpoints;
 };
 int run_command(const RunOptions& options);
 
@@ -32,8 +35,16 @@ struct DrumOptions {
     bool force = false;
     bool quiet = false;
     bool plot = true;  // draw the figures at the end (tools/plot_drum.py)
+    CheckpointPolicy checkpoints;  // every_steps unused: see checkpoint_revolutions
+    double checkpoint_revolutions = 1.0;  // revolutions between checkpoints while turning; 0: not by revolutions
 };
 int drum_command(const DrumOptions& options);
+
+// tumble resume DIR: continue a run of `tumble run` or `tumble drum` from its
+// newest intact checkpoint (docs/CHECKPOINTS.md).
+int resume_command(const std::string& directory, bool quiet);
+int resume_run(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet);
+int resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet);
 
 // Re-analyse a drum run directory: summary.json, summary.txt.
 int analyze_command(const std::string& directory);

@@ -3,11 +3,14 @@
 // it, let the bed settle with the drum at rest, turn the drum at constant
 // speed for the asked number of revolutions while sampling <z> per
 // component, then analyse (tumble analyze). docs/DRUM.md explains it all.
+// Checkpoints on the way let `tumble resume DIR` continue an interrupted run
+// (docs/CHECKPOINTS.md).
 #include <cmath>
 #include <optional>
 
 #include <fmt/format.h>
 
+#include "cli/checkpointing.hpp"
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 #include "io/drum_output.hpp"
@@ -18,6 +21,8 @@
 #include "tumble/sim/simulation.hpp"
 
 namespace tumble::cli {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -46,6 +51,213 @@ std::vector<io::DrumComponent> components_of(const Simulation& sim, const std::s
     return out;
 }
 
+// What a drum run carries from one process to the next, besides the engine
+// state (kept in its checkpoints).
+struct DrumPlan {
+    io::DrumRunInfo info;
+    int snapshots_per_revolution = 0;
+    double settle_speed = 0.0;     // m/s
+    double settle_max_time = 0.0;  // s
+    double fall_time = 0.0;        // s: settle at least this long
+    double checkpoint_revolutions = 0.0;
+    bool plot = true;
+    bool quiet = false;
+    bool rotating = false;
+    std::int64_t rotation_start_step = 0;
+};
+
+void save_plan(io::CheckpointRecord& r, const DrumPlan& plan) {
+    r.set("command", std::string("drum"));
+    r.set("drum.run_info", io::drum_run_info_text(plan.info));
+    r.set("drum.snapshots_per_revolution", std::int64_t{plan.snapshots_per_revolution});
+    r.set("drum.settle_speed", plan.settle_speed);
+    r.set("drum.settle_max_time", plan.settle_max_time);
+    r.set("drum.fall_time", plan.fall_time);
+    r.set("drum.checkpoint_revolutions", plan.checkpoint_revolutions);
+    r.set("drum.plot", std::int64_t{plan.plot});
+    r.set("drum.rotating", std::int64_t{plan.rotating});
+    r.set("drum.rotation_start_step", plan.rotation_start_step);
+}
+
+DrumPlan load_plan(const io::CheckpointRecord& r) {
+    DrumPlan plan;
+    plan.info = io::parse_drum_run_info(r.text("drum.run_info"), r.source + " (drum.run_info)");
+    plan.snapshots_per_revolution = static_cast<int>(r.integer("drum.snapshots_per_revolution"));
+    plan.settle_speed = r.number("drum.settle_speed");
+    plan.settle_max_time = r.number("drum.settle_max_time");
+    plan.fall_time = r.number("drum.fall_time");
+    plan.checkpoint_revolutions = r.number("drum.checkpoint_revolutions");
+    plan.plot = r.integer("drum.plot") != 0;
+    plan.rotating = r.integer("drum.rotating") != 0;
+    plan.rotation_start_step = r.integer("drum.rotation_start_step");
+    return plan;
+}
+
+std::size_t grain_count(const Simulation& sim) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < sim.particles().size(); ++i) n += !sim.particles().is_kinematic(i);
+    return n;
+}
+
+// Settling and rotation from wherever `sim` stands, then the analysis.
+class DrumLoop {
+public:
+    DrumLoop(Simulation& sim, DrumPlan plan, fs::path dir, CheckpointPolicy policy, bool continuing)
+        : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)), period_(2.0 * pi / plan_.info.omega),
+          steps_(std::llround(plan_.info.revolutions * period_ / sim.dt())),
+          sample_every_(std::max<std::int64_t>(1, std::llround(period_ / plan_.info.samples_per_revolution / sim.dt()))),
+          snapshot_every_(plan_.snapshots_per_revolution > 0
+                              ? std::max<std::int64_t>(1, std::llround(period_ / plan_.snapshots_per_revolution / sim.dt()))
+                              : 0),
+          frame_{plan_.info.inner_length, plan_.info.inner_radius, 2, plan_.info.profile_bins, plan_.info.omega},
+          checkpoints_(dir_, with_revolutions(policy)),
+          series_(dir_ / "time_series.csv", sim.scenario().materials, continuing) {
+        if (continuing && plan_.rotating) drum_series_.emplace(dir_, plan_.info, true);
+    }
+
+    // snapshot_times: of the snapshots written before a resume.
+    int run(const std::vector<double>& snapshot_times) {
+        if (plan_.rotating && snapshot_every_) snapshots_.emplace(dir_, snapshot_times);
+        if (!plan_.rotating) {
+            if (settle() == Checkpointer::Due::and_stop) return checkpoints_.stopped(sim_.step_count());
+            start_rotation();
+        }
+        if (rotate() == Checkpointer::Due::and_stop) return checkpoints_.stopped(sim_.step_count());
+        return finish();
+    }
+
+private:
+    bool talk() const { return !plan_.quiet; }
+
+    CheckpointPolicy with_revolutions(CheckpointPolicy policy) const {
+        policy.every_steps = plan_.checkpoint_revolutions > 0.0
+                                 ? std::max<std::int64_t>(1, std::llround(plan_.checkpoint_revolutions * period_ / sim_.dt()))
+                                 : 0;
+        return policy;
+    }
+
+    // Settle with the drum at rest: at least fall_time, until the rms grain
+    // speed is below settle_speed, at most settle_max_time.
+    Checkpointer::Due settle() {
+        const std::int64_t check_every = std::max<std::int64_t>(1, std::llround(1e-3 / sim_.dt()));
+        Progress progress(std::llround(plan_.settle_max_time / sim_.dt()), grain_count(sim_), talk() && progress_wanted());
+        while (sim_.time() < plan_.settle_max_time) {
+            sim_.advance(check_every);
+            progress.update(sim_.step_count());
+            if (sim_.time() >= plan_.fall_time && rms_grain_speed(sim_.particles()) < plan_.settle_speed) {
+                plan_.info.settled = true;
+                break;
+            }
+            const auto due = checkpoints_.due(sim_.step_count(), 0);
+            if (due != Checkpointer::Due::no) checkpoint(false, 0.0);
+            if (due == Checkpointer::Due::and_stop) {
+                progress.finish();
+                return due;
+            }
+        }
+        progress.finish();
+        return Checkpointer::Due::no;
+    }
+
+    // Revolution N = 0 is the start of rotation.
+    void start_rotation() {
+        io::DrumRunInfo& info = plan_.info;
+        info.settle_time = sim_.time();
+        series_.write(sim_.observe());
+        info.fill_fraction = analysis::measure_drum(sim_.particles(), frame_).fill_fraction;
+        if (talk())
+            fmt::print("{} after {:.3g} s: rms grain speed {:.3g} m/s; fill fraction {:.3f}, solid fraction {:.3f}\n",
+                       info.settled ? "settled" : "warning: NOT settled", info.settle_time,
+                       rms_grain_speed(sim_.particles()), info.fill_fraction, info.solid_fraction);
+        sim_.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, info.omega, {0.0, 0.0, 0.0}});
+        plan_.rotating = true;
+        plan_.rotation_start_step = sim_.step_count();
+        io::write_drum_run_info(dir_ / "drum_run.toml", info);
+        drum_series_.emplace(dir_, info);
+        if (snapshot_every_) snapshots_.emplace(dir_);
+        if (talk()) {
+            fmt::print("rotating at {:.4g} rad/s (Froude {:.3g}) for {} revolutions: {} steps, {} samples per revolution\n",
+                       info.omega, info.froude, info.revolutions, steps_, info.samples_per_revolution);
+            if (info.revolutions < 10.0)
+                fmt::print("note: {} revolutions is a short run (the default is reduced so that it takes minutes); the "
+                           "paper's runs span tens of revolutions: --revolutions N\n",
+                           info.revolutions);
+        }
+        sample();
+        if (snapshot_every_) snapshots_->write(sim_);
+    }
+
+    Checkpointer::Due rotate() {
+        Progress progress(steps_, grain_count(sim_), talk() && progress_wanted());
+        for (std::int64_t k = sim_.step_count() - plan_.rotation_start_step + 1; k <= steps_; ++k) {
+            sim_.step();
+            if (k % sample_every_ == 0) sample();
+            if (snapshot_every_ && k % snapshot_every_ == 0) snapshots_->write(sim_);
+            progress.update(k);
+            const auto due = checkpoints_.due(sim_.step_count(), k);
+            if (due != Checkpointer::Due::no) checkpoint(false, progress.elapsed_seconds());
+            if (due == Checkpointer::Due::and_stop) {
+                progress.finish();
+                return due;
+            }
+        }
+        if (steps_ % sample_every_ != 0) sample();  // always end with the final state
+        progress.finish();
+        plan_.info.wall_seconds += progress.elapsed_seconds();
+        return Checkpointer::Due::no;
+    }
+
+    void sample() {
+        const double start = static_cast<double>(plan_.rotation_start_step) * sim_.dt();
+        const double revolutions = plan_.info.omega * (sim_.time() - start) / (2.0 * pi);
+        drum_series_->write(revolutions, sim_.time(), analysis::measure_drum(sim_.particles(), frame_));
+        series_.write(sim_.observe());
+    }
+
+    int finish() {
+        io::DrumRunInfo& info = plan_.info;
+        checkpoint(true, 0.0);
+        const double rotation_steps = static_cast<double>(steps_);
+        info.grain_updates_per_second =
+            info.wall_seconds > 0.0 ? static_cast<double>(grain_count(sim_)) * rotation_steps / info.wall_seconds : 0.0;
+        io::write_drum_run_info(dir_ / "drum_run.toml", info);
+        if (talk())
+            fmt::print("rotation simulated in {:.1f} s: {:.3g} grain updates/s ({:.1f} s per revolution)\n\n",
+                       info.wall_seconds, info.grain_updates_per_second, info.wall_seconds / info.revolutions);
+        const std::string summary = io::analyze_drum_run(dir_);
+        if (talk()) fmt::print("{}\nwritten to {}\n", summary, dir_.string());
+        // The figures are a convenience: a machine without matplotlib still
+        // has every number in the run directory.
+        if (plan_.plot && plot_command("run", {dir_.string()}, "", plan_.quiet) != 0)
+            fmt::print(stderr, "tumble drum: warning: the figures could not be drawn (tumble plot {})\n", dir_.string());
+        return 0;
+    }
+
+    // seconds: of rotation spent by this process so far.
+    void checkpoint(bool finished, double seconds) {
+        io::Checkpoint c{{}, sim_.scenario(), sim_.capture()};
+        DrumPlan now = plan_;
+        now.info.wall_seconds += seconds;
+        save_plan(c.record, now);
+        save_policy(c.record, checkpoints_.policy());
+        c.record.set("finished", std::int64_t{finished});
+        c.record.set("snapshot_times", snapshots_ ? snapshots_->times() : std::vector<double>{});
+        io::record_file_lengths(c.record, dir_, {"time_series.csv", "drum_series.csv", "profiles.csv"});
+        checkpoints_.write(c);
+    }
+
+    Simulation& sim_;
+    DrumPlan plan_;
+    fs::path dir_;
+    double period_;  // s per revolution
+    std::int64_t steps_, sample_every_, snapshot_every_;
+    analysis::DrumFrame frame_;
+    Checkpointer checkpoints_;
+    io::TimeSeriesWriter series_;
+    std::optional<io::DrumSeriesWriter> drum_series_;
+    std::optional<io::SnapshotSeries> snapshots_;
+};
+
 }  // namespace
 
 int drum_command(const DrumOptions& options) {
@@ -59,9 +271,9 @@ int drum_command(const DrumOptions& options) {
     DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed);
     if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
     Simulation sim(std::move(setup.scenario));
-    const double dt = sim.dt();
 
-    io::DrumRunInfo info;
+    DrumPlan plan;
+    io::DrumRunInfo& info = plan.info;
     info.mode = s.mode;
     info.omega = omega;
     info.froude = omega * omega * setup.wall.inner_radius / 9.81;
@@ -70,109 +282,48 @@ int drum_command(const DrumOptions& options) {
     info.wall_particles = setup.wall.particles.size();
     info.inner_radius = setup.wall.inner_radius;
     info.inner_length = setup.wall.inner_length;
-    info.dt = dt;
+    info.dt = sim.dt();
     info.samples_per_revolution = s.samples_per_revolution;
     info.profile_bins = s.profile_bins;
     info.components = components_of(sim, s.mode);
     double grain_volume = 0.0;
-    std::size_t grains = 0;
     for (std::size_t i = 0; i < sim.particles().size(); ++i)
-        if (!sim.particles().is_kinematic(i)) {
-            grain_volume += 4.0 / 3.0 * pi * std::pow(sim.particles().radius[i], 3);
-            ++grains;
-        }
+        if (!sim.particles().is_kinematic(i)) grain_volume += 4.0 / 3.0 * pi * std::pow(sim.particles().radius[i], 3);
     info.solid_fraction = grain_volume / (pi * info.inner_radius * info.inner_radius * info.inner_length);
+    plan.snapshots_per_revolution = s.snapshots_per_revolution;
+    plan.settle_speed = s.settle_speed;
+    plan.settle_max_time = s.settle_max_time;
+    plan.fall_time = 2.0 * std::sqrt(2.0 * s.geometry.diameter / 9.81);  // twice the time to fall the diameter
+    plan.checkpoint_revolutions = options.checkpoint_revolutions;
+    plan.plot = options.plot;
+    plan.quiet = options.quiet;
 
     io::prepare_output_directory(s.output, options.force);
-    const bool talk = !options.quiet;
-    if (talk)
+    if (!options.quiet) {
         fmt::print("tumble drum: {} mode, {} grains ({} {}, {} {}), {} wall particles, inner radius {:.4g} m, "
                    "length {:.4g} m; dt = {:.3g} s\n",
-                   s.mode, grains, info.components[0].grains, info.components[0].name, info.components[1].grains,
-                   info.components[1].name, info.wall_particles, info.inner_radius, info.inner_length, dt);
+                   s.mode, grain_count(sim), info.components[0].grains, info.components[0].name,
+                   info.components[1].grains, info.components[1].name, info.wall_particles, info.inner_radius,
+                   info.inner_length, sim.dt());
+        fmt::print("settling (rms grain speed below {} m/s, at most {} s)\n", s.settle_speed, s.settle_max_time);
+    }
+    DrumLoop loop(sim, std::move(plan), s.output, options.checkpoints, false);
+    return loop.run({});
+}
 
-    // Settle with the drum at rest: at least the time to fall the drum's
-    // diameter twice, until the rms grain speed is below settle_speed.
-    io::TimeSeriesWriter series(s.output / "time_series.csv", sim.scenario().materials);
-    const double fall_time = 2.0 * std::sqrt(2.0 * s.geometry.diameter / 9.81);
-    const std::int64_t check_every = std::max<std::int64_t>(1, std::llround(1e-3 / dt));
-    {
-        Progress progress(std::llround(s.settle_max_time / dt), grains, talk && progress_wanted());
-        if (talk) fmt::print("settling (rms grain speed below {} m/s, at most {} s)\n", s.settle_speed, s.settle_max_time);
-        while (sim.time() < s.settle_max_time) {
-            sim.advance(check_every);
-            progress.update(sim.step_count());
-            if (sim.time() >= fall_time && rms_grain_speed(sim.particles()) < s.settle_speed) {
-                info.settled = true;
-                break;
-            }
-        }
-        progress.finish();
-    }
-    info.settle_time = sim.time();
-    series.write(sim.observe());
-    analysis::DrumFrame frame{info.inner_length, info.inner_radius, 2, s.profile_bins, omega};
-    info.fill_fraction = analysis::measure_drum(sim.particles(), frame).fill_fraction;
-    if (talk)
-        fmt::print("{} after {:.3g} s: rms grain speed {:.3g} m/s; fill fraction {:.3f}, solid fraction {:.3f}\n",
-                   info.settled ? "settled" : "warning: NOT settled", info.settle_time,
-                   rms_grain_speed(sim.particles()), info.fill_fraction, info.solid_fraction);
-
-    // Rotate. Revolution N = 0 is the start of rotation.
-    sim.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, omega, {0.0, 0.0, 0.0}});
-    const double start = sim.time();
-    const double period = 2.0 * pi / omega;
-    const std::int64_t steps = std::llround(s.revolutions * period / dt);
-    const std::int64_t sample_every = std::max<std::int64_t>(1, std::llround(period / s.samples_per_revolution / dt));
-    const std::int64_t snapshot_every =
-        s.snapshots_per_revolution > 0
-            ? std::max<std::int64_t>(1, std::llround(period / s.snapshots_per_revolution / dt))
-            : 0;
-    std::optional<io::SnapshotSeries> snapshots;
-    if (snapshot_every) snapshots.emplace(s.output);
-    io::write_drum_run_info(s.output / "drum_run.toml", info);
-    io::DrumSeriesWriter drum_series(s.output, info);
-    if (talk) {
-        fmt::print("rotating at {:.4g} rad/s (Froude {:.3g}) for {} revolutions: {} steps, {} samples per revolution\n",
-                   omega, info.froude, s.revolutions, steps, s.samples_per_revolution);
-        if (s.revolutions < 10.0)
-            fmt::print("note: {} revolutions is a short run (the default is reduced so that it takes minutes); the "
-                       "paper's runs span tens of revolutions: --revolutions N\n",
-                       s.revolutions);
-    }
-    auto sample = [&] {
-        const double revolutions = omega * (sim.time() - start) / (2.0 * pi);
-        drum_series.write(revolutions, sim.time(), analysis::measure_drum(sim.particles(), frame));
-        series.write(sim.observe());
-    };
-    Progress progress(steps, grains, talk && progress_wanted());
-    sample();
-    if (snapshot_every) snapshots->write(sim);
-    for (std::int64_t k = 1; k <= steps; ++k) {
-        sim.step();
-        if (k % sample_every == 0) sample();
-        if (snapshot_every && k % snapshot_every == 0) snapshots->write(sim);
-        progress.update(k);
-    }
-    if (steps % sample_every != 0) sample();  // always end with the final state
-    progress.finish();
-    info.wall_seconds = progress.elapsed_seconds();
-    info.grain_updates_per_second =
-        info.wall_seconds > 0.0 ? static_cast<double>(grains) * static_cast<double>(steps) / info.wall_seconds : 0.0;
-    io::write_drum_run_info(s.output / "drum_run.toml", info);
-    if (talk)
-        fmt::print("rotation simulated in {:.1f} s: {:.3g} grain updates/s ({:.1f} s per revolution)\n\n",
-                   info.wall_seconds, info.grain_updates_per_second, info.wall_seconds / s.revolutions);
-    const std::string summary = io::analyze_drum_run(s.output);
-    if (talk) fmt::print("{}\nwritten to {}\n", summary, s.output.string());
-    if (options.plot) {
-        // The figures are a convenience: a machine without matplotlib still
-        // has every number in the run directory.
-        if (plot_command("run", {s.output.string()}, "", options.quiet) != 0)
-            fmt::print(stderr, "tumble drum: warning: the figures could not be drawn (tumble plot {})\n",
-                       s.output.string());
-    }
-    return 0;
+int resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
+    DrumPlan plan = load_plan(checkpoint.record);
+    plan.quiet = quiet;
+    Simulation sim(std::move(checkpoint.scenario));
+    sim.restore(std::move(checkpoint.state));
+    io::truncate_to_recorded_lengths(checkpoint.record, dir);
+    if (!quiet)
+        fmt::print("tumble resume: drum run at step {} (t = {:.6g} s, {})\n", sim.step_count(), sim.time(),
+                   plan.rotating ? fmt::format("{:.4g} revolutions",
+                                               plan.info.omega * (sim.time() - plan.info.settle_time) / (2.0 * pi))
+                                 : std::string("settling"));
+    DrumLoop loop(sim, std::move(plan), dir, load_policy(checkpoint.record), true);
+    return loop.run(checkpoint.record.numbers("snapshot_times"));
 }
 
 int analyze_command(const std::string& directory) {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The tumble command line: run, bench.
+// The tumble command line: run, bench, drum, analyze, plot, sweep, resume.
 #include <cstdio>
 #include <optional>
 
@@ -9,6 +9,20 @@
 #include "cli/commands.hpp"
 #include "cli/sweep_command.hpp"
 #include "tumble/core/error.hpp"
+
+namespace {
+
+// The checkpoint options that tumble run and tumble drum share.
+void add_checkpoint_options(CLI::App* command, tumble::cli::CheckpointPolicy& policy) {
+    command->add_option("--checkpoint-every-minutes", policy.every_minutes,
+                        "Wall-clock minutes between checkpoints (default 10; 0: not by the clock)")
+        ->check(CLI::NonNegativeNumber);
+    command->add_option("--stop-at-step", policy.stop_at_step,
+                        "Write a checkpoint and stop at this step (exit code 4; for batch time limits and tests)")
+        ->check(CLI::PositiveNumber);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     using namespace tumble::cli;
@@ -23,6 +37,9 @@ int main(int argc, char** argv) {
     run_cmd->add_option("-o,--out", run.output_directory, "Output directory (default: the scenario's [output] directory)");
     run_cmd->add_flag("--force", run.force, "Overwrite the output of an earlier run in that directory");
     run_cmd->add_flag("-q,--quiet", run.quiet, "Print nothing but errors");
+    add_checkpoint_options(run_cmd, run.checkpoints);
+    run_cmd->add_option("--checkpoint-every-steps", run.checkpoints.every_steps, "Steps between checkpoints (default: none)")
+        ->check(CLI::NonNegativeNumber);
 
     BenchOptions bench;
     CLI::App* bench_cmd = app.add_subcommand("bench", "Speed on the paper's dense periodic cube (SPEC-NOTES \"Speed\")");
@@ -66,6 +83,18 @@ int main(int argc, char** argv) {
     drum_cmd->add_flag("--force", drum.force, "Overwrite an earlier run in that directory");
     drum_cmd->add_flag("-q,--quiet", drum.quiet, "Print nothing but errors");
     drum_cmd->add_flag("!--no-plot", drum.plot, "Do not draw the figures at the end");
+    add_checkpoint_options(drum_cmd, drum.checkpoints);
+    drum_cmd->add_option("--checkpoint-every-revolutions", drum.checkpoint_revolutions,
+                         "Revolutions between checkpoints while the drum turns (default 1; 0: not by revolutions)")
+        ->check(CLI::NonNegativeNumber);
+
+    std::string resume_dir;
+    bool resume_quiet = false;
+    CLI::App* resume_cmd = app.add_subcommand(
+        "resume", "Continue an interrupted run (tumble run or drum) from its newest intact checkpoint "
+                  "(docs/CHECKPOINTS.md)");
+    resume_cmd->add_option("directory", resume_dir, "Run directory")->required();
+    resume_cmd->add_flag("-q,--quiet", resume_quiet, "Print nothing but errors");
 
     std::string analyze_dir;
     CLI::App* analyze_cmd = app.add_subcommand("analyze", "Analyse a drum run directory again (summary.json, summary.txt)");
@@ -101,6 +130,7 @@ int main(int argc, char** argv) {
         if (analyze_cmd->parsed()) return analyze_command(analyze_dir);
         if (plot_cmd->parsed()) return plot_command(plot_compare ? "compare" : "run", plot_inputs, plot_out);
         if (sweep_cmd->parsed()) return sweep_command(sweep);
+        if (resume_cmd->parsed()) return resume_command(resume_dir, resume_quiet);
         if (drum_cmd->parsed()) {
             tumble::io::DrumSettings& d = drum.settings;
             if (!drum_config.empty()) d = tumble::io::load_drum_settings(drum_config);

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
-// tumble run FILE: read a scenario, simulate it, write the output directory.
+// tumble run FILE: read a scenario, simulate it, write the output directory;
+// checkpoints on the way, so that `tumble resume DIR` can continue it.
 #include <cmath>
 #include <optional>
 
 #include <fmt/format.h>
 
+#include "cli/checkpointing.hpp"
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 #include "io/config.hpp"
@@ -14,11 +16,121 @@
 
 namespace tumble::cli {
 
+namespace fs = std::filesystem;
+
 namespace {
+
 // Steps between two samples at the given interval (s); 0 if never.
 std::int64_t every(double interval, double dt) {
     return interval > 0.0 ? std::max<std::int64_t>(1, std::llround(interval / dt)) : 0;
 }
+
+// What a run carries from one process to the next (kept in its checkpoints).
+struct RunPlan {
+    std::string scenario_file;
+    std::uint64_t seed = 0;
+    double duration = 0.0;  // s
+    std::int64_t steps = 0, sample_every = 0, snapshot_every = 0;
+    double wall_seconds = 0.0;  // spent by earlier processes
+    bool quiet = false;
+};
+
+void save_plan(io::CheckpointRecord& r, const RunPlan& plan) {
+    r.set("command", std::string("run"));
+    r.set("run.scenario_file", plan.scenario_file);
+    r.set("run.seed", static_cast<std::int64_t>(plan.seed));
+    r.set("run.duration", plan.duration);
+    r.set("run.steps", plan.steps);
+    r.set("run.sample_every", plan.sample_every);
+    r.set("run.snapshot_every", plan.snapshot_every);
+    r.set("run.wall_seconds", plan.wall_seconds);
+}
+
+RunPlan load_plan(const io::CheckpointRecord& r) {
+    RunPlan plan;
+    plan.scenario_file = r.text("run.scenario_file");
+    plan.seed = static_cast<std::uint64_t>(r.integer("run.seed"));
+    plan.duration = r.number("run.duration");
+    plan.steps = r.integer("run.steps");
+    plan.sample_every = r.integer("run.sample_every");
+    plan.snapshot_every = r.integer("run.snapshot_every");
+    plan.wall_seconds = r.number("run.wall_seconds");
+    return plan;
+}
+
+std::size_t free_particles(const Simulation& sim) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < sim.particles().size(); ++i) n += !sim.particles().is_kinematic(i);
+    return n;
+}
+
+// The run from wherever `sim` stands to the end.
+class RunLoop {
+public:
+    RunLoop(Simulation& sim, RunPlan plan, fs::path dir, CheckpointPolicy policy, bool continuing,
+            const std::vector<double>& snapshot_times)
+        : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)), checkpoints_(dir_, policy),
+          series_(dir_ / "time_series.csv", sim.scenario().materials, continuing) {
+        if (plan_.snapshot_every) snapshots_.emplace(dir_, snapshot_times);
+    }
+
+    int run() {
+        const bool talk = !plan_.quiet;
+        Progress progress(plan_.steps, free_particles(sim_), talk && progress_wanted());
+        while (sim_.step_count() < plan_.steps) {
+            sim_.step();
+            sample();
+            progress.update(sim_.step_count());
+            const auto due = checkpoints_.due(sim_.step_count(), sim_.step_count());
+            if (due == Checkpointer::Due::no) continue;
+            checkpoint(false, progress.elapsed_seconds());
+            if (due == Checkpointer::Due::and_stop) {
+                progress.finish();
+                return checkpoints_.stopped(sim_.step_count());
+            }
+        }
+        progress.finish();
+        if (!plan_.sample_every || plan_.steps % plan_.sample_every != 0) series_.write(sim_.observe());  // the final state
+        const double seconds = plan_.wall_seconds + progress.elapsed_seconds();
+        checkpoint(true, progress.elapsed_seconds());
+        io::write_run_json(dir_ / "run.json", sim_,
+                           {plan_.scenario_file, plan_.seed, plan_.duration, plan_.steps, seconds,
+                            sim_.particles().size(), free_particles(sim_)});
+        if (talk)
+            fmt::print("done in {:.1f} s ({:.3g} particle updates/s); output in {}\n", seconds,
+                       seconds > 0 ? static_cast<double>(free_particles(sim_)) * plan_.steps / seconds : 0.0,
+                       dir_.string());
+        return 0;
+    }
+
+    // The samples due at the current step (the first at step 0).
+    void sample() {
+        if (plan_.sample_every && sim_.step_count() % plan_.sample_every == 0) series_.write(sim_.observe());
+        if (plan_.snapshot_every && sim_.step_count() % plan_.snapshot_every == 0) snapshots_->write(sim_);
+    }
+
+private:
+    // seconds: spent by this process so far.
+    void checkpoint(bool finished, double seconds) {
+        io::Checkpoint c{{}, sim_.scenario(), sim_.capture()};
+        RunPlan now = plan_;
+        now.wall_seconds += seconds;
+        save_plan(c.record, now);
+        save_policy(c.record, checkpoints_.policy());
+        c.record.set("finished", static_cast<std::int64_t>(finished));
+        c.record.set("snapshot_times", snapshots_ ? snapshots_->times() : std::vector<double>{});
+        io::record_file_lengths(c.record, dir_, {"time_series.csv"});
+        checkpoints_.write(c);
+    }
+
+    Simulation& sim_;
+    RunPlan plan_;
+    fs::path dir_;
+    Checkpointer checkpoints_;
+    io::TimeSeriesWriter series_;
+    std::optional<io::SnapshotSeries> snapshots_;
+};
+
 }  // namespace
 
 int run_command(const RunOptions& options) {
@@ -27,47 +139,39 @@ int run_command(const RunOptions& options) {
     if (!options.output_directory.empty()) config.output.directory = options.output_directory;
     Simulation sim(std::move(config.scenario));
     const double dt = sim.dt();
-    const std::int64_t steps = std::llround(std::ceil(config.duration / dt - 1e-9));
-    const std::int64_t sample_every = every(config.output.time_series_interval, dt);
-    const std::int64_t snapshot_every = every(config.output.snapshot_interval, dt);
-    std::size_t free_particles = 0;
-    for (std::size_t i = 0; i < sim.particles().size(); ++i) free_particles += !sim.particles().is_kinematic(i);
+    RunPlan plan{options.scenario_file,
+                 config.seed,
+                 config.duration,
+                 std::llround(std::ceil(config.duration / dt - 1e-9)),
+                 every(config.output.time_series_interval, dt),
+                 every(config.output.snapshot_interval, dt),
+                 0.0,
+                 options.quiet};
 
     const auto& dir = config.output.directory;
     io::prepare_output_directory(dir, options.force);
-    io::TimeSeriesWriter series(dir / "time_series.csv", sim.scenario().materials);
-    const bool talk = !options.quiet;
-    if (talk) {
+    if (!options.quiet) {
         const TimeStepReport& t = sim.time_step_report();
         fmt::print("tumble run {}: {} particles ({} free), {} steps of {:.3g} s ({}; safe maximum {:.3g} s)\n",
-                   options.scenario_file, sim.particles().size(), free_particles, steps, dt,
+                   options.scenario_file, sim.particles().size(), free_particles(sim), plan.steps, dt,
                    t.automatic ? "chosen automatically" : "given", t.maximum);
     }
+    RunLoop loop(sim, plan, dir, options.checkpoints, false, {});
+    loop.sample();
+    return loop.run();
+}
 
-    std::optional<io::SnapshotSeries> snapshots;
-    if (snapshot_every) snapshots.emplace(dir);
-    auto sample = [&] {
-        if (sample_every && sim.step_count() % sample_every == 0) series.write(sim.observe());
-        if (snapshot_every && sim.step_count() % snapshot_every == 0) snapshots->write(sim);
-    };
-    Progress progress(steps, free_particles, talk && progress_wanted());
-    sample();
-    for (std::int64_t s = 0; s < steps; ++s) {
-        sim.step();
-        sample();
-        progress.update(s + 1);
-    }
-    progress.finish();
-    if (!sample_every || steps % sample_every != 0) series.write(sim.observe());  // always end with the final state
-
-    const double seconds = progress.elapsed_seconds();
-    io::write_run_json(dir / "run.json", sim,
-                       {options.scenario_file, config.seed, config.duration, steps, seconds, sim.particles().size(),
-                        free_particles});
-    if (talk)
-        fmt::print("done in {:.1f} s ({:.3g} particle updates/s); output in {}\n", seconds,
-                   seconds > 0 ? static_cast<double>(free_particles) * steps / seconds : 0.0, dir.string());
-    return 0;
+int resume_run(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
+    RunPlan plan = load_plan(checkpoint.record);
+    plan.quiet = quiet;
+    Simulation sim(std::move(checkpoint.scenario));
+    sim.restore(std::move(checkpoint.state));
+    io::truncate_to_recorded_lengths(checkpoint.record, dir);
+    if (!quiet)
+        fmt::print("tumble resume: run of {} at step {} of {} (t = {:.6g} s)\n", plan.scenario_file, sim.step_count(),
+                   plan.steps, sim.time());
+    RunLoop loop(sim, plan, dir, load_policy(checkpoint.record), true, checkpoint.record.numbers("snapshot_times"));
+    return loop.run();
 }
 
 }  // namespace tumble::cli

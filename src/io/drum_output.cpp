@@ -77,7 +77,7 @@ std::vector<double> column(const Csv& csv, const std::string& name, const fs::pa
 
 }  // namespace
 
-void write_drum_run_info(const fs::path& file, const DrumRunInfo& info) {
+std::string drum_run_info_text(const DrumRunInfo& info) {
     toml::array components;
     for (const DrumComponent& c : info.components)
         components.push_back(toml::table{{"name", c.name},
@@ -102,13 +102,21 @@ void write_drum_run_info(const fs::path& file, const DrumRunInfo& info) {
                         {"wall_seconds", info.wall_seconds},
                         {"grain_updates_per_second", info.grain_updates_per_second},
                         {"component", components}};
+    std::ostringstream text;
+    text << "# tumble drum run: what was run (read by `tumble analyze`)\n" << t << '\n';
+    return text.str();
+}
+
+void write_drum_run_info(const fs::path& file, const DrumRunInfo& info) {
     std::ofstream out = open_for_writing(file);
-    out << "# tumble drum run: what was run (read by `tumble analyze`)\n" << t << '\n';
+    out << drum_run_info_text(info);
     check_written(out, file);
 }
 
-DrumRunInfo read_drum_run_info(const fs::path& file) {
-    const toml::table t = parse_toml(read_text_file(file), file);
+DrumRunInfo read_drum_run_info(const fs::path& file) { return parse_drum_run_info(read_text_file(file), file); }
+
+DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
+    const toml::table t = parse_toml(text, file);
     const Reader r(file);
     DrumRunInfo info;
     info.mode = r.string(r.required(t, "", "mode"), "mode");
@@ -143,9 +151,12 @@ DrumRunInfo read_drum_run_info(const fs::path& file) {
     return info;
 }
 
-DrumSeriesWriter::DrumSeriesWriter(const fs::path& directory, const DrumRunInfo& info)
+DrumSeriesWriter::DrumSeriesWriter(const fs::path& directory, const DrumRunInfo& info, bool continuing)
     : series_path_(directory / "drum_series.csv"), profiles_path_(directory / "profiles.csv"),
-      series_(open_for_writing(series_path_)), profiles_(open_for_writing(profiles_path_)), inner_length_(info.inner_length) {
+      series_(continuing ? open_for_appending(series_path_) : open_for_writing(series_path_)),
+      profiles_(continuing ? open_for_appending(profiles_path_) : open_for_writing(profiles_path_)),
+      inner_length_(info.inner_length) {
+    if (continuing) return;
     series_ << "revolutions,time,angle_of_repose,fill_fraction,bed_centre_x,bed_centre_y";
     for (const DrumComponent& c : info.components)
         series_ << fmt::format(",grains_{0},mean_z_{0},mean_z_stderr_{0},kinetic_energy_{0},kinetic_per_grain_{0}",

@@ -47,10 +47,14 @@ struct DrumRunInfo {
 
 void write_drum_run_info(const std::filesystem::path& file, const DrumRunInfo& info);
 DrumRunInfo read_drum_run_info(const std::filesystem::path& file);
+// The same as TOML text (kept in checkpoints); `name` is used in messages.
+std::string drum_run_info_text(const DrumRunInfo& info);
+DrumRunInfo parse_drum_run_info(std::string_view text, const std::filesystem::path& name);
 
 class DrumSeriesWriter {
 public:
-    DrumSeriesWriter(const std::filesystem::path& directory, const DrumRunInfo& info);
+    // continuing: append to the files as they stand (a resumed run), no header.
+    DrumSeriesWriter(const std::filesystem::path& directory, const DrumRunInfo& info, bool continuing = false);
     void write(double revolutions, double time, const analysis::DrumState& state);
 
 private:

@@ -19,13 +19,20 @@ std::ofstream open_for_writing(const fs::path& file) {
     return out;
 }
 
+std::ofstream open_for_appending(const fs::path& file) {
+    std::ofstream out(file, std::ios::binary | std::ios::app);
+    if (!out) throw Error(file.string() + ": cannot open for appending");
+    return out;
+}
+
 void check_written(std::ofstream& out, const fs::path& file) {
     out.flush();
     if (!out) throw Error(file.string() + ": write failed (disk full or file system error)");
 }
 
-TimeSeriesWriter::TimeSeriesWriter(const fs::path& file, const std::vector<Material>& materials)
-    : path_(file), out_(open_for_writing(file)) {
+TimeSeriesWriter::TimeSeriesWriter(const fs::path& file, const std::vector<Material>& materials, bool continuing)
+    : path_(file), out_(continuing ? open_for_appending(file) : open_for_writing(file)) {
+    if (continuing) return;
     out_ << "time,step,kinetic_translational,kinetic_rotational,contact_energy,contacts,max_overlap_ratio,"
             "neighbor_builds";
     for (const Material& m : materials)
@@ -68,7 +75,10 @@ void prepare_output_directory(const fs::path& directory, bool overwrite) {
     std::error_code ec;
     if (fs::exists(directory / "time_series.csv", ec) && !overwrite)
         throw Error(directory.string() + ": holds the output of an earlier run; choose another directory or pass --force");
-    if (overwrite) fs::remove_all(directory / "snapshots", ec);
+    if (overwrite) {
+        fs::remove_all(directory / "snapshots", ec);
+        fs::remove_all(directory / "checkpoints", ec);
+    }
     fs::create_directories(directory, ec);
     if (ec) throw Error(directory.string() + ": cannot create the output directory: " + ec.message());
 }

@@ -21,12 +21,16 @@ namespace tumble::io {
 
 // Opens a file for writing (truncating it), or tumble::Error naming it.
 std::ofstream open_for_writing(const std::filesystem::path& file);
+// Opens a file for appending (after a resume), or tumble::Error naming it.
+std::ofstream open_for_appending(const std::filesystem::path& file);
 // Flushes and reports a failed write (disk full, ...) as tumble::Error naming the file.
 void check_written(std::ofstream& out, const std::filesystem::path& file);
 
 class TimeSeriesWriter {
 public:
-    TimeSeriesWriter(const std::filesystem::path& file, const std::vector<Material>& materials);
+    // continuing: append to the file as it stands (a resumed run), no header.
+    TimeSeriesWriter(const std::filesystem::path& file, const std::vector<Material>& materials,
+                     bool continuing = false);
     void write(const Observables& o);
 
 private:
@@ -38,7 +42,7 @@ private:
 std::filesystem::path write_snapshot(const std::filesystem::path& directory, int number, const Simulation& sim);
 
 // Creates the output directory. Refuses (tumble::Error) one that already holds
-// a run, unless `overwrite`.
+// a run, unless `overwrite` (which also removes its snapshots and checkpoints).
 void prepare_output_directory(const std::filesystem::path& directory, bool overwrite);
 
 struct RunSummary {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "io/vtk_output.hpp"
 #include "tumble/sim/simulation.hpp"
@@ -16,13 +17,18 @@ namespace tumble::io {
 
 class SnapshotSeries {
 public:
-    explicit SnapshotSeries(const std::filesystem::path& directory);
+    // earlier_times: the times of the snapshots a resumed run has already
+    // written (their files are kept; the indexes are rewritten to list them).
+    explicit SnapshotSeries(const std::filesystem::path& directory, const std::vector<double>& earlier_times = {});
     void write(const Simulation& sim);
+    const std::vector<double>& times() const { return times_; }
 
 private:
+    void add_to_indexes(double time);
+
     std::filesystem::path directory_;
     PvdIndex particles_, contacts_;
-    int next_ = 0;
+    std::vector<double> times_;
 };
 
 }  // namespace tumble::io

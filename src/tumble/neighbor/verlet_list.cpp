@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <unordered_map>
+#include <utility>
 
 #include "tumble/neighbor/candidate_pairs.hpp"
 
@@ -70,6 +71,12 @@ void VerletList::rebuild(ParticleStore& p) {
 
     position_at_build_ = p.position;
     ++builds_;
+}
+
+void VerletList::restore(NeighborState state) {
+    pairs_ = std::move(state.pairs);
+    position_at_build_ = std::move(state.position_at_build);
+    builds_ = state.builds;
 }
 
 }  // namespace tumble

@@ -14,6 +14,7 @@
 #include "tumble/neighbor/periodic_images.hpp"
 #include "tumble/particles/particle_store.hpp"
 #include "tumble/sim/scenario.hpp"
+#include "tumble/sim/simulation_state.hpp"
 
 namespace tumble {
 
@@ -32,6 +33,10 @@ public:
     const PeriodicImages& images() const { return images_; }
     double skin() const { return skin_; }
     std::int64_t builds() const { return builds_; }
+
+    // The list as it stands, and its restoration (for checkpoints).
+    NeighborState state() const { return {pairs_, position_at_build_, builds_}; }
+    void restore(NeighborState state);
 
 private:
     Domain domain_;

@@ -2,6 +2,7 @@
 #include "tumble/sim/simulation.hpp"
 
 #include <algorithm>
+#include <sstream>
 #include <utility>
 
 #include "tumble/core/error.hpp"
@@ -161,6 +162,62 @@ void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
     motions_[k] = {motion, time_};
     scenario_.motions[k] = motion;
     move_kinematic();
+}
+
+SimulationState Simulation::capture() const {
+    return {particles_, neighbors_.state(), wall_history_, motions_, dt_, time_, step_};
+}
+
+namespace {
+
+// Reason why a captured state cannot belong to a run of a scenario with n
+// particles, or empty.
+std::string state_problem(const SimulationState& s, std::size_t n) {
+    const ParticleStore& p = s.particles;
+    for (std::size_t size : {p.position.size(), p.velocity.size(), p.angular_velocity.size(), p.force.size(),
+                             p.torque.size(), p.radius.size(), p.inv_mass.size(), p.inv_inertia.size(), p.mass.size(),
+                             p.material.size(), p.motion.size(), p.tag.size(), p.reference_position.size(),
+                             p.image_shift.size()})
+        if (size != n || p.size() != n)
+            return "it holds " + std::to_string(p.size()) + " particles (or fields of unequal length), the scenario " +
+                   std::to_string(n);
+    std::vector<bool> seen(n, false);
+    for (std::int64_t id : p.id) {
+        if (id < 0 || static_cast<std::size_t>(id) >= n || seen[static_cast<std::size_t>(id)])
+            return "the particle ids are not the numbers 0 .. " + std::to_string(n - 1) + " each once";
+        seen[static_cast<std::size_t>(id)] = true;
+    }
+    const PairList& pairs = s.neighbors.pairs;
+    if (pairs.second.size() != pairs.size() || pairs.image.size() != pairs.size() || pairs.history.size() != pairs.size())
+        return "the neighbour pairs have fields of unequal length";
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+        if (pairs.first[k] >= n || pairs.second[k] >= n || pairs.image[k] >= 27)
+            return "neighbour pair " + std::to_string(k) + " refers to a particle or image that does not exist";
+    if (s.neighbors.position_at_build.size() != n) return "the positions at the last neighbour build do not match";
+    if (s.step < 0 || s.time != static_cast<double>(s.step) * s.dt) return "its time is not its step times its dt";
+    return "";
+}
+
+}  // namespace
+
+void Simulation::restore(SimulationState state) {
+    std::string why = state_problem(state, particles_.size());
+    if (why.empty() && state.dt != dt_) {
+        std::ostringstream text;
+        text.precision(17);
+        text << "its time step " << state.dt << " s differs from the scenario's " << dt_ << " s";
+        why = text.str();
+    }
+    if (why.empty() && state.wall_history.size() != wall_history_.size()) why = "its wall-contact history does not match the domain";
+    if (why.empty() && state.motions.size() != motions_.size()) why = "its number of prescribed motions differs";
+    if (!why.empty()) throw Error("restoring a simulation state: " + why);
+    particles_ = std::move(state.particles);
+    neighbors_.restore(std::move(state.neighbors));
+    wall_history_ = std::move(state.wall_history);
+    motions_ = std::move(state.motions);
+    for (std::size_t k = 0; k < motions_.size(); ++k) scenario_.motions[k] = motions_[k].motion;
+    time_ = state.time;
+    step_ = state.step;
 }
 
 Observables Simulation::observe() const {

@@ -12,6 +12,7 @@
 #include "tumble/neighbor/verlet_list.hpp"
 #include "tumble/particles/particle_store.hpp"
 #include "tumble/sim/scenario.hpp"
+#include "tumble/sim/simulation_state.hpp"
 
 namespace tumble {
 
@@ -65,6 +66,14 @@ public:
     const VerletList& neighbors() const { return neighbors_; }
     Observables observe() const;
 
+    // The state of the run (simulation_state.hpp), and its restoration into
+    // a Simulation built from the same scenario: afterwards the run goes on
+    // exactly as the captured one did. restore() checks that the state fits
+    // the scenario (particle count, ids, indices, time step) and throws
+    // tumble::Error with the reason if not.
+    SimulationState capture() const;
+    void restore(SimulationState state);
+
     // Replace prescribed motion k from now on; its particles continue from
     // where they are.
     void set_motion(std::size_t k, const RigidMotion& motion);
@@ -84,10 +93,6 @@ private:
     ParticleStore particles_;
     VerletList neighbors_;
     TimeStepReport time_step_report_;
-    struct MotionClock {
-        RigidMotion motion;
-        double start_time = 0.0;
-    };
     std::vector<MotionClock> motions_;
     double dt_ = 0.0;
     double time_ = 0.0;

@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: MIT
+#include "cli/checkpointing.hpp"
+
+#include <csignal>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+namespace tumble::cli {
+
+namespace {
+
+volatile std::sig_atomic_t stop_flag = 0;
+
+// Async-signal-safe: sets the flag, or on a second SIGINT leaves at once.
+extern "C" void on_stop_signal(int signal) {
+    if (stop_flag && signal == SIGINT) {
+        static const char message[] = "\ntumble: second interrupt: exiting at once, without a checkpoint\n";
+        [[maybe_unused]] const auto written = ::write(STDERR_FILENO, message, sizeof message - 1);
+        ::_exit(130);
+    }
+    stop_flag = 1;
+}
+
+}  // namespace
+
+void install_stop_signals() {
+    struct sigaction action {};
+    action.sa_handler = on_stop_signal;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, nullptr);
+    sigaction(SIGTERM, &action, nullptr);
+}
+
+bool stop_signalled() { return stop_flag != 0; }
+
+Checkpointer::Checkpointer(std::filesystem::path run_directory, CheckpointPolicy policy)
+    : directory_(std::move(run_directory)), policy_(policy), last_(std::chrono::steady_clock::now()) {
+    install_stop_signals();
+}
+
+Checkpointer::Due Checkpointer::due(std::int64_t step, std::int64_t steps_done) const {
+    if (stop_signalled() || (policy_.stop_at_step > 0 && step >= policy_.stop_at_step)) return Due::and_stop;
+    if (policy_.every_steps > 0 && steps_done > 0 && steps_done % policy_.every_steps == 0) return Due::yes;
+    const double minutes = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count() / 60.0;
+    return policy_.every_minutes > 0.0 && minutes >= policy_.every_minutes ? Due::yes : Due::no;
+}
+
+void Checkpointer::write(const io::Checkpoint& checkpoint) {
+    io::write_checkpoint(directory_, checkpoint);
+    last_ = std::chrono::steady_clock::now();
+}
+
+int Checkpointer::stopped(std::int64_t step) const {
+    fmt::print(stderr, "tumble: {} at step {}; checkpoint written. Continue with: tumble resume {}\n",
+               stop_signalled() ? "stopped by a signal" : "stopped as asked (--stop-at-step)", step,
+               directory_.string());
+    return exit_stopped;
+}
+
+void save_policy(io::CheckpointRecord& record, const CheckpointPolicy& policy) {
+    record.set("checkpoint.every_minutes", policy.every_minutes);
+    record.set("checkpoint.every_steps", policy.every_steps);
+}
+
+CheckpointPolicy load_policy(const io::CheckpointRecord& record) {
+    CheckpointPolicy policy;
+    policy.every_minutes = record.number("checkpoint.every_minutes");
+    policy.every_steps = record.integer("checkpoint.every_steps");
+    return policy;
+}
+
+}  // namespace tumble::cli

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// When a run writes its checkpoints (docs/CHECKPOINTS.md), and the signals
+// that make it stop cleanly: SIGINT or SIGTERM ask the run to write a
+// checkpoint at the next step it can and exit with exit_stopped; a second
+// SIGINT exits at once.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "io/checkpoint.hpp"
+
+namespace tumble::cli {
+
+// Exit codes besides 0 (done) and 2 (bad input or error; main.cpp).
+inline constexpr int exit_stopped = 4;   // stopped early with a checkpoint: `tumble resume DIR` continues
+inline constexpr int exit_blew_up = 5;   // the simulation became unphysical (see the diagnostic)
+
+struct CheckpointPolicy {
+    double every_minutes = 10.0;    // wall-clock minutes between checkpoints; 0: not by the clock
+    std::int64_t every_steps = 0;   // steps between checkpoints (drums: from revolutions); 0: not by steps
+    std::int64_t stop_at_step = 0;  // write a checkpoint and stop at this step of the simulation; 0: never
+};
+
+// Installs the SIGINT/SIGTERM handlers (once per process).
+void install_stop_signals();
+bool stop_signalled();
+
+class Checkpointer {
+public:
+    Checkpointer(std::filesystem::path run_directory, CheckpointPolicy policy);
+
+    enum class Due { no, yes, and_stop };
+    // Whether a checkpoint is due now: `step` is the simulation's step count,
+    // `steps_done` the steps counted for every_steps (e.g. since rotation began).
+    Due due(std::int64_t step, std::int64_t steps_done) const;
+    void write(const io::Checkpoint& checkpoint);
+    // Prints why the run stops and how to go on; returns exit_stopped.
+    int stopped(std::int64_t step) const;
+    const CheckpointPolicy& policy() const { return policy_; }
+
+private:
+    std::filesystem::path directory_;
+    CheckpointPolicy policy_;
+    std::chrono::steady_clock::time_point last_;
+};
+
+// The policy kept in a checkpoint record, and read back from it.
+void save_policy(io::CheckpointRecord& record, const CheckpointPolicy& policy);
+CheckpointPolicy load_policy(const io::CheckpointRecord& record);
+
+}  // namespace tumble::cli

@@ -1,0 +1,354 @@
+// SPDX-License-Identifier: MIT
+#include "io/checkpoint.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "io/binary.hpp"
+#include "io/toml_reader.hpp"
+
+namespace tumble::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Stored as they lie in memory (binary.hpp): no padding inside.
+static_assert(sizeof(Vec3) == 3 * sizeof(double));
+static_assert(sizeof(ContactHistory) == 2 * sizeof(double) + sizeof(Vec3));
+static_assert(sizeof(PairProperties) == 2 * sizeof(double));
+static_assert(sizeof(RigidMotion) == 3 * sizeof(Vec3) + sizeof(double));
+static_assert(sizeof(MotionClock) == sizeof(RigidMotion) + sizeof(double));
+
+constexpr std::string_view magic = "TUMBLECK";
+constexpr std::size_t header_size = magic.size() + sizeof(std::uint32_t) + sizeof(std::uint64_t);
+
+// ---- the record
+
+void put_record(ByteWriter& w, const CheckpointRecord& r) {
+    w.put(static_cast<std::uint64_t>(r.values().size()));
+    for (const auto& [key, value] : r.values()) {
+        w.put(key);
+        w.put(static_cast<std::uint8_t>(value.index()));
+        if (const auto* d = std::get_if<double>(&value)) w.put(*d);
+        if (const auto* i = std::get_if<std::int64_t>(&value)) w.put(*i);
+        if (const auto* s = std::get_if<std::string>(&value)) w.put(*s);
+        if (const auto* v = std::get_if<std::vector<double>>(&value)) w.put_array(*v);
+    }
+}
+
+CheckpointRecord get_record(ByteReader& r) {
+    CheckpointRecord record;
+    const std::size_t n = r.count(9, "record");
+    for (std::size_t k = 0; k < n; ++k) {
+        std::string key = r.get_string("record key");
+        switch (r.get<std::uint8_t>("record value kind")) {
+            case 0: record.set(key, r.get<double>("record number")); break;
+            case 1: record.set(key, r.get<std::int64_t>("record integer")); break;
+            case 2: record.set(key, r.get_string("record text")); break;
+            case 3: record.set(key, r.get_array<double>("record numbers")); break;
+            default: r.fail("record value \"" + key + "\": unknown kind");
+        }
+    }
+    return record;
+}
+
+// ---- the scenario
+
+void put_scenario(ByteWriter& w, const Scenario& s) {
+    w.put(static_cast<std::uint64_t>(s.materials.size()));
+    for (const Material& m : s.materials) {
+        w.put(m.name);
+        for (double v : {m.E, m.G, m.nu, m.xi, m.eta, m.rho, m.radius}) w.put(v);
+    }
+    w.put(static_cast<std::uint64_t>(s.pair_properties.size()));
+    for (const auto& row : s.pair_properties) w.put_array(row);
+    w.put(s.model.elastic);
+    w.put(s.model.viscous);
+    w.put(s.model.attraction);
+    w.put(static_cast<std::uint8_t>(s.model.shear));
+    w.put(s.model.twisting);
+    w.put(s.model.slip_velocity_regularisation);
+    w.put(s.domain.lo);
+    w.put(s.domain.hi);
+    for (int k = 0; k < 3; ++k) w.put(s.domain.periodic[k]);
+    for (int k = 0; k < 3; ++k) w.put(s.domain.walls[k]);
+    w.put(s.domain.wall_material);
+    w.put(s.gravity);
+    w.put(s.time_step.dt);
+    w.put(s.time_step.reference_speed);
+    w.put(s.time_step.allow_unsafe);
+    w.put(s.neighbor.skin);
+    w.put(static_cast<std::int32_t>(s.neighbor.sort_every));
+    w.put_array(s.motions);
+    w.put(static_cast<std::uint64_t>(s.particles.size()));
+    for (const ParticleSpec& p : s.particles) {
+        w.put(p.position);
+        w.put(p.velocity);
+        w.put(p.angular_velocity);
+        w.put(p.radius);
+        w.put(p.material);
+        w.put(p.motion);
+        w.put(p.tag);
+    }
+}
+
+Scenario get_scenario(ByteReader& r) {
+    Scenario s;
+    s.materials.resize(r.count(8 + 7 * sizeof(double), "materials"));
+    for (Material& m : s.materials) {
+        m.name = r.get_string("material name");
+        for (double* v : {&m.E, &m.G, &m.nu, &m.xi, &m.eta, &m.rho, &m.radius}) *v = r.get<double>("material");
+    }
+    s.pair_properties.resize(r.count(8, "pair table"));
+    for (auto& row : s.pair_properties) row = r.get_array<PairProperties>("pair table row");
+    s.model.elastic = r.get_bool("model");
+    s.model.viscous = r.get_bool("model");
+    s.model.attraction = r.get_bool("model");
+    const auto shear = r.get<std::uint8_t>("model shear");
+    if (shear > static_cast<std::uint8_t>(ShearModel::TangentialSpring)) r.fail("model shear: unknown shear model");
+    s.model.shear = static_cast<ShearModel>(shear);
+    s.model.twisting = r.get_bool("model");
+    s.model.slip_velocity_regularisation = r.get<double>("model");
+    s.domain.lo = r.get<Vec3>("domain");
+    s.domain.hi = r.get<Vec3>("domain");
+    for (int k = 0; k < 3; ++k) s.domain.periodic[k] = r.get_bool("domain periodic");
+    for (int k = 0; k < 3; ++k) s.domain.walls[k] = r.get_bool("domain walls");
+    s.domain.wall_material = r.get<std::int32_t>("domain wall material");
+    s.gravity = r.get<Vec3>("gravity");
+    s.time_step.dt = r.get<double>("time step");
+    s.time_step.reference_speed = r.get<double>("time step");
+    s.time_step.allow_unsafe = r.get_bool("time step");
+    s.neighbor.skin = r.get<double>("neighbour settings");
+    s.neighbor.sort_every = r.get<std::int32_t>("neighbour settings");
+    s.motions = r.get_array<RigidMotion>("motions");
+    s.particles.resize(r.count(3 * sizeof(Vec3) + sizeof(double) + 3 * sizeof(std::int32_t), "particles"));
+    for (ParticleSpec& p : s.particles) {
+        p.position = r.get<Vec3>("particle");
+        p.velocity = r.get<Vec3>("particle");
+        p.angular_velocity = r.get<Vec3>("particle");
+        p.radius = r.get<double>("particle");
+        p.material = r.get<std::int32_t>("particle");
+        p.motion = r.get<std::int32_t>("particle");
+        p.tag = r.get<std::int32_t>("particle");
+    }
+    return s;
+}
+
+// ---- the engine state
+
+void put_state(ByteWriter& w, const SimulationState& s) {
+    const ParticleStore& p = s.particles;
+    w.put_array(p.id);
+    for (const auto* field : {&p.position, &p.velocity, &p.angular_velocity, &p.force, &p.torque}) w.put_array(*field);
+    for (const auto* field : {&p.radius, &p.inv_mass, &p.inv_inertia, &p.mass}) w.put_array(*field);
+    for (const auto* field : {&p.material, &p.motion, &p.tag}) w.put_array(*field);
+    w.put_array(p.reference_position);
+    w.put_array(p.image_shift);
+    w.put_array(s.neighbors.pairs.first);
+    w.put_array(s.neighbors.pairs.second);
+    w.put_array(s.neighbors.pairs.image);
+    w.put_array(s.neighbors.pairs.history);
+    w.put_array(s.neighbors.position_at_build);
+    w.put(s.neighbors.builds);
+    w.put_array(s.wall_history);
+    w.put_array(s.motions);
+    w.put(s.dt);
+    w.put(s.time);
+    w.put(s.step);
+}
+
+SimulationState get_state(ByteReader& r) {
+    SimulationState s;
+    ParticleStore& p = s.particles;
+    p.id = r.get_array<std::int64_t>("particle ids");
+    for (auto* field : {&p.position, &p.velocity, &p.angular_velocity, &p.force, &p.torque})
+        *field = r.get_array<Vec3>("particle vectors");
+    for (auto* field : {&p.radius, &p.inv_mass, &p.inv_inertia, &p.mass}) *field = r.get_array<double>("particle scalars");
+    for (auto* field : {&p.material, &p.motion, &p.tag}) *field = r.get_array<std::int32_t>("particle indices");
+    p.reference_position = r.get_array<Vec3>("reference positions");
+    p.image_shift = r.get_array<Vec3>("image shifts");
+    s.neighbors.pairs.first = r.get_array<std::uint32_t>("neighbour pairs");
+    s.neighbors.pairs.second = r.get_array<std::uint32_t>("neighbour pairs");
+    s.neighbors.pairs.image = r.get_array<std::uint8_t>("neighbour pair images");
+    s.neighbors.pairs.history = r.get_array<ContactHistory>("contact history");
+    s.neighbors.position_at_build = r.get_array<Vec3>("positions at the last neighbour build");
+    s.neighbors.builds = r.get<std::int64_t>("neighbour builds");
+    s.wall_history = r.get_array<ContactHistory>("wall contact history");
+    s.motions = r.get_array<MotionClock>("motions");
+    s.dt = r.get<double>("dt");
+    s.time = r.get<double>("time");
+    s.step = r.get<std::int64_t>("step");
+    return s;
+}
+
+// NNNNNN of RUN/checkpoints/NNNNNN.tck, or -1 for another file.
+long checkpoint_number(const fs::path& file) {
+    const std::string stem = file.stem().string();
+    if (file.extension() != ".tck" || stem.size() != 6 || !std::all_of(stem.begin(), stem.end(), ::isdigit)) return -1;
+    return std::stol(stem);
+}
+
+[[noreturn]] void fail_with_errno(const fs::path& file, const char* what) {
+    throw Error(fmt::format("{}: {} failed: {}", file.string(), what, std::strerror(errno)));
+}
+
+// Writes `bytes` to `file` through file.tmp, fsync and rename (see the header).
+void write_durably(const fs::path& file, std::string_view bytes) {
+    const fs::path temporary = file.string() + ".tmp";
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) fail_with_errno(temporary, "opening for writing");
+    auto give_up = [&](const char* what) {
+        const int saved = errno;
+        ::close(fd);
+        ::unlink(temporary.c_str());
+        errno = saved;
+        fail_with_errno(temporary, what);
+    };
+    for (std::size_t done = 0; done < bytes.size();) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) give_up("writing (disk full?)");
+        done += static_cast<std::size_t>(n);
+    }
+    if (::fsync(fd) != 0) give_up("flushing to disk");
+    if (::close(fd) != 0) {
+        ::unlink(temporary.c_str());
+        fail_with_errno(temporary, "closing");
+    }
+    if (::rename(temporary.c_str(), file.c_str()) != 0) {
+        ::unlink(temporary.c_str());
+        fail_with_errno(file, "renaming into place");
+    }
+    const int dir = ::open(file.parent_path().c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dir >= 0) {
+        ::fsync(dir);  // the rename itself reaches the disk
+        ::close(dir);
+    }
+}
+
+}  // namespace
+
+template <class T>
+const T& CheckpointRecord::get(const std::string& key, const char* kind) const {
+    const auto found = values_.find(key);
+    if (found == values_.end()) throw Error(source + ": record key \"" + key + "\" is missing");
+    if (const T* v = std::get_if<T>(&found->second)) return *v;
+    throw Error(source + ": record key \"" + key + "\" is not " + kind);
+}
+template const double& CheckpointRecord::get<double>(const std::string&, const char*) const;
+template const std::int64_t& CheckpointRecord::get<std::int64_t>(const std::string&, const char*) const;
+template const std::string& CheckpointRecord::get<std::string>(const std::string&, const char*) const;
+template const std::vector<double>& CheckpointRecord::get<std::vector<double>>(const std::string&, const char*) const;
+
+std::string encode_checkpoint(const Checkpoint& c) {
+    ByteWriter payload;
+    put_record(payload, c.record);
+    put_scenario(payload, c.scenario);
+    put_state(payload, c.state);
+    ByteWriter file;
+    for (char ch : magic) file.put(ch);
+    file.put(checkpoint_format_version);
+    file.put(static_cast<std::uint64_t>(payload.bytes().size()));
+    std::string bytes = file.bytes() + payload.bytes();
+    ByteWriter checksum;
+    checksum.put(crc32(bytes));
+    return bytes + checksum.bytes();
+}
+
+Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
+    ByteReader header(bytes, name);
+    if (bytes.substr(0, magic.size()) != magic) header.fail("not a tumble checkpoint (no TUMBLECK at the start)");
+    for (std::size_t k = 0; k < magic.size(); ++k) header.get<char>("magic");
+    const auto version = header.get<std::uint32_t>("format version");
+    if (version != checkpoint_format_version)
+        header.fail(fmt::format("checkpoint format version {}, this tumble reads version {}", version,
+                                checkpoint_format_version));
+    const auto length = header.get<std::uint64_t>("payload length");
+    if (length != bytes.size() - std::min(bytes.size(), header_size + sizeof(std::uint32_t)))
+        header.fail(fmt::format("{} bytes, the header announces {} (truncated or damaged)", bytes.size(),
+                                header_size + length + sizeof(std::uint32_t)));
+    const std::string_view covered = bytes.substr(0, header_size + length);
+    ByteReader trailer(bytes.substr(covered.size()), name);
+    if (trailer.get<std::uint32_t>("checksum") != crc32(covered)) header.fail("checksum mismatch (damaged)");
+
+    ByteReader r(bytes.substr(header_size, length), name);
+    Checkpoint c;
+    c.record = get_record(r);
+    c.record.source = name;
+    c.scenario = get_scenario(r);
+    c.state = get_state(r);
+    if (!r.at_end()) r.fail("bytes left over after the state (damaged)");
+    return c;
+}
+
+std::vector<fs::path> checkpoint_files(const fs::path& run_directory) {
+    std::vector<fs::path> files;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(run_directory / "checkpoints", ec))
+        if (checkpoint_number(entry.path()) >= 0) files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+fs::path write_checkpoint(const fs::path& run_directory, const Checkpoint& checkpoint) {
+    const fs::path folder = run_directory / "checkpoints";
+    std::error_code ec;
+    fs::create_directories(folder, ec);
+    if (ec) throw Error(folder.string() + ": cannot create the checkpoint folder: " + ec.message());
+    std::vector<fs::path> old = checkpoint_files(run_directory);
+    const long number = old.empty() ? 1 : checkpoint_number(old.back()) + 1;
+    const fs::path file = folder / fmt::format("{:06d}.tck", number);
+    write_durably(file, encode_checkpoint(checkpoint));
+    old.push_back(file);
+    for (std::size_t k = 0; k + 2 < old.size(); ++k) fs::remove(old[k], ec);
+    return file;
+}
+
+LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory) {
+    LoadedCheckpoint loaded;
+    const std::vector<fs::path> files = checkpoint_files(run_directory);
+    for (auto file = files.rbegin(); file != files.rend(); ++file) {
+        try {
+            loaded.checkpoint = decode_checkpoint(read_text_file(*file), file->string());
+            loaded.file = *file;
+            return loaded;
+        } catch (const Error& e) {
+            loaded.rejected.push_back(e.what());
+        }
+    }
+    std::string reason = files.empty() ? "no checkpoints (RUN/checkpoints/NNNNNN.tck)" : "no intact checkpoint";
+    for (const std::string& why : loaded.rejected) reason += "\n  " + why;
+    throw Error(run_directory.string() + ": cannot resume: " + reason);
+}
+
+void record_file_lengths(CheckpointRecord& record, const fs::path& directory, std::initializer_list<const char*> names) {
+    for (const char* name : names) {
+        std::error_code ec;
+        const auto size = fs::file_size(directory / name, ec);
+        if (!ec) record.set(std::string("file:") + name, static_cast<std::int64_t>(size));
+    }
+}
+
+void truncate_to_recorded_lengths(const CheckpointRecord& record, const fs::path& directory) {
+    for (const auto& [key, value] : record.values()) {
+        if (key.rfind("file:", 0) != 0) continue;
+        const fs::path file = directory / key.substr(5);
+        const std::int64_t length = record.integer(key);
+        std::error_code ec;
+        const auto size = fs::file_size(file, ec);
+        if (ec || length < 0 || size < static_cast<std::uintmax_t>(length))
+            throw Error(file.string() + ": shorter than when the checkpoint was written (" + std::to_string(length) +
+                        " bytes); cannot resume");
+        fs::resize_file(file, static_cast<std::uintmax_t>(length), ec);
+        if (ec) throw Error(file.string() + ": cannot cut back to " + std::to_string(length) + " bytes: " + ec.message());
+    }
+}
+
+}  // namespace tumble::io

@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: MIT
+// Checkpoints of a run (docs/CHECKPOINTS.md): the scenario, the complete
+// engine state (tumble/sim/simulation_state.hpp) and a record of named values
+// in which the command keeps its settings and how far it got, including the
+// length of each output file at that moment.
+//
+// A file RUN/checkpoints/NNNNNN.tck (NNNNNN counts up) is
+//   "TUMBLECK"                 8 bytes, the magic
+//   format version             uint32 (checkpoint_format_version)
+//   payload length             uint64, bytes
+//   payload                    the record, the scenario, the state
+//   CRC-32 of all of the above uint32
+// all little-endian. It is written to NNNNNN.tck.tmp, flushed to the disk
+// (fsync), renamed into place and the directory flushed, so a crash while
+// writing leaves the previous checkpoint as it was; the newest two are kept.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <initializer_list>
+#include <map>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "tumble/sim/scenario.hpp"
+#include "tumble/sim/simulation_state.hpp"
+
+namespace tumble::io {
+
+inline constexpr std::uint32_t checkpoint_format_version = 1;
+
+// Named values; reading a missing key, or one of another kind, throws
+// tumble::Error naming the source (the checkpoint file) and the key.
+class CheckpointRecord {
+public:
+    using Value = std::variant<double, std::int64_t, std::string, std::vector<double>>;
+
+    void set(const std::string& key, Value value) { values_[key] = std::move(value); }
+    bool has(const std::string& key) const { return values_.count(key) != 0; }
+    double number(const std::string& key) const { return get<double>(key, "a number"); }
+    std::int64_t integer(const std::string& key) const { return get<std::int64_t>(key, "an integer"); }
+    const std::string& text(const std::string& key) const { return get<std::string>(key, "a text"); }
+    const std::vector<double>& numbers(const std::string& key) const {
+        return get<std::vector<double>>(key, "a list of numbers");
+    }
+    const std::map<std::string, Value>& values() const { return values_; }
+    std::string source;  // for messages: where the record was read from
+
+private:
+    template <class T>
+    const T& get(const std::string& key, const char* kind) const;
+
+    std::map<std::string, Value> values_;
+};
+
+struct Checkpoint {
+    CheckpointRecord record;
+    Scenario scenario;
+    SimulationState state;
+};
+
+// The bytes of a checkpoint file, and back. decode_checkpoint checks the
+// magic, the version, the length and the checksum before it reads anything,
+// and throws tumble::Error "NAME: reason" for a damaged or foreign file.
+std::string encode_checkpoint(const Checkpoint& checkpoint);
+Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name);
+
+// RUN/checkpoints/*.tck, oldest first.
+std::vector<std::filesystem::path> checkpoint_files(const std::filesystem::path& run_directory);
+
+// Writes the next checkpoint of the run (see above) and removes all but the
+// newest two. Returns its path; tumble::Error naming the file on failure
+// (disk full, no permission), with no partial file left under a valid name.
+std::filesystem::path write_checkpoint(const std::filesystem::path& run_directory, const Checkpoint& checkpoint);
+
+// The newest checkpoint that reads back intact; `rejected` gets a message for
+// each newer one that did not (damaged, truncated). tumble::Error if none.
+struct LoadedCheckpoint {
+    Checkpoint checkpoint;
+    std::filesystem::path file;
+    std::vector<std::string> rejected;
+};
+LoadedCheckpoint load_newest_checkpoint(const std::filesystem::path& run_directory);
+
+// Output files: keep the length of each (that exists) under "file:NAME", and
+// cut each file back to its recorded length when resuming, so that what the
+// interrupted run wrote after the checkpoint is written again, identically.
+void record_file_lengths(CheckpointRecord& record, const std::filesystem::path& directory,
+                         std::initializer_list<const char*> names);
+void truncate_to_recorded_lengths(const CheckpointRecord& record, const std::filesystem::path& directory);
+
+}  // namespace tumble::io

@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+// Everything that changes while a Simulation runs, as plain data: what a
+// checkpoint must hold so that a restored run continues bit for bit as the
+// original would have. The scenario (materials, domain, settings) is not
+// part of it; Simulation::restore() takes a state captured from a run of
+// the same scenario. No file format here: src/io/checkpoint.hpp writes it.
+//
+// Random numbers are drawn only while a scenario is built (generators,
+// drum filling), never while it runs, so there is no generator state to keep.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "tumble/neighbor/pair_list.hpp"
+#include "tumble/particles/particle_store.hpp"
+#include "tumble/sim/scenario.hpp"
+
+namespace tumble {
+
+// A prescribed motion and the time it began (set_motion() restarts it).
+struct MotionClock {
+    RigidMotion motion;
+    double start_time = 0.0;  // s
+};
+
+// The neighbour list as it stands: the pairs refer to array indices of the
+// particle store, in its current (sorted) order, so that the force loop
+// visits the pairs in the same order after a restore.
+struct NeighborState {
+    PairList pairs;
+    std::vector<Vec3> position_at_build;  // per array index, m
+    std::int64_t builds = 0;
+};
+
+struct SimulationState {
+    ParticleStore particles;                 // every field, in array order
+    NeighborState neighbors;
+    std::vector<ContactHistory> wall_history;  // 6 x global id + face; empty without walls
+    std::vector<MotionClock> motions;
+    double dt = 0.0;                         // s
+    double time = 0.0;                       // s
+    std::int64_t step = 0;
+};
+
+}  // namespace tumble
