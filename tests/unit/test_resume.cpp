@@ -1,0 +1,217 @@
+// SPDX-License-Identifier: MIT
+// tumble resume (docs/CHECKPOINTS.md): a run stopped, killed or interrupted
+// at any point and resumed ends with the same files, byte for byte, as the
+// run that was never interrupted.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "io/checkpoint.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tumble::test_support::read_file;
+
+// A drum small enough to settle and turn in a fraction of a second: 20
+// grains in a drum 3 cm long and across (173 wall spheres), 0.2 revolutions.
+// Settling ends near step 7700; the rotation has 6147 steps.
+const std::string small_drum =
+    " drum -q --mode self --grains 20 --length 0.03 --diameter 0.03 --omega 10 --samples 50 --snapshots 20 --no-plot";
+
+tumble::test_support::CommandResult tumble_run(const std::string& arguments) {
+    return tumble::test_support::run_command(std::string(TUMBLE_BINARY) + " " + arguments);
+}
+
+// The files whose bytes an interruption must not change (drum_run.toml and
+// the summary hold the wall-clock time, which does).
+const char* const drum_files[] = {"time_series.csv", "drum_series.csv", "profiles.csv", "particles.pvd",
+                                  "contacts.pvd"};
+
+class Resume : public tumble::test_support::ScratchTest {
+protected:
+    fs::path reference(const std::string& revolutions = "0.2") {
+        const fs::path out = dir_ / "reference";
+        const auto r = tumble_run(small_drum + " --revolutions " + revolutions + " --out " + out.string());
+        EXPECT_EQ(r.exit_code, 0) << r.output;
+        return out;
+    }
+    void expect_same_output(const fs::path& a, const fs::path& b) {
+        for (const char* name : drum_files) EXPECT_EQ(read_file(a / name), read_file(b / name)) << name;
+        std::size_t snapshots = 0;
+        for (const auto& entry : fs::directory_iterator(a / "snapshots")) {
+            EXPECT_EQ(read_file(entry.path()), read_file(b / "snapshots" / entry.path().filename()))
+                << entry.path().filename();
+            ++snapshots;
+        }
+        EXPECT_GT(snapshots, 0u);
+    }
+    // Starts tumble as a child process; its output goes to dir_/child.log.
+    pid_t start(const std::string& arguments) {
+        const std::string command = std::string("exec ") + TUMBLE_BINARY + " " + arguments + " > " +
+                                    (dir_ / "child.log").string() + " 2>&1";
+        const pid_t pid = fork();
+        if (pid == 0) {
+            execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+            _exit(127);
+        }
+        return pid;
+    }
+    // Waits until `file` exists (or 60 s).
+    static void wait_for(const fs::path& file) {
+        for (int k = 0; k < 6000 && !fs::exists(file); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    static int exit_code(pid_t pid) {
+        int status = 0;
+        waitpid(pid, &status, 0);
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+    }
+};
+
+TEST_F(Resume, StoppedAtAnyStepAndResumedGivesTheSameBytes) {
+    const fs::path full = reference();
+    // While settling, at the settling boundary, inside rotation between
+    // neighbour-list builds, and one step before the end.
+    for (const char* step : {"3000", "7700", "9001", "11111", "13000"}) {
+        const fs::path out = dir_ / (std::string("stop-") + step);
+        const auto stopped = tumble_run(small_drum + " --revolutions 0.2 --out " + out.string() + " --stop-at-step " + step);
+        ASSERT_EQ(stopped.exit_code, 4) << stopped.output;
+        EXPECT_NE(stopped.output.find("tumble resume " + out.string()), std::string::npos) << stopped.output;
+        const auto resumed = tumble_run("resume -q " + out.string());
+        ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+        expect_same_output(full, out);
+        const auto again = tumble_run("resume " + out.string());
+        EXPECT_EQ(again.exit_code, 0);
+        EXPECT_NE(again.output.find("has finished"), std::string::npos) << again.output;
+    }
+}
+
+TEST_F(Resume, ADamagedNewestCheckpointFallsBackToThePreviousOne) {
+    const fs::path full = reference();
+    const fs::path out = dir_ / "damaged";
+    const auto stopped = tumble_run(small_drum + " --revolutions 0.2 --checkpoint-every-revolutions 0.02 --out " +
+                                    out.string() + " --stop-at-step 11000");
+    ASSERT_EQ(stopped.exit_code, 4) << stopped.output;
+    const std::vector<fs::path> files = tumble::io::checkpoint_files(out);
+    ASSERT_EQ(files.size(), 2u);
+    std::string bytes = read_file(files.back());
+    bytes[bytes.size() / 2] ^= 1;
+    std::ofstream(files.back(), std::ios::binary | std::ios::trunc) << bytes;
+    const auto resumed = tumble_run("resume -q " + out.string());
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+    EXPECT_NE(resumed.output.find("checksum mismatch (damaged); using the previous checkpoint"), std::string::npos)
+        << resumed.output;
+    expect_same_output(full, out);
+}
+
+TEST_F(Resume, KilledMidRunAndResumedGivesTheSameBytes) {
+    // kill -9 after the second checkpoint: the files hold rows written after
+    // it, which the resume cuts back and writes again.
+    const fs::path full = reference("1");
+    const fs::path out = dir_ / "killed";
+    const pid_t child = start(small_drum + " --revolutions 1 --checkpoint-every-revolutions 0.05 --out " + out.string());
+    wait_for(out / "checkpoints" / "000003.tck");
+    kill(child, SIGKILL);
+    ASSERT_EQ(exit_code(child), -SIGKILL) << "the run ended before it was killed";
+    const auto resumed = tumble_run("resume -q " + out.string());
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+    expect_same_output(full, out);
+}
+
+TEST_F(Resume, KilledWhileWritingCheckpointsLeavesALoadableOne) {
+    // A checkpoint every 0.001 revolutions (15 steps): the process spends
+    // most of its time writing them (each is flushed to the disk), so the
+    // kills land inside writes.
+    const fs::path full = reference();
+    for (int delay_ms : {100, 170}) {
+        const fs::path out = dir_ / ("kill-" + std::to_string(delay_ms));
+        const pid_t child =
+            start(small_drum + " --revolutions 0.2 --checkpoint-every-revolutions 0.001 --out " + out.string());
+        wait_for(out / "checkpoints" / "000001.tck");
+        std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+        kill(child, SIGKILL);
+        ASSERT_EQ(exit_code(child), -SIGKILL) << "the run ended before it was killed";
+        const auto resumed = tumble_run("resume -q " + out.string());
+        ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+        expect_same_output(full, out);
+    }
+}
+
+TEST_F(Resume, SigintAndSigtermWriteACheckpointAndSayHowToGoOn) {
+    const fs::path full = reference("1");
+    for (int signal : {SIGINT, SIGTERM}) {
+        const fs::path out = dir_ / ("signal-" + std::to_string(signal));
+        const pid_t child = start(small_drum + " --revolutions 1 --checkpoint-every-revolutions 0.1 --out " + out.string());
+        wait_for(out / "checkpoints" / "000001.tck");
+        kill(child, signal);
+        EXPECT_EQ(exit_code(child), 4);
+        const std::string log = read_file(dir_ / "child.log");
+        EXPECT_NE(log.find("stopped by a signal"), std::string::npos) << log;
+        EXPECT_NE(log.find("tumble resume " + out.string()), std::string::npos) << log;
+        const auto resumed = tumble_run("resume -q " + out.string());
+        ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+        expect_same_output(full, out);
+    }
+}
+
+TEST_F(Resume, ScenarioRunsResumeToo) {
+    const fs::path scenario = write("box.toml", R"(
+[simulation]
+duration = 0.05
+[domain]
+lo = [-0.02, -0.02, 0.0]
+hi = [0.02, 0.02, 0.04]
+walls = [true, true, true]
+wall_material = "m"
+[[material]]
+name = "m"
+E = 1.0e6
+G = 0.3e6
+nu = 0.25
+xi = 500.0
+eta = 500.0
+rho = 1000.0
+radius = 0.0036
+[[pair]]
+materials = ["m", "m"]
+mu = 0.1
+W = 0.2
+[[particles]]
+kind = "random_fill"
+material = "m"
+lo = [-0.015, -0.015, 0.005]
+hi = [0.015, 0.015, 0.035]
+count = 30
+[output]
+time_series_interval = 0.001
+snapshot_interval = 0.01
+)");
+    const auto full = tumble_run("run -q " + scenario.string() + " --out " + (dir_ / "full").string());
+    ASSERT_EQ(full.exit_code, 0) << full.output;
+    const fs::path out = dir_ / "stopped";
+    const auto stopped = tumble_run("run -q " + scenario.string() + " --out " + out.string() + " --stop-at-step 1234");
+    ASSERT_EQ(stopped.exit_code, 4) << stopped.output;
+    const auto resumed = tumble_run("resume -q " + out.string());
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+    EXPECT_EQ(read_file(dir_ / "full" / "time_series.csv"), read_file(out / "time_series.csv"));
+    EXPECT_EQ(read_file(dir_ / "full" / "particles.pvd"), read_file(out / "particles.pvd"));
+    ASSERT_TRUE(fs::exists(out / "snapshots" / "000005.vtu"));
+    for (const char* snapshot : {"000005.csv", "000005.vtu", "000005.vtp"})
+        EXPECT_EQ(read_file(dir_ / "full" / "snapshots" / snapshot), read_file(out / "snapshots" / snapshot));
+}
+
+TEST_F(Resume, AnExistingRunDirectoryIsRefusedWithoutForce) {
+    const fs::path out = reference();
+    const auto again = tumble_run(small_drum + " --revolutions 0.2 --out " + out.string());
+    EXPECT_EQ(again.exit_code, 2);
+    EXPECT_NE(again.output.find("--force"), std::string::npos) << again.output;
+}
+
+}  // namespace
