@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "tumble/sim/simulation.hpp"
+
 namespace tumble::cli {
 
 namespace {
@@ -34,9 +36,27 @@ void install_stop_signals() {
 
 bool stop_signalled() { return stop_flag != 0; }
 
-Checkpointer::Checkpointer(std::filesystem::path run_directory, CheckpointPolicy policy)
-    : directory_(std::move(run_directory)), policy_(policy), last_(std::chrono::steady_clock::now()) {
+Checkpointer::Checkpointer(std::filesystem::path run_directory, CheckpointPolicy policy, HealthLimits limits)
+    : directory_(std::move(run_directory)), policy_(policy), limits_(limits), last_(std::chrono::steady_clock::now()) {
     install_stop_signals();
+}
+
+Checkpointer::Due Checkpointer::after_steps(const Simulation& sim, std::int64_t steps_done) {
+    constexpr std::int64_t health_every = 100;  // steps; the check costs about one force evaluation
+    const Due d = due(sim.step_count(), steps_done);
+    if (d != Due::no || sim.step_count() - checked_at_step_ >= health_every) check_health(sim);
+    return d;
+}
+
+void Checkpointer::check_health(const Simulation& sim) {
+    checked_at_step_ = sim.step_count();
+    const std::string problem = health_problem(sim, limits_);
+    if (problem.empty()) return;
+    std::vector<std::filesystem::path> kept = io::checkpoint_files(directory_);
+    throw BlewUp("the simulation blew up at " + problem + ". " +
+                 (kept.empty() ? std::string("No checkpoint was written before.")
+                               : "The last good checkpoint is kept: " + kept.back().string() + ".") +
+                 " Check the time step (docs/MODEL.md) and the input.");
 }
 
 Checkpointer::Due Checkpointer::due(std::int64_t step, std::int64_t steps_done) const {

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
-// When a run writes its checkpoints (docs/CHECKPOINTS.md), and the signals
-// that make it stop cleanly: SIGINT or SIGTERM ask the run to write a
-// checkpoint at the next step it can and exit with exit_stopped; a second
-// SIGINT exits at once.
+// When a run writes its checkpoints (docs/CHECKPOINTS.md), the signals that
+// make it stop cleanly, and the blow-up check: SIGINT or SIGTERM ask the run
+// to write a checkpoint at the next step it can and exit with exit_stopped;
+// a second SIGINT exits at once. Every 100 steps, and before each
+// checkpoint, the run is checked (tumble/sim/health.hpp); an unphysical one
+// stops with BlewUp, and its last checkpoint, written before, stays good.
 #pragma once
 
 #include <chrono>
@@ -11,6 +13,8 @@
 #include <string>
 
 #include "io/checkpoint.hpp"
+#include "tumble/core/error.hpp"
+#include "tumble/sim/health.hpp"
 
 namespace tumble::cli {
 
@@ -24,18 +28,25 @@ struct CheckpointPolicy {
     std::int64_t stop_at_step = 0;  // write a checkpoint and stop at this step of the simulation; 0: never
 };
 
+// The run became unphysical; what() is the diagnostic (main exits with exit_blew_up).
+class BlewUp : public Error {
+public:
+    using Error::Error;
+};
+
 // Installs the SIGINT/SIGTERM handlers (once per process).
 void install_stop_signals();
 bool stop_signalled();
 
 class Checkpointer {
 public:
-    Checkpointer(std::filesystem::path run_directory, CheckpointPolicy policy);
+    Checkpointer(std::filesystem::path run_directory, CheckpointPolicy policy, HealthLimits limits);
 
     enum class Due { no, yes, and_stop };
-    // Whether a checkpoint is due now: `step` is the simulation's step count,
-    // `steps_done` the steps counted for every_steps (e.g. since rotation began).
-    Due due(std::int64_t step, std::int64_t steps_done) const;
+    // After some steps: checks the run's health when due (throws BlewUp) and
+    // says whether a checkpoint is due. `steps_done` counts the steps for
+    // every_steps (e.g. since rotation began).
+    Due after_steps(const Simulation& sim, std::int64_t steps_done);
     void write(const io::Checkpoint& checkpoint);
     // Prints why the run stops and how to go on; returns exit_stopped.
     int stopped(std::int64_t step) const;
@@ -43,7 +54,13 @@ public:
 
 private:
     std::filesystem::path directory_;
+    Due due(std::int64_t step, std::int64_t steps_done) const;
+    void check_health(const Simulation& sim);
+
     CheckpointPolicy policy_;
+    HealthLimits limits_;
+    std::int64_t checked_at_step_ = 0;
+    std::filesystem::path last_written_;
     std::chrono::steady_clock::time_point last_;
 };
 

@@ -36,7 +36,8 @@ struct DrumOptions {
     bool quiet = false;
     bool plot = true;  // draw the figures at the end (tools/plot_drum.py)
     CheckpointPolicy checkpoints;  // every_steps unused: see checkpoint_revolutions
-    double checkpoint_revolutions = 1.0;  // revolutions between checkpoints while turning; 0: not by revolutions
+    double checkpoint_revolutions = 1.0;
+    bool allow_unsafe_dt = false;  // accept a --dt above the safe maximum (then only the blow-up check guards the run)  // revolutions between checkpoints while turning; 0: not by revolutions
 };
 int drum_command(const DrumOptions& options);
 

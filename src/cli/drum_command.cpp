@@ -93,6 +93,17 @@ DrumPlan load_plan(const io::CheckpointRecord& r) {
     return plan;
 }
 
+// The drum's scenario domain is the drum with a margin of one wall sphere: a
+// grain centre outside it has passed through the wall.
+HealthLimits drum_limits(const Scenario& s) {
+    HealthLimits limits = default_health_limits(s);
+    limits.bounded = {true, true, true};
+    limits.lo = s.domain.lo;
+    limits.hi = s.domain.hi;
+    limits.region = "the drum";
+    return limits;
+}
+
 std::size_t grain_count(const Simulation& sim) {
     std::size_t n = 0;
     for (std::size_t i = 0; i < sim.particles().size(); ++i) n += !sim.particles().is_kinematic(i);
@@ -110,7 +121,7 @@ public:
                               ? std::max<std::int64_t>(1, std::llround(period_ / plan_.snapshots_per_revolution / sim.dt()))
                               : 0),
           frame_{plan_.info.inner_length, plan_.info.inner_radius, 2, plan_.info.profile_bins, plan_.info.omega},
-          checkpoints_(dir_, with_revolutions(policy)),
+          checkpoints_(dir_, with_revolutions(policy), drum_limits(sim.scenario())),
           series_(dir_ / "time_series.csv", sim.scenario().materials, continuing) {
         if (continuing && plan_.rotating) drum_series_.emplace(dir_, plan_.info, true);
     }
@@ -148,7 +159,7 @@ private:
                 plan_.info.settled = true;
                 break;
             }
-            const auto due = checkpoints_.due(sim_.step_count(), 0);
+            const auto due = checkpoints_.after_steps(sim_, 0);
             if (due != Checkpointer::Due::no) checkpoint(false, 0.0);
             if (due == Checkpointer::Due::and_stop) {
                 progress.finish();
@@ -194,7 +205,7 @@ private:
             if (k % sample_every_ == 0) sample();
             if (snapshot_every_ && k % snapshot_every_ == 0) snapshots_->write(sim_);
             progress.update(k);
-            const auto due = checkpoints_.due(sim_.step_count(), k);
+            const auto due = checkpoints_.after_steps(sim_, k);
             if (due != Checkpointer::Due::no) checkpoint(false, progress.elapsed_seconds());
             if (due == Checkpointer::Due::and_stop) {
                 progress.finish();
@@ -270,6 +281,7 @@ int drum_command(const DrumOptions& options) {
 
     DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed);
     if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
+    setup.scenario.time_step.allow_unsafe = options.allow_unsafe_dt;
     Simulation sim(std::move(setup.scenario));
 
     DrumPlan plan;

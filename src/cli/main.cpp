@@ -78,6 +78,8 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("--diameter", diameter, "Inner diameter of the drum, m (default 0.08)");
     drum_cmd->add_option("--wall-radius", wall_radius, "Radius of the wall particles, m (default 0.003)");
     drum_cmd->add_option("--dt", dt, "Time step, s (default: chosen from the materials)");
+    drum_cmd->add_flag("--allow-unsafe-dt", drum.allow_unsafe_dt,
+                       "Accept a --dt above the safe maximum (experts and tests; the blow-up check still stops the run)");
     drum_cmd->add_option("--seed", seed, "Seed of the random filling");
     drum_cmd->add_option("-o,--out", out, "Run directory (default drum-out)");
     drum_cmd->add_flag("--force", drum.force, "Overwrite an earlier run in that directory");
@@ -154,6 +156,9 @@ int main(int argc, char** argv) {
             tumble::io::check_drum_settings(d, "command line");
             return drum_command(drum);
         }
+    } catch (const BlewUp& e) {
+        fmt::print(stderr, "tumble: error: {}\n", e.what());
+        return exit_blew_up;
     } catch (const tumble::Error& e) {
         fmt::print(stderr, "tumble: error: {}\n", e.what());
         return 2;

@@ -12,6 +12,7 @@
 #include "io/config.hpp"
 #include "io/output.hpp"
 #include "io/snapshots.hpp"
+#include "tumble/sim/health.hpp"
 #include "tumble/sim/simulation.hpp"
 
 namespace tumble::cli {
@@ -69,7 +70,7 @@ class RunLoop {
 public:
     RunLoop(Simulation& sim, RunPlan plan, fs::path dir, CheckpointPolicy policy, bool continuing,
             const std::vector<double>& snapshot_times)
-        : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)), checkpoints_(dir_, policy),
+        : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)), checkpoints_(dir_, policy, default_health_limits(sim.scenario())),
           series_(dir_ / "time_series.csv", sim.scenario().materials, continuing) {
         if (plan_.snapshot_every) snapshots_.emplace(dir_, snapshot_times);
     }
@@ -81,7 +82,7 @@ public:
             sim_.step();
             sample();
             progress.update(sim_.step_count());
-            const auto due = checkpoints_.due(sim_.step_count(), sim_.step_count());
+            const auto due = checkpoints_.after_steps(sim_, sim_.step_count());
             if (due == Checkpointer::Due::no) continue;
             checkpoint(false, progress.elapsed_seconds());
             if (due == Checkpointer::Due::and_stop) {

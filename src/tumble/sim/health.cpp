@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: MIT
+#include "tumble/sim/health.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace tumble {
+
+namespace {
+
+bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::ostream& operator<<(std::ostream& out, const Vec3& v) {
+    return out << '(' << v.x << ", " << v.y << ", " << v.z << ')';
+}
+
+// "particle 17 (free) at (x, y, z) m" for messages.
+std::string who(const ParticleStore& p, std::size_t i) {
+    std::ostringstream text;
+    text.precision(6);
+    text << "particle " << p.id[i] << (p.is_kinematic(i) ? " (kinematic)" : " (free)") << " at " << p.position[i] << " m";
+    return text.str();
+}
+
+std::string particle_problem(const ParticleStore& p, std::size_t i, const HealthLimits& limits) {
+    std::ostringstream text;
+    text.precision(6);
+    if (!finite(p.position[i]) || !finite(p.velocity[i]) || !finite(p.angular_velocity[i])) {
+        text << who(p, i) << " has a non-finite position, velocity or spin: v = " << p.velocity[i]
+             << " m/s, omega = " << p.angular_velocity[i] << " rad/s";
+        return text.str();
+    }
+    if (p.is_kinematic(i)) return "";
+    const double speed = norm(p.velocity[i]);
+    if (limits.max_speed > 0.0 && speed > limits.max_speed) {
+        text << who(p, i) << " moves at " << speed << " m/s, above the limit " << limits.max_speed
+             << " m/s: the kinetic energy has exploded";
+        return text.str();
+    }
+    for (int k = 0; k < 3; ++k)
+        if (limits.bounded[k] && (p.position[i][k] < limits.lo[k] || p.position[i][k] > limits.hi[k])) {
+            text << who(p, i) << " is outside " << limits.region << " (" << limits.lo << " to " << limits.hi << " m)";
+            return text.str();
+        }
+    return "";
+}
+
+std::string contact_problem(const Simulation& sim, const HealthLimits& limits) {
+    const ParticleStore& p = sim.particles();
+    const PairList& pairs = sim.neighbors().pairs();
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const std::uint32_t i = pairs.first[k], j = pairs.second[k];
+        const double distance = norm(p.position[i] - p.position[j] + sim.neighbors().images()[pairs.image[k]]);
+        const double overlap = p.radius[i] + p.radius[j] - distance;
+        const double ratio = overlap / std::min(p.radius[i], p.radius[j]);
+        if (ratio <= limits.max_overlap_ratio) continue;
+        std::ostringstream text;
+        text.precision(6);
+        text << "the contact of " << who(p, i) << " and " << who(p, j) << " overlaps " << overlap << " m, "
+             << ratio << " of the smaller radius, above the limit " << limits.max_overlap_ratio;
+        return text.str();
+    }
+    return "";
+}
+
+}  // namespace
+
+HealthLimits default_health_limits(const Scenario& s) {
+    HealthLimits limits;
+    limits.max_speed = 100.0 * s.time_step.reference_speed;
+    double largest = 0.0;
+    for (const ParticleSpec& p : s.particles) largest = std::max(largest, p.radius);
+    limits.bounded = s.domain.walls;
+    limits.lo = s.domain.lo - Vec3{largest, largest, largest};
+    limits.hi = s.domain.hi + Vec3{largest, largest, largest};
+    return limits;
+}
+
+std::string health_problem(const Simulation& sim, const HealthLimits& limits) {
+    std::string problem;
+    for (std::size_t i = 0; i < sim.particles().size() && problem.empty(); ++i)
+        problem = particle_problem(sim.particles(), i, limits);
+    if (problem.empty()) problem = contact_problem(sim, limits);
+    if (problem.empty()) return "";
+    std::ostringstream text;
+    text << "step " << sim.step_count() << " (t = " << sim.time() << " s): " << problem;
+    return text.str();
+}
+
+}  // namespace tumble
