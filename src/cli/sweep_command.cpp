@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "io/checkpoint.hpp"
 #include "io/sweep.hpp"
 #include "io/toml_reader.hpp"
 #include "tumble/core/error.hpp"
@@ -74,7 +75,8 @@ int sweep_command(const SweepOptions& o) {
              << io::read_text_file(o.sweep_file);
     }
 
-    // This rank's points: skip the finished ones, rerun the others from the start.
+    // This rank's points: skip the finished ones, resume the interrupted ones
+    // that have a checkpoint, run the others from the start.
     const fs::path binary = o.tumble_binary.empty() ? io::self_executable() : fs::path(o.tumble_binary);
     std::vector<io::PointJob> todo;
     std::size_t skipped = 0;
@@ -85,11 +87,13 @@ int sweep_command(const SweepOptions& o) {
             ++skipped;
             continue;
         }
+        const bool resume = s != io::PointState::pending && io::resumable(p.directory);
         if (s != io::PointState::pending && !o.quiet)
-            fmt::print("{}{}: {} before; running it again from the start\n", who, p.name, io::to_string(s));
+            fmt::print("{}{}: {} before; {}\n", who, p.name, io::to_string(s),
+                       resume ? "resuming it from its newest checkpoint" : "running it again from the start");
         fs::remove(p.directory / io::point_failed_file, ec);
         std::vector<std::string> argv{binary.string()};
-        for (std::string& a : io::drum_arguments(p)) argv.push_back(std::move(a));
+        for (std::string& a : resume ? io::resume_arguments(p) : io::drum_arguments(p)) argv.push_back(std::move(a));
         todo.push_back({i, std::move(argv), p.directory / io::point_log_file});
     }
     if (!o.quiet)

@@ -328,6 +328,14 @@ LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory) {
     throw Error(run_directory.string() + ": cannot resume: " + reason);
 }
 
+bool resumable(const fs::path& run_directory) {
+    try {
+        return load_newest_checkpoint(run_directory).checkpoint.record.integer("finished") == 0;
+    } catch (const Error&) {
+        return false;
+    }
+}
+
 void record_file_lengths(CheckpointRecord& record, const fs::path& directory, std::initializer_list<const char*> names) {
     for (const char* name : names) {
         std::error_code ec;

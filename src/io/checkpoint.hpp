@@ -84,6 +84,10 @@ struct LoadedCheckpoint {
 };
 LoadedCheckpoint load_newest_checkpoint(const std::filesystem::path& run_directory);
 
+// True if the run stopped before its end and has an intact checkpoint to go
+// on from (its record's "finished" is 0).
+bool resumable(const std::filesystem::path& run_directory);
+
 // Output files: keep the length of each (that exists) under "file:NAME", and
 // cut each file back to its recorded length when resuming, so that what the
 // interrupted run wrote after the checkpoint is written again, identically.

@@ -172,6 +172,8 @@ std::vector<std::string> drum_arguments(const SweepPoint& p) {
             "--force"};
 }
 
+std::vector<std::string> resume_arguments(const SweepPoint& p) { return {"resume", "-q", p.directory.string()}; }
+
 // ============================================================ state on disk
 
 const char* to_string(PointState s) {

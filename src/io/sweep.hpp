@@ -69,6 +69,9 @@ std::vector<SweepPoint> expand_sweep(const SweepSettings& s, const std::filesyst
 // drum -q --mode M --omega W --seed S --revolutions R --grains G --samples K
 //      --snapshots P --out DIR --force
 std::vector<std::string> drum_arguments(const SweepPoint& p);
+// The arguments that continue an interrupted point from its checkpoint:
+// resume -q DIR
+std::vector<std::string> resume_arguments(const SweepPoint& p);
 
 // ---------------------------------------------------------------- state on disk
 
@@ -79,8 +82,8 @@ inline constexpr const char* point_failed_file = "failed.txt";  // written by th
 
 enum class PointState {
     pending,     // no directory yet
-    unfinished,  // a directory without summary.json (interrupted): rerun from the start
-    failed,      // failed.txt (and no summary.json): rerun on resume
+    unfinished,  // a directory without summary.json (interrupted): resumed from its checkpoint, else rerun
+    failed,      // failed.txt (and no summary.json): as unfinished
     finished,    // summary.json: skipped
 };
 const char* to_string(PointState s);

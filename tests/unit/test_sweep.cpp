@@ -611,6 +611,50 @@ TEST_F(Sweep, EndToEndTinySweep) {
     EXPECT_EQ(point_state(broken), PointState::finished);
 }
 
+// An interrupted point with a checkpoint is resumed, not rerun, and ends
+// with the same series as a run that was never interrupted. One point of
+// 20 grains and 0.1 revolutions (settling ends at step 15840, the run at
+// 23319): a few seconds.
+TEST_F(Sweep, InterruptedPointResumesFromItsCheckpoint) {
+    const std::string bin = tumble_binary();
+    const fs::path file = write("one.toml", R"([sweep]
+omega = [5.0]
+modes = ["self"]
+seeds = [1]
+revolutions = 0.1
+grains_self = 20
+grains_two_component = 20
+snapshots_per_revolution = 0
+)");
+    const fs::path out = dir_ / "one";
+    const SweepPoint point = expand_sweep(load_sweep_settings(file), out)[0];
+    const fs::path reference = dir_ / "reference";
+    std::string drum, uninterrupted;
+    for (const std::string& a : drum_arguments(point)) {
+        drum += " " + a;
+        uninterrupted += " " + (a == point.directory.string() ? reference.string() : a);
+    }
+    ASSERT_EQ(run(bin + uninterrupted + " --no-plot").exit_code, 0);
+
+    const Result stopped = run(bin + drum + " --stop-at-step 20000");
+    ASSERT_EQ(stopped.exit_code, 4) << stopped.output;
+    EXPECT_EQ(point_state(point.directory), PointState::unfinished);
+    const Result r = run(bin + " sweep " + file.string() + " -o " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find(point.name + ": unfinished before; resuming it from its newest checkpoint"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(point_state(point.directory), PointState::finished);
+    for (const char* series : {"time_series.csv", "drum_series.csv", "profiles.csv"})
+        EXPECT_EQ(slurp(point.directory / series), slurp(reference / series)) << series;
+
+    // Finished, its last checkpoint says so: with summary.json removed the
+    // point is run again from the start, not resumed.
+    fs::remove(point.directory / "summary.json");
+    const Result again = run(bin + " sweep " + file.string() + " -o " + out.string());
+    EXPECT_NE(again.output.find("running it again from the start"), std::string::npos) << again.output;
+}
+
 // END TO END under mpirun (skipped without mpirun or the sweep command): two
 // ranks split the tiny sweep; rank 0 aggregates all four points.
 TEST_F(Sweep, EndToEndUnderMpirun) {
