@@ -1,16 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "io/checkpoint.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
 
 #include <fmt/format.h>
 
 #include "io/binary.hpp"
+#include "io/output.hpp"
 #include "io/toml_reader.hpp"
 
 namespace tumble::io {
@@ -195,44 +191,6 @@ long checkpoint_number(const fs::path& file) {
     return std::stol(stem);
 }
 
-[[noreturn]] void fail_with_errno(const fs::path& file, const char* what) {
-    throw Error(fmt::format("{}: {} failed: {}", file.string(), what, std::strerror(errno)));
-}
-
-// Writes `bytes` to `file` through file.tmp, fsync and rename (see the header).
-void write_durably(const fs::path& file, std::string_view bytes) {
-    const fs::path temporary = file.string() + ".tmp";
-    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) fail_with_errno(temporary, "opening for writing");
-    auto give_up = [&](const char* what) {
-        const int saved = errno;
-        ::close(fd);
-        ::unlink(temporary.c_str());
-        errno = saved;
-        fail_with_errno(temporary, what);
-    };
-    for (std::size_t done = 0; done < bytes.size();) {
-        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) give_up("writing (disk full?)");
-        done += static_cast<std::size_t>(n);
-    }
-    if (::fsync(fd) != 0) give_up("flushing to disk");
-    if (::close(fd) != 0) {
-        ::unlink(temporary.c_str());
-        fail_with_errno(temporary, "closing");
-    }
-    if (::rename(temporary.c_str(), file.c_str()) != 0) {
-        ::unlink(temporary.c_str());
-        fail_with_errno(file, "renaming into place");
-    }
-    const int dir = ::open(file.parent_path().c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dir >= 0) {
-        ::fsync(dir);  // the rename itself reaches the disk
-        ::close(dir);
-    }
-}
-
 }  // namespace
 
 template <class T>
@@ -305,7 +263,7 @@ fs::path write_checkpoint(const fs::path& run_directory, const Checkpoint& check
     std::vector<fs::path> old = checkpoint_files(run_directory);
     const long number = old.empty() ? 1 : checkpoint_number(old.back()) + 1;
     const fs::path file = folder / fmt::format("{:06d}.tck", number);
-    write_durably(file, encode_checkpoint(checkpoint));
+    write_file_atomically(file, encode_checkpoint(checkpoint));
     old.push_back(file);
     for (std::size_t k = 0; k + 2 < old.size(); ++k) fs::remove(old[k], ec);
     return file;

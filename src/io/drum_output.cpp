@@ -108,9 +108,7 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
 }
 
 void write_drum_run_info(const fs::path& file, const DrumRunInfo& info) {
-    std::ofstream out = open_for_writing(file);
-    out << drum_run_info_text(info);
-    check_written(out, file);
+    write_file_atomically(file, drum_run_info_text(info));
 }
 
 DrumRunInfo read_drum_run_info(const fs::path& file) { return parse_drum_run_info(read_text_file(file), file); }
@@ -377,12 +375,9 @@ std::string analyze_drum_run(const fs::path& dir) {
         for (const char* undefined : {"\"NaN\"", "\"nan\"", "\"-Infinity\"", "\"Infinity\"", "\"inf\"", "\"-inf\""})
             for (std::size_t at = json_text.find(undefined); at != std::string::npos; at = json_text.find(undefined))
                 json_text.replace(at, std::string(undefined).size(), "null");
-        std::ofstream json = open_for_writing(dir / "summary.json");
-        json << json_text << '\n';
-        check_written(json, dir / "summary.json");
-        std::ofstream txt = open_for_writing(dir / "summary.txt");
-        txt << text.str();
-        check_written(txt, dir / "summary.txt");
+        // summary.json last: its presence marks a finished run (tumble sweep).
+        write_file_atomically(dir / "summary.txt", text.str());
+        write_file_atomically(dir / "summary.json", json_text + '\n');
     }
     return text.str();
 }

@@ -1,8 +1,14 @@
 // SPDX-License-Identifier: MIT
 #include "io/output.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <numeric>
+#include <sstream>
 
 #include <fmt/format.h>
 #include <fmt/os.h>
@@ -23,6 +29,49 @@ std::ofstream open_for_appending(const fs::path& file) {
     std::ofstream out(file, std::ios::binary | std::ios::app);
     if (!out) throw Error(file.string() + ": cannot open for appending");
     return out;
+}
+
+namespace {
+[[noreturn]] void fail_with_errno(const fs::path& file, const char* what) {
+    throw Error(fmt::format("{}: {} failed: {}", file.string(), what, std::strerror(errno)));
+}
+}  // namespace
+
+void write_file_atomically(const fs::path& file, std::string_view bytes) {
+    const fs::path temporary = file.string() + ".tmp";
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) fail_with_errno(temporary, "opening for writing");
+    auto give_up = [&](const char* what) {
+        const int saved = errno;
+        ::close(fd);
+        ::unlink(temporary.c_str());
+        errno = saved;
+        fail_with_errno(temporary, what);
+    };
+    for (std::size_t done = 0; done < bytes.size();) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) give_up("writing (disk full?)");
+        done += static_cast<std::size_t>(n);
+    }
+    if (::fsync(fd) != 0) give_up("flushing to disk");
+    if (::close(fd) != 0) {
+        const int saved = errno;
+        ::unlink(temporary.c_str());
+        errno = saved;
+        fail_with_errno(temporary, "closing");
+    }
+    if (::rename(temporary.c_str(), file.c_str()) != 0) {
+        const int saved = errno;
+        ::unlink(temporary.c_str());
+        errno = saved;
+        fail_with_errno(file, "renaming into place");
+    }
+    const int dir = ::open(file.parent_path().empty() ? "." : file.parent_path().c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dir >= 0) {
+        ::fsync(dir);  // the rename itself reaches the disk
+        ::close(dir);
+    }
 }
 
 void check_written(std::ofstream& out, const fs::path& file) {
@@ -86,7 +135,7 @@ void prepare_output_directory(const fs::path& directory, bool overwrite) {
 void write_run_json(const fs::path& file, const Simulation& sim, const RunSummary& s) {
     const TimeStepReport& t = sim.time_step_report();
     const double updates = s.wall_seconds > 0.0 ? static_cast<double>(s.free_particles) * s.steps / s.wall_seconds : 0.0;
-    std::ofstream out = open_for_writing(file);
+    std::ostringstream out;
     out << "{\n"
         << fmt::format("  \"tumble_version\": \"{}\",\n", TUMBLE_VERSION)
         << fmt::format("  \"scenario\": \"{}\",\n", s.scenario_file)
@@ -100,7 +149,7 @@ void write_run_json(const fs::path& file, const Simulation& sim, const RunSummar
         << fmt::format("  \"neighbor_skin\": {},\n  \"neighbor_builds\": {},\n", sim.neighbors().skin(),
                        sim.neighbors().builds())
         << fmt::format("  \"wall_seconds\": {},\n  \"updates_per_second\": {}\n", s.wall_seconds, updates) << "}\n";
-    check_written(out, file);
+    write_file_atomically(file, out.str());
 }
 
 }  // namespace tumble::io

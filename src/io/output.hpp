@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tumble/sim/simulation.hpp"
@@ -23,6 +24,11 @@ namespace tumble::io {
 std::ofstream open_for_writing(const std::filesystem::path& file);
 // Opens a file for appending (after a resume), or tumble::Error naming it.
 std::ofstream open_for_appending(const std::filesystem::path& file);
+// Writes `bytes` to `file` so that no crash, kill or full disk leaves a
+// partial file under that name: into file.tmp, flushed to the disk (fsync),
+// renamed over `file`, the directory flushed. On failure the temporary file
+// is removed and tumble::Error names it and the reason (e.g. "File too large").
+void write_file_atomically(const std::filesystem::path& file, std::string_view bytes);
 // Flushes and reports a failed write (disk full, ...) as tumble::Error naming the file.
 void check_written(std::ofstream& out, const std::filesystem::path& file);
 
