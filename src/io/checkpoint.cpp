@@ -2,6 +2,7 @@
 #include "io/checkpoint.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -274,7 +275,7 @@ LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory) {
     const std::vector<fs::path> files = checkpoint_files(run_directory);
     for (auto file = files.rbegin(); file != files.rend(); ++file) {
         try {
-            loaded.checkpoint = decode_checkpoint(read_text_file(*file), file->string());
+            loaded.checkpoint = decode_checkpoint(read_text_file(*file, std::numeric_limits<std::size_t>::max()), file->string());
             loaded.file = *file;
             return loaded;
         } catch (const Error& e) {

@@ -38,9 +38,7 @@ ConfigError::ConfigError(const fs::path& file, std::string key, std::string reas
 
 namespace {
 
-// No block may produce more spheres than this (a guard against typos such
-// as counts = [1000, 1000, 1000]).
-constexpr std::int64_t max_particles_per_block = 50'000'000;
+constexpr auto max_particles = static_cast<std::int64_t>(max_scenario_particles);
 
 std::uint64_t splitmix64(std::uint64_t x) {
     x += 0x9e3779b97f4a7c15ULL;
@@ -352,6 +350,9 @@ private:
         }
     }
 
+    // Spheres that the blocks still to be read may add.
+    std::int64_t room() const { return max_particles - static_cast<std::int64_t>(config_.scenario.particles.size()); }
+
     std::vector<ParticleSpec> read_lattice(const toml::table& t, const std::string& p, const BlockDefaults& d) const {
         const std::int32_t material = required_material(t, p, d);
         const Vec3 origin = r_.required_vec3(t, p, "origin");
@@ -360,10 +361,10 @@ private:
         std::array<int, 3> counts{};
         std::int64_t total = 1;
         for (int k = 0; k < 3; ++k) {
-            counts[k] = static_cast<int>(r_.integer(*c.get(k), at(ckey, k), 1, max_particles_per_block));
+            counts[k] = static_cast<int>(r_.integer(*c.get(k), at(ckey, k), 1, max_particles));
             total *= counts[k];
-            if (total > max_particles_per_block)
-                r_.fail(ckey, fmt::format("more than {} spheres in one block", max_particles_per_block), t.get("counts"));
+            if (total > room())
+                r_.fail(ckey, fmt::format("more than {} spheres in the scenario", max_particles), t.get("counts"));
         }
         const double spacing = r_.required_number(t, p, "spacing", Bound::positive);
         std::vector<ParticleSpec> out = lattice(origin, counts, spacing, default_radius(d, material), material);
@@ -382,7 +383,9 @@ private:
                         fmt::format("must exceed lo along {} ({} <= {})", "xyz"[k], show(hi[k]), show(lo[k])),
                         t.get("hi"));
         const auto count = static_cast<std::size_t>(
-            r_.integer(r_.required(t, p, "count"), join(p, "count"), 1, max_particles_per_block));
+            r_.integer(r_.required(t, p, "count"), join(p, "count"), 1, max_particles));
+        if (static_cast<std::int64_t>(count) > room())
+            r_.fail(join(p, "count"), fmt::format("more than {} spheres in the scenario", max_particles), t.get("count"));
         double radius_min = default_radius(d, material), radius_max = radius_min;
         const auto rmin = r_.number(t, p, "radius_min", Bound::positive);
         const auto rmax = r_.number(t, p, "radius_max", Bound::positive);
@@ -514,6 +517,8 @@ private:
             else if (info.kind == "list") block = read_list(t, p, d);
             else block = read_csv(t, p, d, info);
 
+            if (static_cast<std::int64_t>(block.size()) > room())
+                r_.fail(p, fmt::format("more than {} spheres in the scenario", max_particles));
             if (d.speed) randomize_velocities(block, *d.speed, block_seed(config_.seed, b, Stream::velocities));
             s().particles.insert(s().particles.end(), block.begin(), block.end());
             blocks_.push_back(std::move(info));

@@ -31,6 +31,12 @@
 
 namespace tumble::io {
 
+// The most spheres a scenario may hold, all blocks and CSV files together: a
+// guard against typos such as counts = [1000, 1000, 1000] and against
+// running out of memory before anything is checked (10^7 spheres take about
+// 1 GB while the scenario is read). The same limit as tumble drum's grains.
+inline constexpr std::size_t max_scenario_particles = 10'000'000;
+
 struct OutputSettings {
     // Where a run writes; relative paths are relative to the working
     // directory of the run (not to the scenario file).

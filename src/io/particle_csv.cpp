@@ -10,6 +10,8 @@
 #include <sstream>
 #include <string_view>
 
+#include <fmt/format.h>
+
 #include "io/config.hpp"
 #include "io/names.hpp"
 
@@ -41,6 +43,30 @@ std::vector<std::string_view> split(std::string_view line) {
     }
 }
 
+// Reads one line (without its '\n') of at most `limit` bytes; false at the
+// end of the file. A longer line (a binary or corrupted file) is refused
+// before it fills the memory.
+bool read_line(std::istream& in, std::string& line, std::size_t limit, std::size_t number,
+               const std::filesystem::path& file) {
+    line.clear();
+    for (int c = in.get(); c != std::char_traits<char>::eof(); c = in.get()) {
+        if (c == '\n') return true;
+        if (line.size() == limit)
+            throw ConfigError(file, "line " + std::to_string(number),
+                              "longer than " + std::to_string(limit) + " bytes (not a particle CSV file?)");
+        line.push_back(static_cast<char>(c));
+    }
+    return !line.empty();
+}
+
+// A cell for a message: bytes that are not printable ASCII as \xNN.
+std::string printable(std::string_view text) {
+    std::string out;
+    for (unsigned char c : text)
+        out += (c >= 0x20 && c < 0x7f) ? std::string(1, static_cast<char>(c)) : fmt::format("\\x{:02x}", c);
+    return out;
+}
+
 class CsvReader {
 public:
     explicit CsvReader(const std::filesystem::path& file) : file_(file) {}
@@ -57,7 +83,7 @@ public:
         double value = 0.0;
         const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
         if (ec != std::errc() || end != digits.data() + digits.size())
-            fail(line, column_names[c], "expected a number, got \"" + std::string(text) + "\"");
+            fail(line, column_names[c], "expected a number, got \"" + printable(text) + "\"");
         if (!std::isfinite(value)) fail(line, column_names[c], "must be finite, got \"" + std::string(text) + "\"");
         return value;
     }
@@ -68,7 +94,7 @@ public:
         long long value = 0;
         const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
         if (ec != std::errc() || end != digits.data() + digits.size())
-            fail(line, column_names[c], "expected an integer, got \"" + std::string(text) + "\"");
+            fail(line, column_names[c], "expected an integer, got \"" + printable(text) + "\"");
         if (value < std::numeric_limits<std::int32_t>::min() || value > std::numeric_limits<std::int32_t>::max())
             fail(line, column_names[c], "integer out of range: " + std::string(text));
         return static_cast<std::int32_t>(value);
@@ -100,7 +126,8 @@ std::vector<ParticleSpec> read_particle_csv(const std::filesystem::path& file, c
     std::string raw;
     std::size_t line = 0;
     bool have_header = false;
-    while (std::getline(in, raw)) {
+    constexpr std::size_t max_line = 4096;  // bytes; a row of 14 numbers needs under 400
+    while (read_line(in, raw, max_line, line + 1, file)) {
         ++line;
         std::string_view text = raw;
         if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
@@ -182,6 +209,8 @@ std::vector<ParticleSpec> read_particle_csv(const std::filesystem::path& file, c
         }
 
         p.tag = cell(TAG).empty() ? defaults.tag : reader.integer(cell(TAG), line, TAG);
+        if (out.size() == max_scenario_particles)
+            reader.fail(line, "", "more than " + std::to_string(max_scenario_particles) + " particles");
         out.push_back(p);
         if (line_numbers) line_numbers->push_back(line);
     }

@@ -24,8 +24,11 @@
 
 namespace tumble::io {
 
-// The text of a file; ConfigError naming the file if it cannot be read.
-std::string read_text_file(const std::filesystem::path& file);
+// The text of a file; ConfigError naming the file if it cannot be read or
+// is larger than `max_bytes` (input files are small: an enormous or endless
+// one, /dev/zero, is refused before it fills the memory).
+inline constexpr std::size_t max_input_file_bytes = std::size_t{64} << 20;
+std::string read_text_file(const std::filesystem::path& file, std::size_t max_bytes = max_input_file_bytes);
 
 // Parses TOML; a syntax error becomes ConfigError "FILE: line L, column C: ...".
 toml::table parse_toml(std::string_view text, const std::filesystem::path& name);

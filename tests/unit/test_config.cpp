@@ -501,7 +501,7 @@ TEST(ConfigValues, GeneratedBlocksAreDeterministicAndSeeded) {
 
     expect_error(base + "[[particles]]\nkind = \"lattice\"\nmaterial = \"material-1\"\norigin = [0, 0, 0.01]\n"
                         "counts = [1000, 1000, 1000]\nspacing = 0.008\n",
-                 "particles[1].counts", "more than 50000000 spheres");
+                 "particles[1].counts", "more than 10000000 spheres in the scenario");
     expect_error(base + "[[particles]]\nkind = \"lattice\"\nmaterial = \"material-1\"\norigin = [0, 0, 0.01]\n"
                         "counts = [1, 0, 1]\nspacing = 0.008\n",
                  "particles[1].counts[1]", "must lie in [1, ");
