@@ -14,7 +14,9 @@
 // header. Fields are trimmed of spaces and tabs; there is no quoting (names
 // cannot contain commas). An empty field means "the default". Blank lines
 // and lines whose first non-blank character is '#' are skipped. Errors throw
-// ConfigError naming the file, the line (1-based) and the column.
+// ConfigError naming the file, the line (1-based) and the column. Lines are
+// at most 4096 bytes and rows at most max_scenario_particles (config.hpp), so
+// a binary or endless file is refused with bounded memory.
 #pragma once
 
 #include <cstdint>
