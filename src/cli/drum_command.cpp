@@ -151,10 +151,12 @@ private:
     // speed is below settle_speed, at most settle_max_time.
     Checkpointer::Due settle() {
         const std::int64_t check_every = std::max<std::int64_t>(1, std::llround(1e-3 / sim_.dt()));
-        Progress progress(std::llround(plan_.settle_max_time / sim_.dt()), grain_count(sim_), talk() && progress_wanted());
+        const std::int64_t first = sim_.step_count();  // > 0 after a resume
+        Progress progress(std::llround(plan_.settle_max_time / sim_.dt()) - first, grain_count(sim_),
+                          talk() && progress_wanted());
         while (sim_.time() < plan_.settle_max_time) {
             sim_.advance(check_every);
-            progress.update(sim_.step_count());
+            progress.update(sim_.step_count() - first);
             if (sim_.time() >= plan_.fall_time && rms_grain_speed(sim_.particles()) < plan_.settle_speed) {
                 plan_.info.settled = true;
                 break;
@@ -199,12 +201,13 @@ private:
     }
 
     Checkpointer::Due rotate() {
-        Progress progress(steps_, grain_count(sim_), talk() && progress_wanted());
-        for (std::int64_t k = sim_.step_count() - plan_.rotation_start_step + 1; k <= steps_; ++k) {
+        const std::int64_t done = sim_.step_count() - plan_.rotation_start_step;  // > 0 after a resume
+        Progress progress(steps_ - done, grain_count(sim_), talk() && progress_wanted());
+        for (std::int64_t k = done + 1; k <= steps_; ++k) {
             sim_.step();
             if (k % sample_every_ == 0) sample();
             if (snapshot_every_ && k % snapshot_every_ == 0) snapshots_->write(sim_);
-            progress.update(k);
+            progress.update(k - done);
             const auto due = checkpoints_.after_steps(sim_, k);
             if (due != Checkpointer::Due::no) checkpoint(false, progress.elapsed_seconds());
             if (due == Checkpointer::Due::and_stop) {

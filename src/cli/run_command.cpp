@@ -77,11 +77,12 @@ public:
 
     int run() {
         const bool talk = !plan_.quiet;
-        Progress progress(plan_.steps, free_particles(sim_), talk && progress_wanted());
+        const std::int64_t first = sim_.step_count();  // > 0 after a resume
+        Progress progress(plan_.steps - first, free_particles(sim_), talk && progress_wanted());
         while (sim_.step_count() < plan_.steps) {
             sim_.step();
             sample();
-            progress.update(sim_.step_count());
+            progress.update(sim_.step_count() - first);
             const auto due = checkpoints_.after_steps(sim_, sim_.step_count());
             if (due == Checkpointer::Due::no) continue;
             checkpoint(false, progress.elapsed_seconds());

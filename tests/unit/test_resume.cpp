@@ -64,9 +64,13 @@ protected:
         }
         return pid;
     }
-    // Waits until `file` exists (or 60 s).
-    static void wait_for(const fs::path& file) {
-        for (int k = 0; k < 6000 && !fs::exists(file); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    // Waits until checkpoint number n or a later one has been written (or 60 s).
+    static void wait_for_checkpoint(const fs::path& run, int n) {
+        auto newest = [&] {
+            const auto files = tumble::io::checkpoint_files(run);
+            return files.empty() ? 0 : std::stoi(files.back().stem().string());
+        };
+        for (int k = 0; k < 6000 && newest() < n; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     static int exit_code(pid_t pid) {
         int status = 0;
@@ -117,7 +121,7 @@ TEST_F(Resume, KilledMidRunAndResumedGivesTheSameBytes) {
     const fs::path full = reference("1");
     const fs::path out = dir_ / "killed";
     const pid_t child = start(small_drum + " --revolutions 1 --checkpoint-every-revolutions 0.05 --out " + out.string());
-    wait_for(out / "checkpoints" / "000003.tck");
+    wait_for_checkpoint(out, 3);
     kill(child, SIGKILL);
     ASSERT_EQ(exit_code(child), -SIGKILL) << "the run ended before it was killed";
     const auto resumed = tumble_run("resume -q " + out.string());
@@ -126,7 +130,7 @@ TEST_F(Resume, KilledMidRunAndResumedGivesTheSameBytes) {
 }
 
 TEST_F(Resume, KilledWhileWritingCheckpointsLeavesALoadableOne) {
-    // A checkpoint every 0.001 revolutions (15 steps): the process spends
+    // A checkpoint every 0.001 revolutions (31 steps): the process spends
     // most of its time writing them (each is flushed to the disk), so the
     // kills land inside writes.
     const fs::path full = reference();
@@ -134,7 +138,7 @@ TEST_F(Resume, KilledWhileWritingCheckpointsLeavesALoadableOne) {
         const fs::path out = dir_ / ("kill-" + std::to_string(delay_ms));
         const pid_t child =
             start(small_drum + " --revolutions 0.2 --checkpoint-every-revolutions 0.001 --out " + out.string());
-        wait_for(out / "checkpoints" / "000001.tck");
+        wait_for_checkpoint(out, 1);
         std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
         kill(child, SIGKILL);
         ASSERT_EQ(exit_code(child), -SIGKILL) << "the run ended before it was killed";
@@ -149,7 +153,7 @@ TEST_F(Resume, SigintAndSigtermWriteACheckpointAndSayHowToGoOn) {
     for (int signal : {SIGINT, SIGTERM}) {
         const fs::path out = dir_ / ("signal-" + std::to_string(signal));
         const pid_t child = start(small_drum + " --revolutions 1 --checkpoint-every-revolutions 0.1 --out " + out.string());
-        wait_for(out / "checkpoints" / "000001.tck");
+        wait_for_checkpoint(out, 1);
         kill(child, signal);
         EXPECT_EQ(exit_code(child), 4);
         const std::string log = read_file(dir_ / "child.log");
