@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "io/drum_output.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <numeric>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -39,12 +43,14 @@ std::vector<std::string> split(const std::string& line) {
     return cells;
 }
 
+// Lines before the header that start with '#' are skipped.
 Csv read_csv(const fs::path& file) {
     std::ifstream in(file);
     if (!in) throw Error(file.string() + ": cannot read (is this a drum run directory?)");
     Csv csv;
     std::string line;
-    std::getline(in, line);
+    while (std::getline(in, line) && line.starts_with('#')) {
+    }
     csv.header = split(line);
     while (std::getline(in, line)) {
         if (line.empty()) continue;
@@ -236,6 +242,78 @@ std::size_t nearest_sample(const std::vector<double>& N, double target) {
 
 }  // namespace
 
+analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_start, double omega) {
+    std::ifstream in(file);
+    std::string first;
+    double time = 0.0;
+    if (!std::getline(in, first) || std::sscanf(first.c_str(), "# time = %lf s", &time) != 1)
+        throw Error(file.string() + ": not a particle snapshot (its first line should be \"# time = T s, ...\")");
+    const Csv csv = read_csv(file);
+    const std::vector<double> id = column(csv, "id", file), x = column(csv, "x", file), y = column(csv, "y", file),
+                              z = column(csv, "z", file), radius = column(csv, "radius", file),
+                              tag = column(csv, "tag", file), kinematic = column(csv, "kinematic", file);
+    std::vector<std::size_t> order(id.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+    analysis::GrainFrame frame;
+    frame.revolutions = omega * (time - rotation_start) / (2.0 * tumble::pi);
+    for (std::size_t k : order) {
+        if (kinematic[k] != 0.0) continue;
+        frame.id.push_back(static_cast<std::int64_t>(id[k]));
+        frame.position.push_back({x[k], y[k], z[k]});
+        frame.radius.push_back(radius[k]);
+        frame.tag.push_back(static_cast<std::int32_t>(tag[k]));
+    }
+    return frame;
+}
+
+namespace {
+
+// Depth layers of one grain diameter; the last holds everything deeper (a
+// bed of 1000 grains in the paper's drum is about 6 diameters deep).
+constexpr int depth_layers = 8;
+
+// The axial displacements by depth between consecutive particle snapshots
+// taken during the rotation; none without two such snapshots.
+std::optional<analysis::DepthMobility> depth_mobility_of_run(const fs::path& dir, const DrumRunInfo& info) {
+    std::vector<fs::path> files;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir / "snapshots", ec))
+        if (entry.path().extension() == ".csv") files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    std::optional<analysis::DepthMobility> mobility;
+    std::optional<analysis::GrainFrame> before;
+    for (const fs::path& file : files) {
+        analysis::GrainFrame after = read_snapshot_grains(file, info.settle_time, info.omega);
+        if (after.revolutions < -1e-9) continue;  // before the rotation
+        if (before) {
+            if (!mobility) mobility.emplace(static_cast<int>(info.components.size()), depth_layers);
+            mobility->add(*before, after, info.inner_radius);
+        }
+        before = std::move(after);
+    }
+    return mobility;
+}
+
+void write_depth_mobility(const fs::path& file, const analysis::DepthMobility& m, const DrumRunInfo& info) {
+    std::ofstream out = open_for_writing(file);
+    out << "layer,depth_lo,depth_hi";
+    for (const DrumComponent& c : info.components)
+        for (const char* what : {"samples", "msd_per_rev", "share", "occupancy"}) out << ',' << what << '_' << c.name;
+    out << '\n';
+    for (int layer = 0; layer < m.layers(); ++layer) {
+        out << fmt::format("{},{},{}", layer, layer == 0 ? -INFINITY : layer,
+                           layer + 1 == m.layers() ? INFINITY : layer + 1.0);
+        for (int c = 0; c < m.components(); ++c)
+            out << fmt::format(",{},{},{},{}", m.samples(c, layer), m.msd_per_revolution(c, layer), m.share(c, layer),
+                               m.occupancy(c, layer));
+        out << '\n';
+    }
+    check_written(out, file);
+}
+
+}  // namespace
+
 std::string analyze_drum_run(const fs::path& dir) {
     const DrumRunInfo info = read_drum_run_info(dir / "drum_run.toml");
     const std::size_t n_components = info.components.size();
@@ -292,6 +370,22 @@ std::string analyze_drum_run(const fs::path& dir) {
                                               {"points", static_cast<std::int64_t>(fit.points)}});
     }
 
+    // The dynamic angle of repose, mean over the rotation after the first
+    // revolution (the bed takes a fraction of one to reach its steady slope);
+    // a run shorter than two revolutions uses its second half.
+    double angle_sum = 0.0;
+    std::size_t angles = 0;
+    const double last_N = series.revolutions.empty() ? 0.0 : series.revolutions.back();
+    for (std::size_t k = 0; k < series.revolutions.size(); ++k)
+        if (series.revolutions[k] > 0.0 && series.revolutions[k] >= std::min(1.0, 0.5 * last_N) &&
+            std::isfinite(series.angle_of_repose[k])) {
+            angle_sum += series.angle_of_repose[k];
+            ++angles;
+        }
+    const double angle_of_repose = angles ? angle_sum / static_cast<double>(angles) : std::nan("");
+    text << fmt::format("  dynamic angle of repose {:.1f} degrees (mean over the rotation after N = {:.2g})\n",
+                        angle_of_repose, std::min(1.0, 0.5 * last_N));
+
     toml::table summary{{"mode", info.mode},
                         {"omega", info.omega},
                         {"froude", info.froude},
@@ -305,6 +399,7 @@ std::string analyze_drum_run(const fs::path& dir) {
                         {"bed_length", L},
                         {"solid_fraction", info.solid_fraction},
                         {"fill_fraction", info.fill_fraction},
+                        {"angle_of_repose", angle_of_repose},
                         {"grain_updates_per_second", info.grain_updates_per_second},
                         {"components", components_json}};
 
@@ -356,6 +451,28 @@ std::string analyze_drum_run(const fs::path& dir) {
         }
         check_written(out, dir / "profile_comparison.csv");
         summary.insert("profile_comparison", rms_json);
+    }
+
+    // Where the axial motion happens: by depth below the free surface, from
+    // the particle snapshots (tumble drum --snapshots).
+    if (const auto mobility = depth_mobility_of_run(dir, info)) {
+        write_depth_mobility(dir / "depth_mobility.csv", *mobility, info);
+        toml::array layers_json;
+        text << fmt::format("  axial motion by depth below the free surface ({} snapshot intervals; "
+                            "depth_mobility.csv): share of <dz^2> in the top two grain layers",
+                            mobility->intervals());
+        for (std::size_t c = 0; c < n_components; ++c) {
+            const int k = static_cast<int>(c);
+            const double top = mobility->share(k, 0) + mobility->share(k, 1);
+            const double top_occupancy = mobility->occupancy(k, 0) + mobility->occupancy(k, 1);
+            text << fmt::format("{} {}: {:.2f} (holding {:.2f} of its grains)", c ? "," : "", info.components[c].name,
+                                top, top_occupancy);
+            layers_json.push_back(toml::table{{"name", info.components[c].name},
+                                              {"surface_share", top},
+                                              {"surface_occupancy", top_occupancy}});
+        }
+        text << "\n";
+        summary.insert("depth_mobility", layers_json);
     }
 
     {

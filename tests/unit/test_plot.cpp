@@ -84,29 +84,26 @@ TEST_F(Plot, RunDirectoryGivesTheRunFigures) {
     const fs::path run = dir_ / "run";
     const Result drum = run_command(std::string(TUMBLE_BINARY) +
                                     " drum --grains 150 --omega 8 --revolutions 0.25"
-                                    " --samples 20 -q --out " + quoted(run));
+                                    " --samples 20 --snapshots 12 -q --out " + quoted(run));
     ASSERT_EQ(drum.exit_code, 0) << drum.output;
 
     const fs::path figures = dir_ / "figures";
     const Result result = plot(python_, "run " + quoted(run) + " --out " + quoted(figures));
     ASSERT_EQ(result.exit_code, 0) << result.output;
-    for (const char* name : {"fig_z", "fig_profiles", "fig_energy"}) {
+    for (const char* name : {"fig1_setup", "fig_z", "fig_profiles", "fig_energy", "fig_depth"}) {
         expect_figure(figures, name);
         EXPECT_NE(result.output.find((figures / (std::string(name) + ".png")).string()),
                   std::string::npos) << "the list of files written names " << name;
     }
-    if (fs::exists(run / "snapshots" / "000000.csv")) {
-        expect_figure(figures, "fig1_setup");
-    } else {
-        EXPECT_NE(result.output.find("fig1_setup skipped"), std::string::npos) << result.output;
-    }
-
-    // Without the initial snapshot the set-up figure is skipped with a note, not a crash.
+    // Without the snapshots the set-up and depth figures are skipped with a
+    // note, not a crash.
     fs::remove_all(run / "snapshots");
+    fs::remove(run / "depth_mobility.csv");
     const fs::path figures2 = dir_ / "figures2";
     const Result again = plot(python_, "run " + quoted(run) + " --out " + quoted(figures2));
     ASSERT_EQ(again.exit_code, 0) << again.output;
     EXPECT_NE(again.output.find("fig1_setup skipped"), std::string::npos) << again.output;
+    EXPECT_NE(again.output.find("fig_depth skipped"), std::string::npos) << again.output;
     EXPECT_FALSE(fs::exists(figures2 / "fig1_setup.png"));
     expect_figure(figures2, "fig_z");
 
