@@ -676,6 +676,27 @@ def do_sweep(args):
         w.save(fig, "fig_D_vs_froude")
     else:
         w.skip("fig_D_vs_froude", f"no froude column or no D values in {args.table}")
+
+    # Where the axial motion happens, against rotation speed
+    share_comps = [c for c in comps if f"surface_share_{c}" in table
+                   and np.any(np.isfinite(table[f"surface_share_{c}"]))]
+    if share_comps:
+        fig, ax = plt.subplots(figsize=(7, 5))
+        for i, c in enumerate(share_comps):
+            rows = np.isfinite(table[f"surface_share_{c}"])
+            _plot_grouped(ax, omega[rows], table[f"surface_share_{c}"][rows], None,
+                          COLOURS[i % len(COLOURS)], f"{c}, mean over seeds", "os^v"[i % 4])
+        ax.set_xlabel("rotation speed \u03c9 (rad/s)")
+        ax.set_ylabel("share of axial <\u0394z\u00b2> in the top two grain layers")
+        _rpm_axis(ax)
+        ax.set_ylim(0, 1.05)
+        ax.set_title("Where the axial motion happens: surface share against rotation speed",
+                     fontsize=10)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        w.save(fig, "fig_surface_share_vs_omega")
+    else:
+        w.skip("fig_surface_share_vs_omega", f"no surface_share_ values in {args.table}")
     return w
 
 
