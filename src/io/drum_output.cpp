@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "io/csv_table.hpp"
 #include "io/output.hpp"
 #include "io/toml_reader.hpp"
 #include "tumble/analysis/hogg.hpp"
@@ -16,66 +17,6 @@
 namespace tumble::io {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-// A CSV file with a header row, as numbers by column name.
-struct Csv {
-    std::vector<std::string> header;
-    std::vector<std::vector<std::string>> rows;
-
-    std::size_t column(const std::string& name, const fs::path& file) const {
-        for (std::size_t k = 0; k < header.size(); ++k)
-            if (header[k] == name) return k;
-        throw Error(file.string() + ": no column \"" + name + "\"");
-    }
-};
-
-std::vector<std::string> split(const std::string& line) {
-    std::vector<std::string> cells;
-    std::stringstream s(line);
-    std::string cell;
-    while (std::getline(s, cell, ',')) cells.push_back(cell);
-    return cells;
-}
-
-Csv read_csv(const fs::path& file) {
-    std::ifstream in(file);
-    if (!in) throw Error(file.string() + ": cannot read (is this a drum run directory?)");
-    Csv csv;
-    std::string line;
-    std::getline(in, line);
-    csv.header = split(line);
-    while (std::getline(in, line)) {
-        if (line.empty()) continue;
-        csv.rows.push_back(split(line));
-        if (csv.rows.back().size() != csv.header.size())
-            throw Error(file.string() + ": line " + std::to_string(csv.rows.size() + 1) + " has " +
-                        std::to_string(csv.rows.back().size()) + " cells, the header " +
-                        std::to_string(csv.header.size()));
-    }
-    return csv;
-}
-
-double number(const std::string& cell, const fs::path& file) {
-    try {
-        std::size_t used = 0;
-        const double v = std::stod(cell, &used);
-        if (used == cell.size()) return v;
-    } catch (const std::exception&) {
-    }
-    if (cell == "nan") return std::numeric_limits<double>::quiet_NaN();
-    throw Error(file.string() + ": \"" + cell + "\" is not a number");
-}
-
-std::vector<double> column(const Csv& csv, const std::string& name, const fs::path& file) {
-    const std::size_t k = csv.column(name, file);
-    std::vector<double> out;
-    for (const auto& row : csv.rows) out.push_back(number(row[k], file));
-    return out;
-}
-
-}  // namespace
 
 void write_drum_run_info(const fs::path& file, const DrumRunInfo& info) {
     toml::array components;
@@ -175,11 +116,11 @@ void DrumSeriesWriter::write(double revolutions, double time, const analysis::Dr
 }
 
 DrumSeries read_drum_series(const fs::path& file, std::size_t components) {
-    const Csv csv = read_csv(file);
+    const CsvTable csv = read_csv_table(file);
     DrumSeries s;
-    s.revolutions = column(csv, "revolutions", file);
-    s.time = column(csv, "time", file);
-    s.angle_of_repose = column(csv, "angle_of_repose", file);
+    s.revolutions = csv.numbers("revolutions");
+    s.time = csv.numbers("time");
+    s.angle_of_repose = csv.numbers("angle_of_repose");
     // Component columns are named after the components, in order after the
     // six fixed columns, five each.
     for (std::size_t c = 0; c < components; ++c) {
@@ -187,16 +128,16 @@ DrumSeries read_drum_series(const fs::path& file, std::size_t components) {
         if (first + 5 > csv.header.size()) throw Error(file.string() + ": fewer component columns than components");
         for (auto [target, offset] : {std::pair{&s.mean_z, 1}, std::pair{&s.mean_z_stderr, 2},
                                       std::pair{&s.kinetic_energy, 3}, std::pair{&s.kinetic_per_grain, 4}}) {
-            target->push_back(column(csv, csv.header[first + offset], file));
+            target->push_back(csv.numbers(csv.header[first + offset]));
         }
     }
     return s;
 }
 
 DrumProfiles read_drum_profiles(const fs::path& file, std::size_t components, std::size_t bins) {
-    const Csv csv = read_csv(file);
-    const auto N = column(csv, "revolutions", file), c = column(csv, "component", file),
-               b = column(csv, "bin", file), z = column(csv, "z", file), C = column(csv, "concentration", file);
+    const CsvTable csv = read_csv_table(file);
+    const auto N = csv.numbers("revolutions"), c = csv.numbers("component"), b = csv.numbers("bin"),
+               z = csv.numbers("z"), C = csv.numbers("concentration");
     DrumProfiles p;
     p.bin_centre.resize(bins);
     for (std::size_t row = 0; row < N.size(); ++row) {
