@@ -45,7 +45,7 @@ struct Scene {
 
 // The colours: background, wall, and grains (by material or tag index, cycling).
 constexpr Rgb background_colour{22, 24, 30};
-constexpr Rgb wall_colour{125, 125, 132};
+constexpr Rgb wall_colour{100, 100, 108};
 Rgb grain_colour(std::size_t index);
 
 // The two views for frames whose views are `view_width` pixels wide: the
