@@ -69,6 +69,32 @@ void parallel_for(std::size_t count, unsigned jobs, const std::function<void(std
     if (error) std::rethrow_exception(error);
 }
 
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// What every frame shares: the box that holds every particle of every
+// snapshot, the wall's centre, the grain materials.
+io::render::Scene gather_scene(const std::vector<fs::path>& snapshots, unsigned jobs, bool show_progress) {
+    std::vector<io::render::Scene> parts(snapshots.size());
+    Progress progress(static_cast<std::int64_t>(snapshots.size()), 1, show_progress, "snapshots read/s");
+    parallel_for(snapshots.size(), jobs, [&](std::size_t k) { parts[k].add(io::read_snapshot_csv(snapshots[k])); },
+                 progress);
+    io::render::Scene scene;
+    for (const io::render::Scene& part : parts) scene.add(part);
+    return scene;
+}
+
+// frames/NNNNNN.png of snapshot NNNNNN (counted from 0 in their order).
+void draw_frames(const std::vector<fs::path>& snapshots, const io::render::Scene& scene, ColourBy colours,
+                 int view_width, const fs::path& frames, unsigned jobs, bool show_progress) {
+    Progress progress(static_cast<std::int64_t>(snapshots.size()), 1, show_progress, "frames/s");
+    parallel_for(snapshots.size(), jobs, [&](std::size_t k) {
+        const io::render::Image image =
+            io::render::render_frame(io::read_snapshot_csv(snapshots[k]), scene, colours, view_width);
+        io::write_png(frames / fmt::format("{:06d}.png", k), image, true);
+    }, progress);
+}
+
 // The executable `program` in a directory of PATH, or an empty path.
 fs::path find_on_path(const std::string& program) {
     const char* path = std::getenv("PATH");
@@ -146,33 +172,20 @@ int render_command(const RenderOptions& options) {
         fmt::print("tumble render: {} snapshots of {}, grains coloured by {}, {} threads\n", count,
                    directory.string(), colours == ColourBy::tag ? "tag" : "material", jobs);
 
-    // What every frame shares: the box that holds every particle of every
-    // snapshot, the wall's centre, the grain materials.
-    std::vector<io::render::Scene> parts(count);
-    Progress reading(static_cast<std::int64_t>(count), 1, talk && progress_wanted(), "snapshots read/s");
-    parallel_for(count, jobs, [&](std::size_t k) { parts[k].add(io::read_snapshot_csv(snapshots[k])); }, reading);
-    io::render::Scene scene;
-    for (const io::render::Scene& part : parts) scene.add(part);
-
+    const auto start = Clock::now();
+    const io::render::Scene scene = gather_scene(snapshots, jobs, talk && progress_wanted());
     const fs::path frames = fresh_frames_directory(directory);
-    Progress drawing(static_cast<std::int64_t>(count), 1, talk && progress_wanted(), "frames/s");
-    parallel_for(count, jobs, [&](std::size_t k) {
-        const io::render::Image image =
-            io::render::render_frame(io::read_snapshot_csv(snapshots[k]), scene, colours, options.width);
-        io::write_png(frames / fmt::format("{:06d}.png", k), image, true);
-    }, drawing);
+    draw_frames(snapshots, scene, colours, options.width, frames, jobs, talk && progress_wanted());
     if (talk)
-        fmt::print("{} frames of {} x {} pixels in {}, read and drawn in {:.1f} s ({:.3g} frames/s)\n", count,
-                   2 * options.width, io::render::scene_views(scene, options.width).first.height, frames.string(),
-                   reading.elapsed_seconds(), static_cast<double>(count) / reading.elapsed_seconds());
+        fmt::print("{} frames of {} x {} pixels in {}, read and drawn in {:.1f} s\n", count, 2 * options.width,
+                   io::render::scene_views(scene, options.width).first.height, frames.string(), seconds_since(start));
     if (options.frames_only) return 0;
 
-    const auto start = std::chrono::steady_clock::now();
+    const auto movie_start = Clock::now();
     make_movie(ffmpeg, frames, options.fps, movie);
     if (talk)
         fmt::print("movie {}: {:.1f} s at {} frames/s (ffmpeg, H.264) in {:.1f} s\n", movie.string(),
-                   static_cast<double>(count) / options.fps, options.fps,
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+                   static_cast<double>(count) / options.fps, options.fps, seconds_since(movie_start));
     return 0;
 }
 
