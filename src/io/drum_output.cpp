@@ -11,7 +11,9 @@
 
 #include <fmt/format.h>
 
+#include "io/csv_table.hpp"
 #include "io/output.hpp"
+#include "io/snapshots.hpp"
 #include "io/toml_reader.hpp"
 #include "tumble/analysis/hogg.hpp"
 #include "tumble/core/constants.hpp"
@@ -20,68 +22,6 @@
 namespace tumble::io {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-// A CSV file with a header row, as numbers by column name.
-struct Csv {
-    std::vector<std::string> header;
-    std::vector<std::vector<std::string>> rows;
-
-    std::size_t column(const std::string& name, const fs::path& file) const {
-        for (std::size_t k = 0; k < header.size(); ++k)
-            if (header[k] == name) return k;
-        throw Error(file.string() + ": no column \"" + name + "\"");
-    }
-};
-
-std::vector<std::string> split(const std::string& line) {
-    std::vector<std::string> cells;
-    std::stringstream s(line);
-    std::string cell;
-    while (std::getline(s, cell, ',')) cells.push_back(cell);
-    return cells;
-}
-
-// Lines before the header that start with '#' are skipped.
-Csv read_csv(const fs::path& file) {
-    std::ifstream in(file);
-    if (!in) throw Error(file.string() + ": cannot read (is this a drum run directory?)");
-    Csv csv;
-    std::string line;
-    while (std::getline(in, line) && line.starts_with('#')) {
-    }
-    csv.header = split(line);
-    while (std::getline(in, line)) {
-        if (line.empty()) continue;
-        csv.rows.push_back(split(line));
-        if (csv.rows.back().size() != csv.header.size())
-            throw Error(file.string() + ": line " + std::to_string(csv.rows.size() + 1) + " has " +
-                        std::to_string(csv.rows.back().size()) + " cells, the header " +
-                        std::to_string(csv.header.size()));
-    }
-    return csv;
-}
-
-double number(const std::string& cell, const fs::path& file) {
-    try {
-        std::size_t used = 0;
-        const double v = std::stod(cell, &used);
-        if (used == cell.size()) return v;
-    } catch (const std::exception&) {
-    }
-    if (cell == "nan") return std::numeric_limits<double>::quiet_NaN();
-    throw Error(file.string() + ": \"" + cell + "\" is not a number");
-}
-
-std::vector<double> column(const Csv& csv, const std::string& name, const fs::path& file) {
-    const std::size_t k = csv.column(name, file);
-    std::vector<double> out;
-    for (const auto& row : csv.rows) out.push_back(number(row[k], file));
-    return out;
-}
-
-}  // namespace
 
 void write_drum_run_info(const fs::path& file, const DrumRunInfo& info) {
     toml::array components;
@@ -181,11 +121,11 @@ void DrumSeriesWriter::write(double revolutions, double time, const analysis::Dr
 }
 
 DrumSeries read_drum_series(const fs::path& file, std::size_t components) {
-    const Csv csv = read_csv(file);
+    const CsvTable csv = read_csv_table(file);
     DrumSeries s;
-    s.revolutions = column(csv, "revolutions", file);
-    s.time = column(csv, "time", file);
-    s.angle_of_repose = column(csv, "angle_of_repose", file);
+    s.revolutions = csv.numbers("revolutions");
+    s.time = csv.numbers("time");
+    s.angle_of_repose = csv.numbers("angle_of_repose");
     // Component columns are named after the components, in order after the
     // six fixed columns, five each.
     for (std::size_t c = 0; c < components; ++c) {
@@ -193,16 +133,16 @@ DrumSeries read_drum_series(const fs::path& file, std::size_t components) {
         if (first + 5 > csv.header.size()) throw Error(file.string() + ": fewer component columns than components");
         for (auto [target, offset] : {std::pair{&s.mean_z, 1}, std::pair{&s.mean_z_stderr, 2},
                                       std::pair{&s.kinetic_energy, 3}, std::pair{&s.kinetic_per_grain, 4}}) {
-            target->push_back(column(csv, csv.header[first + offset], file));
+            target->push_back(csv.numbers(csv.header[first + offset]));
         }
     }
     return s;
 }
 
 DrumProfiles read_drum_profiles(const fs::path& file, std::size_t components, std::size_t bins) {
-    const Csv csv = read_csv(file);
-    const auto N = column(csv, "revolutions", file), c = column(csv, "component", file),
-               b = column(csv, "bin", file), z = column(csv, "z", file), C = column(csv, "concentration", file);
+    const CsvTable csv = read_csv_table(file);
+    const auto N = csv.numbers("revolutions"), c = csv.numbers("component"), b = csv.numbers("bin"),
+               z = csv.numbers("z"), C = csv.numbers("concentration");
     DrumProfiles p;
     p.bin_centre.resize(bins);
     for (std::size_t row = 0; row < N.size(); ++row) {
@@ -248,10 +188,10 @@ analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_
     double time = 0.0;
     if (!std::getline(in, first) || std::sscanf(first.c_str(), "# time = %lf s", &time) != 1)
         throw Error(file.string() + ": not a particle snapshot (its first line should be \"# time = T s, ...\")");
-    const Csv csv = read_csv(file);
-    const std::vector<double> id = column(csv, "id", file), x = column(csv, "x", file), y = column(csv, "y", file),
-                              z = column(csv, "z", file), radius = column(csv, "radius", file),
-                              tag = column(csv, "tag", file), kinematic = column(csv, "kinematic", file);
+    const CsvTable csv = read_csv_table(file);
+    const std::vector<double> id = csv.numbers("id"), x = csv.numbers("x"), y = csv.numbers("y"),
+                              z = csv.numbers("z"), radius = csv.numbers("radius"), tag = csv.numbers("tag"),
+                              kinematic = csv.numbers("kinematic");
     std::vector<std::size_t> order(id.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
@@ -276,14 +216,9 @@ constexpr int depth_layers = 8;
 // The axial displacements by depth between consecutive particle snapshots
 // taken during the rotation; none without two such snapshots.
 std::optional<analysis::DepthMobility> depth_mobility_of_run(const fs::path& dir, const DrumRunInfo& info) {
-    std::vector<fs::path> files;
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(dir / "snapshots", ec))
-        if (entry.path().extension() == ".csv") files.push_back(entry.path());
-    std::sort(files.begin(), files.end());
     std::optional<analysis::DepthMobility> mobility;
     std::optional<analysis::GrainFrame> before;
-    for (const fs::path& file : files) {
+    for (const fs::path& file : list_snapshot_csv(dir)) {
         analysis::GrainFrame after = read_snapshot_grains(file, info.settle_time, info.omega);
         if (after.revolutions < -1e-9) continue;  // before the rotation
         if (before) {

@@ -39,8 +39,8 @@ inline std::string read_file(const std::filesystem::path& file) {
 }
 
 // A fresh directory per test, removed afterwards:
-// <tmp>/tumble-<suite>-<test>-<pid> (the pid keeps two test runs on one
-// machine, e.g. of two checkouts, out of each other's way).
+// <tmp>/tumble-<suite>-<test>-<pid>: the process id keeps apart the same
+// test run at once from several checkouts (or build directories).
 class ScratchTest : public ::testing::Test {
 protected:
     void SetUp() override {
