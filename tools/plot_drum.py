@@ -687,7 +687,7 @@ def do_sweep(args):
             _plot_grouped(ax, omega[rows], table[f"surface_share_{c}"][rows], None,
                           COLOURS[i % len(COLOURS)], f"{c}, mean over seeds", "os^v"[i % 4])
         ax.set_xlabel("rotation speed \u03c9 (rad/s)")
-        ax.set_ylabel("share of axial <\u0394z\u00b2> in the top two grain layers")
+        ax.set_ylabel("share of axial <\u0394z\u00b2> in the top grain layer")
         _rpm_axis(ax)
         ax.set_ylim(0, 1.05)
         ax.set_title("Where the axial motion happens: surface share against rotation speed",

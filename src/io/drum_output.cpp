@@ -394,12 +394,13 @@ std::string analyze_drum_run(const fs::path& dir) {
         write_depth_mobility(dir / "depth_mobility.csv", *mobility, info);
         toml::array layers_json;
         text << fmt::format("  axial motion by depth below the free surface ({} snapshot intervals; "
-                            "depth_mobility.csv): share of <dz^2> in the top two grain layers",
+                            "depth_mobility.csv):\n    share of <dz^2> in the top grain layer (depth < 1 mean "
+                            "grain diameter)",
                             mobility->intervals());
         for (std::size_t c = 0; c < n_components; ++c) {
             const int k = static_cast<int>(c);
-            const double top = mobility->share(k, 0) + mobility->share(k, 1);
-            const double top_occupancy = mobility->occupancy(k, 0) + mobility->occupancy(k, 1);
+            const double top = mobility->share(k, 0);
+            const double top_occupancy = mobility->occupancy(k, 0);
             text << fmt::format("{} {}: {:.2f} (holding {:.2f} of its grains)", c ? "," : "", info.components[c].name,
                                 top, top_occupancy);
             layers_json.push_back(toml::table{{"name", info.components[c].name},

@@ -174,7 +174,8 @@ struct PointResult {
     PointState state = PointState::pending;
     std::string note;  // why there are no numbers (failed, unreadable summary.json)
     // Per component name: D, D_stderr, D_one_term, determined, and the share
-    // of its axial <dz^2> in the top two grain layers (NaN: null / absent).
+    // of its axial <dz^2> in the top grain layer, less than a mean grain
+    // diameter below the free surface (NaN: null / absent).
     struct Component {
         double D, D_stderr, D_one_term;
         bool determined;
