@@ -431,10 +431,47 @@ def fig_energy(run, w):
     w.save(fig, name)
 
 
+def fig_depth(run, w):
+    """Where the axial motion happens: <dz^2> per revolution and the share of
+    it by depth below the free surface (depth_mobility.csv)."""
+    name = "fig_depth"
+    path = run.path("depth_mobility.csv")
+    if not os.path.isfile(path):
+        w.skip(name, f"no {path} (the run has fewer than two particle snapshots: tumble drum --snapshots)")
+        return
+    table = read_csv(path)
+    layers = table["layer"]
+    labels = [f"{int(k)}-{int(k) + 1}" for k in layers]
+    labels[0] = "< 1"
+    labels[-1] = f"> {int(layers[-1])}"
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4.2), sharey=True)
+    for i, cname in enumerate(run.components):
+        colour = COLOURS[i % len(COLOURS)]
+        msd = table[f"msd_per_rev_{cname}"]
+        left.plot(msd, layers, "-o", color=colour, label=cname)
+        right.plot(table[f"share_{cname}"], layers, "-o", color=colour,
+                   label=f"{cname}: share of <\u0394z\u00b2>")
+        right.plot(table[f"occupancy_{cname}"], layers, ":", marker="s", ms=3, color=colour,
+                   label=f"{cname}: share of grains")
+    left.set_xscale("log")
+    left.set_xlabel("axial mean squared displacement per revolution <\u0394z\u00b2>/\u0394N (m\u00b2/rev)")
+    left.set_ylabel("depth below the free surface (grain diameters)")
+    left.set_yticks(layers)
+    left.set_yticklabels(labels)
+    left.invert_yaxis()
+    left.legend(fontsize=8)
+    right.set_xlabel("fraction")
+    right.set_xlim(0, 1)
+    right.legend(fontsize=7)
+    fig.suptitle(f"Axial motion by depth, {run.mode} mode, {run.label()}", fontsize=10)
+    fig.tight_layout()
+    w.save(fig, name)
+
+
 def do_run(args):
     run = Run(args.dir)
     w = Writer(args.out or os.path.join(args.dir, "figures"))
-    for make in (fig_setup, fig_z, fig_profiles, fig_energy):
+    for make in (fig_setup, fig_z, fig_profiles, fig_energy, fig_depth):
         make(run, w)
     return w
 
@@ -639,6 +676,27 @@ def do_sweep(args):
         w.save(fig, "fig_D_vs_froude")
     else:
         w.skip("fig_D_vs_froude", f"no froude column or no D values in {args.table}")
+
+    # Where the axial motion happens, against rotation speed
+    share_comps = [c for c in comps if f"surface_share_{c}" in table
+                   and np.any(np.isfinite(table[f"surface_share_{c}"]))]
+    if share_comps:
+        fig, ax = plt.subplots(figsize=(7, 5))
+        for i, c in enumerate(share_comps):
+            rows = np.isfinite(table[f"surface_share_{c}"])
+            _plot_grouped(ax, omega[rows], table[f"surface_share_{c}"][rows], None,
+                          COLOURS[i % len(COLOURS)], f"{c}, mean over seeds", "os^v"[i % 4])
+        ax.set_xlabel("rotation speed \u03c9 (rad/s)")
+        ax.set_ylabel("share of axial <\u0394z\u00b2> in the top grain layer")
+        _rpm_axis(ax)
+        ax.set_ylim(0, 1.05)
+        ax.set_title("Where the axial motion happens: surface share against rotation speed",
+                     fontsize=10)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        w.save(fig, "fig_surface_share_vs_omega")
+    else:
+        w.skip("fig_surface_share_vs_omega", f"no surface_share_ values in {args.table}")
     return w
 
 

@@ -56,4 +56,17 @@ int analyze_command(const std::string& directory);
 int plot_command(const std::string& mode, const std::vector<std::string>& inputs, const std::string& out,
                  bool quiet = false);
 
+struct RenderOptions {
+    std::string directory;     // a run directory of tumble drum or tumble run
+    std::string out;           // the MP4; empty: DIR/drum.mp4
+    int fps = 25;
+    int width = 640;           // pixels of each of the two views
+    std::string colour;        // "material" or "tag"; empty: tag for a self-diffusion drum run, else material
+    bool frames_only = false;  // frames/NNNNNN.png only, no movie (no ffmpeg needed)
+    unsigned jobs = 0;         // threads drawing frames; 0: the machine's logical cores
+    bool quiet = false;
+};
+// A movie of the run's particle snapshots (docs/RENDER.md).
+int render_command(const RenderOptions& options);
+
 }  // namespace tumble::cli

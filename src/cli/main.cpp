@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The tumble command line: run, bench, drum, analyze, plot, sweep, resume.
+// The tumble command line: run, bench, drum, analyze, plot, sweep, render, resume.
 #include <cstdio>
 #include <optional>
 
@@ -110,6 +110,25 @@ int main(int argc, char** argv) {
     plot_cmd->add_flag("--compare", plot_compare, "Overlay <z>(N) of several runs (the paper's figs. 2 and 4)");
     plot_cmd->add_option("-o,--out", plot_out, "Where the figures go (default DIR/figures)");
 
+    RenderOptions render;
+    CLI::App* render_cmd = app.add_subcommand(
+        "render", "A movie (MP4) of a run's particle snapshots: the drum along its axis and from the side "
+                  "(frames in DIR/frames; see docs/RENDER.md)");
+    render_cmd->add_option("directory", render.directory, "Run directory of tumble drum or tumble run")->required();
+    render_cmd->add_option("-o,--out", render.out, "The movie file (default DIR/drum.mp4)");
+    render_cmd->add_option("--fps", render.fps, "Frames per second of the movie (default 25)")
+        ->check(CLI::Range(1, 240));
+    render_cmd->add_option("--width", render.width, "Pixels of each of the two views (default 640)")
+        ->check(CLI::Range(16, 8192));
+    render_cmd->add_option("--color", render.colour,
+                           "Grains coloured by material or tag (default: tag, the starting half, for a "
+                           "self-diffusion drum run; material otherwise)")
+        ->check(CLI::IsMember({"material", "tag"}));
+    render_cmd->add_flag("--frames-only", render.frames_only, "Write the frames only, no movie (no ffmpeg needed)");
+    render_cmd->add_option("-j,--jobs", render.jobs, "Threads drawing frames (default: the logical cores)")
+        ->check(CLI::PositiveNumber);
+    render_cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors");
+
     SweepOptions sweep;
     CLI::App* sweep_cmd = app.add_subcommand(
         "sweep", "The drum experiment over rotation speeds, modes and seeds, one child run per point "
@@ -132,6 +151,7 @@ int main(int argc, char** argv) {
         if (analyze_cmd->parsed()) return analyze_command(analyze_dir);
         if (plot_cmd->parsed()) return plot_command(plot_compare ? "compare" : "run", plot_inputs, plot_out);
         if (sweep_cmd->parsed()) return sweep_command(sweep);
+        if (render_cmd->parsed()) return render_command(render);
         if (resume_cmd->parsed()) return resume_command(resume_dir, resume_quiet);
         if (drum_cmd->parsed()) {
             tumble::io::DrumSettings& d = drum.settings;

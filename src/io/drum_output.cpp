@@ -1,13 +1,19 @@
 // SPDX-License-Identifier: MIT
 #include "io/drum_output.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <numeric>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
 
+#include "io/csv_table.hpp"
 #include "io/output.hpp"
+#include "io/snapshots.hpp"
 #include "io/toml_reader.hpp"
 #include "tumble/analysis/hogg.hpp"
 #include "tumble/core/constants.hpp"
@@ -16,66 +22,6 @@
 namespace tumble::io {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-// A CSV file with a header row, as numbers by column name.
-struct Csv {
-    std::vector<std::string> header;
-    std::vector<std::vector<std::string>> rows;
-
-    std::size_t column(const std::string& name, const fs::path& file) const {
-        for (std::size_t k = 0; k < header.size(); ++k)
-            if (header[k] == name) return k;
-        throw Error(file.string() + ": no column \"" + name + "\"");
-    }
-};
-
-std::vector<std::string> split(const std::string& line) {
-    std::vector<std::string> cells;
-    std::stringstream s(line);
-    std::string cell;
-    while (std::getline(s, cell, ',')) cells.push_back(cell);
-    return cells;
-}
-
-Csv read_csv(const fs::path& file) {
-    std::ifstream in(file);
-    if (!in) throw Error(file.string() + ": cannot read (is this a drum run directory?)");
-    Csv csv;
-    std::string line;
-    std::getline(in, line);
-    csv.header = split(line);
-    while (std::getline(in, line)) {
-        if (line.empty()) continue;
-        csv.rows.push_back(split(line));
-        if (csv.rows.back().size() != csv.header.size())
-            throw Error(file.string() + ": line " + std::to_string(csv.rows.size() + 1) + " has " +
-                        std::to_string(csv.rows.back().size()) + " cells, the header " +
-                        std::to_string(csv.header.size()));
-    }
-    return csv;
-}
-
-double number(const std::string& cell, const fs::path& file) {
-    try {
-        std::size_t used = 0;
-        const double v = std::stod(cell, &used);
-        if (used == cell.size()) return v;
-    } catch (const std::exception&) {
-    }
-    if (cell == "nan") return std::numeric_limits<double>::quiet_NaN();
-    throw Error(file.string() + ": \"" + cell + "\" is not a number");
-}
-
-std::vector<double> column(const Csv& csv, const std::string& name, const fs::path& file) {
-    const std::size_t k = csv.column(name, file);
-    std::vector<double> out;
-    for (const auto& row : csv.rows) out.push_back(number(row[k], file));
-    return out;
-}
-
-}  // namespace
 
 std::string drum_run_info_text(const DrumRunInfo& info) {
     toml::array components;
@@ -184,11 +130,11 @@ void DrumSeriesWriter::write(double revolutions, double time, const analysis::Dr
 }
 
 DrumSeries read_drum_series(const fs::path& file, std::size_t components) {
-    const Csv csv = read_csv(file);
+    const CsvTable csv = read_csv_table(file);
     DrumSeries s;
-    s.revolutions = column(csv, "revolutions", file);
-    s.time = column(csv, "time", file);
-    s.angle_of_repose = column(csv, "angle_of_repose", file);
+    s.revolutions = csv.numbers("revolutions");
+    s.time = csv.numbers("time");
+    s.angle_of_repose = csv.numbers("angle_of_repose");
     // Component columns are named after the components, in order after the
     // six fixed columns, five each.
     for (std::size_t c = 0; c < components; ++c) {
@@ -196,16 +142,16 @@ DrumSeries read_drum_series(const fs::path& file, std::size_t components) {
         if (first + 5 > csv.header.size()) throw Error(file.string() + ": fewer component columns than components");
         for (auto [target, offset] : {std::pair{&s.mean_z, 1}, std::pair{&s.mean_z_stderr, 2},
                                       std::pair{&s.kinetic_energy, 3}, std::pair{&s.kinetic_per_grain, 4}}) {
-            target->push_back(column(csv, csv.header[first + offset], file));
+            target->push_back(csv.numbers(csv.header[first + offset]));
         }
     }
     return s;
 }
 
 DrumProfiles read_drum_profiles(const fs::path& file, std::size_t components, std::size_t bins) {
-    const Csv csv = read_csv(file);
-    const auto N = column(csv, "revolutions", file), c = column(csv, "component", file),
-               b = column(csv, "bin", file), z = column(csv, "z", file), C = column(csv, "concentration", file);
+    const CsvTable csv = read_csv_table(file);
+    const auto N = csv.numbers("revolutions"), c = csv.numbers("component"), b = csv.numbers("bin"),
+               z = csv.numbers("z"), C = csv.numbers("concentration");
     DrumProfiles p;
     p.bin_centre.resize(bins);
     for (std::size_t row = 0; row < N.size(); ++row) {
@@ -241,6 +187,73 @@ std::size_t nearest_sample(const std::vector<double>& N, double target) {
     for (std::size_t k = 1; k < N.size(); ++k)
         if (std::abs(N[k] - target) < std::abs(N[best] - target)) best = k;
     return best;
+}
+
+}  // namespace
+
+analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_start, double omega) {
+    std::ifstream in(file);
+    std::string first;
+    double time = 0.0;
+    if (!std::getline(in, first) || std::sscanf(first.c_str(), "# time = %lf s", &time) != 1)
+        throw Error(file.string() + ": not a particle snapshot (its first line should be \"# time = T s, ...\")");
+    const CsvTable csv = read_csv_table(file);
+    const std::vector<double> id = csv.numbers("id"), x = csv.numbers("x"), y = csv.numbers("y"),
+                              z = csv.numbers("z"), radius = csv.numbers("radius"), tag = csv.numbers("tag"),
+                              kinematic = csv.numbers("kinematic");
+    std::vector<std::size_t> order(id.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+    analysis::GrainFrame frame;
+    frame.revolutions = omega * (time - rotation_start) / (2.0 * tumble::pi);
+    for (std::size_t k : order) {
+        if (kinematic[k] != 0.0) continue;
+        frame.id.push_back(static_cast<std::int64_t>(id[k]));
+        frame.position.push_back({x[k], y[k], z[k]});
+        frame.radius.push_back(radius[k]);
+        frame.tag.push_back(static_cast<std::int32_t>(tag[k]));
+    }
+    return frame;
+}
+
+namespace {
+
+// Depth layers of one grain diameter; the last holds everything deeper (a
+// bed of 1000 grains in the paper's drum is about 6 diameters deep).
+constexpr int depth_layers = 8;
+
+// The axial displacements by depth between consecutive particle snapshots
+// taken during the rotation; none without two such snapshots.
+std::optional<analysis::DepthMobility> depth_mobility_of_run(const fs::path& dir, const DrumRunInfo& info) {
+    std::optional<analysis::DepthMobility> mobility;
+    std::optional<analysis::GrainFrame> before;
+    for (const fs::path& file : list_snapshot_csv(dir)) {
+        analysis::GrainFrame after = read_snapshot_grains(file, info.settle_time, info.omega);
+        if (after.revolutions < -1e-9) continue;  // before the rotation
+        if (before) {
+            if (!mobility) mobility.emplace(static_cast<int>(info.components.size()), depth_layers);
+            mobility->add(*before, after, info.inner_radius);
+        }
+        before = std::move(after);
+    }
+    return mobility;
+}
+
+void write_depth_mobility(const fs::path& file, const analysis::DepthMobility& m, const DrumRunInfo& info) {
+    std::ofstream out = open_for_writing(file);
+    out << "layer,depth_lo,depth_hi";
+    for (const DrumComponent& c : info.components)
+        for (const char* what : {"samples", "msd_per_rev", "share", "occupancy"}) out << ',' << what << '_' << c.name;
+    out << '\n';
+    for (int layer = 0; layer < m.layers(); ++layer) {
+        out << fmt::format("{},{},{}", layer, layer == 0 ? -INFINITY : layer,
+                           layer + 1 == m.layers() ? INFINITY : layer + 1.0);
+        for (int c = 0; c < m.components(); ++c)
+            out << fmt::format(",{},{},{},{}", m.samples(c, layer), m.msd_per_revolution(c, layer), m.share(c, layer),
+                               m.occupancy(c, layer));
+        out << '\n';
+    }
+    check_written(out, file);
 }
 
 }  // namespace
@@ -301,6 +314,22 @@ std::string analyze_drum_run(const fs::path& dir) {
                                               {"points", static_cast<std::int64_t>(fit.points)}});
     }
 
+    // The dynamic angle of repose, mean over the rotation after the first
+    // revolution (the bed takes a fraction of one to reach its steady slope);
+    // a run shorter than two revolutions uses its second half.
+    double angle_sum = 0.0;
+    std::size_t angles = 0;
+    const double last_N = series.revolutions.empty() ? 0.0 : series.revolutions.back();
+    for (std::size_t k = 0; k < series.revolutions.size(); ++k)
+        if (series.revolutions[k] > 0.0 && series.revolutions[k] >= std::min(1.0, 0.5 * last_N) &&
+            std::isfinite(series.angle_of_repose[k])) {
+            angle_sum += series.angle_of_repose[k];
+            ++angles;
+        }
+    const double angle_of_repose = angles ? angle_sum / static_cast<double>(angles) : std::nan("");
+    text << fmt::format("  dynamic angle of repose {:.1f} degrees (mean over the rotation after N = {:.2g})\n",
+                        angle_of_repose, std::min(1.0, 0.5 * last_N));
+
     toml::table summary{{"mode", info.mode},
                         {"omega", info.omega},
                         {"froude", info.froude},
@@ -314,6 +343,7 @@ std::string analyze_drum_run(const fs::path& dir) {
                         {"bed_length", L},
                         {"solid_fraction", info.solid_fraction},
                         {"fill_fraction", info.fill_fraction},
+                        {"angle_of_repose", angle_of_repose},
                         {"grain_updates_per_second", info.grain_updates_per_second},
                         {"components", components_json}};
 
@@ -365,6 +395,29 @@ std::string analyze_drum_run(const fs::path& dir) {
         }
         check_written(out, dir / "profile_comparison.csv");
         summary.insert("profile_comparison", rms_json);
+    }
+
+    // Where the axial motion happens: by depth below the free surface, from
+    // the particle snapshots (tumble drum --snapshots).
+    if (const auto mobility = depth_mobility_of_run(dir, info)) {
+        write_depth_mobility(dir / "depth_mobility.csv", *mobility, info);
+        toml::array layers_json;
+        text << fmt::format("  axial motion by depth below the free surface ({} snapshot intervals; "
+                            "depth_mobility.csv):\n    share of <dz^2> in the top grain layer (depth < 1 mean "
+                            "grain diameter)",
+                            mobility->intervals());
+        for (std::size_t c = 0; c < n_components; ++c) {
+            const int k = static_cast<int>(c);
+            const double top = mobility->share(k, 0);
+            const double top_occupancy = mobility->occupancy(k, 0);
+            text << fmt::format("{} {}: {:.2f} (holding {:.2f} of its grains)", c ? "," : "", info.components[c].name,
+                                top, top_occupancy);
+            layers_json.push_back(toml::table{{"name", info.components[c].name},
+                                              {"surface_share", top},
+                                              {"surface_occupancy", top_occupancy}});
+        }
+        text << "\n";
+        summary.insert("depth_mobility", layers_json);
     }
 
     {

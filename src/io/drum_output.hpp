@@ -5,6 +5,8 @@
 //                      repose, bed centre, and per component <z>, its standard
 //                      error, kinetic energy (total and per grain)
 //   profiles.csv       the axial concentration profiles C(z, N)
+//   depth_mobility.csv  axial mean squared displacement per revolution by
+//                      depth below the free surface (from the snapshots)
 //   summary.json, summary.txt   the analysis (`tumble analyze DIR`)
 #pragma once
 
@@ -13,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "tumble/analysis/depth_mobility.hpp"
 #include "tumble/analysis/drum_measure.hpp"
 
 namespace tumble::io {
@@ -77,6 +80,10 @@ struct DrumProfiles {
     std::vector<std::vector<std::vector<double>>> concentration;  // [sample][component][bin]
 };
 DrumProfiles read_drum_profiles(const std::filesystem::path& file, std::size_t components, std::size_t bins);
+
+// A particle snapshot (snapshots/NNNNNN.csv) of a drum run: its free grains,
+// sorted by id, at N = omega (t - rotation_start) / 2 pi revolutions.
+analysis::GrainFrame read_snapshot_grains(const std::filesystem::path& file, double rotation_start, double omega);
 
 // Fits D per component, the kinetic-energy ratios and the profile comparison;
 // writes summary.json and summary.txt into `directory` and returns the text.

@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "io/snapshots.hpp"
 
+#include <algorithm>
+#include <cctype>
+
 #include <fmt/format.h>
 
+#include "io/csv_table.hpp"
 #include "io/output.hpp"
 
 namespace tumble::io {
@@ -34,6 +38,41 @@ void SnapshotSeries::add_to_indexes(double time) {
     particles_.add(time, dataset(number, "vtu"));
     contacts_.add(time, dataset(number, "vtp"));
     times_.push_back(time);
+}
+
+SnapshotParticles read_snapshot_csv(const fs::path& file) {
+    const CsvTable csv = read_csv_table(file);
+    const std::vector<double> x = csv.numbers("x"), y = csv.numbers("y"), z = csv.numbers("z"),
+                              radius = csv.numbers("radius"), tag = csv.numbers("tag"),
+                              kinematic = csv.numbers("kinematic");
+    const std::size_t material = csv.column("material");
+    SnapshotParticles p;
+    p.radius = radius;
+    for (std::size_t i = 0; i < csv.rows.size(); ++i) {
+        p.position.push_back({x[i], y[i], z[i]});
+        p.tag.push_back(static_cast<std::int32_t>(tag[i]));
+        p.kinematic.push_back(kinematic[i] != 0.0 ? 1 : 0);
+        const std::string& name = csv.rows[i][material];
+        const auto known = std::find(p.material_names.begin(), p.material_names.end(), name);
+        p.material.push_back(static_cast<std::int32_t>(known - p.material_names.begin()));
+        if (known == p.material_names.end()) p.material_names.push_back(name);
+    }
+    return p;
+}
+
+std::vector<fs::path> list_snapshot_csv(const fs::path& directory) {
+    std::vector<fs::path> files;
+    std::error_code ec;
+    for (const fs::directory_entry& entry : fs::directory_iterator(directory / "snapshots", ec)) {
+        const std::string stem = entry.path().stem().string();
+        if (entry.path().extension() == ".csv" && !stem.empty() &&
+            std::all_of(stem.begin(), stem.end(), [](unsigned char c) { return std::isdigit(c); }))
+            files.push_back(entry.path());
+    }
+    std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
+        return std::stoull(a.stem().string()) < std::stoull(b.stem().string());
+    });
+    return files;
 }
 
 }  // namespace tumble::io

@@ -4,10 +4,13 @@
 //   snapshots/NNNNNN.vtu   the same for ParaView (vtk_output.hpp)
 //   snapshots/NNNNNN.vtp   the contact network: a line per contact with its normal force
 // and two ParaView time-series indexes in the run directory, particles.pvd
-// and contacts.pvd (open them in ParaView: File > Open).
+// and contacts.pvd (open them in ParaView: File > Open). The CSV files are
+// read back for `tumble render`.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "io/vtk_output.hpp"
@@ -30,5 +33,22 @@ private:
     PvdIndex particles_, contacts_;
     std::vector<double> times_;
 };
+
+// What a snapshots/NNNNNN.csv says of each particle, in the file's order
+// (by global id); what `tumble render` draws.
+struct SnapshotParticles {
+    std::vector<Vec3> position;            // m
+    std::vector<double> radius;            // m
+    std::vector<std::int32_t> material;    // index into material_names
+    std::vector<std::string> material_names;  // in the order they first appear
+    std::vector<std::int32_t> tag;
+    std::vector<std::uint8_t> kinematic;   // 1: moves by a prescribed motion (a drum wall particle)
+};
+// tumble::Error naming the file if it cannot be read or lacks a column.
+SnapshotParticles read_snapshot_csv(const std::filesystem::path& file);
+
+// The snapshot CSV files of a run directory (DIR/snapshots/NNNNNN.csv), in
+// the order of their numbers; empty if there are none.
+std::vector<std::filesystem::path> list_snapshot_csv(const std::filesystem::path& directory);
 
 }  // namespace tumble::io

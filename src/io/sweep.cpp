@@ -571,7 +571,7 @@ bool has_numbers(const PointResult& r) { return r.state == PointState::finished 
 }  // namespace
 
 PointResult read_point_result(const SweepPoint& p) {
-    PointResult r{p, point_state(p.directory), "", {}, nan, nan, nan, nan, nan};
+    PointResult r{p, point_state(p.directory), "", {}, nan, nan, nan, nan, nan, nan};
     if (r.state == PointState::failed) {
         std::ifstream in(p.directory / point_failed_file);
         std::string line;
@@ -594,14 +594,20 @@ PointResult read_point_result(const SweepPoint& p) {
                 if (!name || name->type != Json::Type::string) throw Error(file.string() + ": a component without a name");
                 const Json* det = c.find("determined");
                 r.components[name->string] = {num(c, "D"), num(c, "D_stderr"), num(c, "D_one_term"),
-                                              det && det->type == Json::Type::boolean && det->boolean};
+                                              det && det->type == Json::Type::boolean && det->boolean, nan};
             }
         else
             throw Error(file.string() + ": no \"components\" array");
+        if (const Json* depth = j.find("depth_mobility"); depth && depth->type == Json::Type::array)
+            for (const Json& c : depth->array)
+                if (const Json* name = c.find("name"); name && name->type == Json::Type::string)
+                    if (auto it = r.components.find(name->string); it != r.components.end())
+                        it->second.surface_share = num(c, "surface_share");
         r.ke_ratio_total = num(j, "kinetic_energy_ratio_total");
         r.ke_ratio_total_ref = num(j, "kinetic_energy_ratio_total_equal_velocity");
         r.ke_ratio_per_grain = num(j, "kinetic_energy_ratio_per_grain");
         r.ke_ratio_per_grain_ref = num(j, "kinetic_energy_ratio_per_grain_equal_velocity");
+        r.angle_of_repose = num(j, "angle_of_repose");
         r.grain_updates_per_second = num(j, "grain_updates_per_second");
     } catch (const Error& e) {
         r.note = std::string("unreadable summary.json: ") + e.what();
@@ -625,8 +631,8 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
         std::ostringstream out;
         out << "mode,omega,froude,seed,revolutions,grains";
         for (const std::string& c : components)
-            out << fmt::format(",D_{0},D_stderr_{0},D_one_term_{0},determined_{0}", c);
-        out << ",ke_ratio_total,ke_ratio_total_ref,ke_ratio_per_grain,ke_ratio_per_grain_ref,"
+            out << fmt::format(",D_{0},D_stderr_{0},D_one_term_{0},determined_{0},surface_share_{0}", c);
+        out << ",ke_ratio_total,ke_ratio_total_ref,ke_ratio_per_grain,ke_ratio_per_grain_ref,angle_of_repose,"
                "grain_updates_per_second,status\n";
         for (const PointResult& r : results) {
             const SweepPoint& p = r.point;
@@ -636,13 +642,13 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
             for (const std::string& c : components) {
                 const PointResult::Component* k = ok ? component(r, c) : nullptr;
                 if (k)
-                    out << fmt::format(",{},{},{},{}", cell(k->D), cell(k->D_stderr), cell(k->D_one_term),
-                                       k->determined ? "true" : "false");
+                    out << fmt::format(",{},{},{},{},{}", cell(k->D), cell(k->D_stderr), cell(k->D_one_term),
+                                       k->determined ? "true" : "false", cell(k->surface_share));
                 else
-                    out << ",,,,";
+                    out << ",,,,,";
             }
             for (double v : {r.ke_ratio_total, r.ke_ratio_total_ref, r.ke_ratio_per_grain, r.ke_ratio_per_grain_ref,
-                             r.grain_updates_per_second})
+                             r.angle_of_repose, r.grain_updates_per_second})
                 out << ',' << (ok ? cell(v) : std::string());
             out << ',' << (ok ? "finished" : to_string(r.state)) << '\n';
         }
@@ -666,12 +672,17 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
                 const auto* k = component(r, c);
                 return k && k->determined ? k->D_one_term : nan;
             });
+            quantities.emplace_back("surface_share_" + c, [c, component](const PointResult& r) {
+                const auto* k = component(r, c);
+                return k ? k->surface_share : nan;
+            });
         }
         quantities.emplace_back("ke_ratio_total", [](const PointResult& r) { return r.ke_ratio_total; });
         quantities.emplace_back("ke_ratio_total_ref", [](const PointResult& r) { return r.ke_ratio_total_ref; });
         quantities.emplace_back("ke_ratio_per_grain", [](const PointResult& r) { return r.ke_ratio_per_grain; });
         quantities.emplace_back("ke_ratio_per_grain_ref",
                                 [](const PointResult& r) { return r.ke_ratio_per_grain_ref; });
+        quantities.emplace_back("angle_of_repose", [](const PointResult& r) { return r.angle_of_repose; });
         quantities.emplace_back("grain_updates_per_second",
                                 [](const PointResult& r) { return r.grain_updates_per_second; });
 

@@ -176,13 +176,17 @@ struct PointResult {
     SweepPoint point;
     PointState state = PointState::pending;
     std::string note;  // why there are no numbers (failed, unreadable summary.json)
-    // Per component name: D, D_stderr, D_one_term, determined (NaN: null / absent).
+    // Per component name: D, D_stderr, D_one_term, determined, and the share
+    // of its axial <dz^2> in the top grain layer, less than a mean grain
+    // diameter below the free surface (NaN: null / absent).
     struct Component {
         double D, D_stderr, D_one_term;
         bool determined;
+        double surface_share;
     };
     std::map<std::string, Component> components;
     double ke_ratio_total, ke_ratio_total_ref, ke_ratio_per_grain, ke_ratio_per_grain_ref;
+    double angle_of_repose;  // degrees
     double grain_updates_per_second;
 };
 

@@ -184,10 +184,11 @@ TEST_F(Cli, DrumRunWritesSeriesAndSummaryAndCanBeAnalysedAgain) {
     // A small, short drum: 300 grains, 0.3 revolutions at 8 rad/s sampled
     // 40 times per revolution. It checks the files, not the physics.
     const fs::path run = dir_ / "drum";
-    const Result r = run_tumble("drum -q --grains 300 --omega 8 --revolutions 0.3 --samples 40 --out " + run.string());
+    const Result r = run_tumble("drum -q --grains 300 --omega 8 --revolutions 0.3 --samples 40 --snapshots 10 --out " +
+                                run.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
     for (const char* file : {"drum_run.toml", "drum_series.csv", "profiles.csv", "profile_comparison.csv",
-                             "summary.json", "summary.txt", "time_series.csv"})
+                             "depth_mobility.csv", "summary.json", "summary.txt", "time_series.csv"})
         EXPECT_TRUE(fs::exists(run / file)) << file;
     const std::string series = read_file(run / "drum_series.csv");
     // The header, N = 0, 12 samples at 1/40 revolution (and the final state
@@ -198,7 +199,8 @@ TEST_F(Cli, DrumRunWritesSeriesAndSummaryAndCanBeAnalysedAgain) {
     const std::string summary = read_file(run / "summary.json");
     for (const char* key : {"\"D\"", "\"D_stderr\"", "\"D_one_term\"", "\"omega\"", "\"revolutions\"", "\"grains\"",
                             "\"wall_particles\"", "\"fill_fraction\"", "\"kinetic_energy_ratio_total\"",
-                            "\"kinetic_energy_ratio_per_grain_equal_velocity\""})
+                            "\"kinetic_energy_ratio_per_grain_equal_velocity\"", "\"depth_mobility\"",
+                            "\"surface_share\""})
         EXPECT_NE(summary.find(key), std::string::npos) << key;
     EXPECT_EQ(summary.find("NaN"), std::string::npos) << "JSON has no NaN";
 

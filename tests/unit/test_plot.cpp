@@ -84,29 +84,26 @@ TEST_F(Plot, RunDirectoryGivesTheRunFigures) {
     const fs::path run = dir_ / "run";
     const Result drum = run_command(std::string(TUMBLE_BINARY) +
                                     " drum --grains 150 --omega 8 --revolutions 0.25"
-                                    " --samples 20 -q --out " + quoted(run));
+                                    " --samples 20 --snapshots 12 -q --out " + quoted(run));
     ASSERT_EQ(drum.exit_code, 0) << drum.output;
 
     const fs::path figures = dir_ / "figures";
     const Result result = plot(python_, "run " + quoted(run) + " --out " + quoted(figures));
     ASSERT_EQ(result.exit_code, 0) << result.output;
-    for (const char* name : {"fig_z", "fig_profiles", "fig_energy"}) {
+    for (const char* name : {"fig1_setup", "fig_z", "fig_profiles", "fig_energy", "fig_depth"}) {
         expect_figure(figures, name);
         EXPECT_NE(result.output.find((figures / (std::string(name) + ".png")).string()),
                   std::string::npos) << "the list of files written names " << name;
     }
-    if (fs::exists(run / "snapshots" / "000000.csv")) {
-        expect_figure(figures, "fig1_setup");
-    } else {
-        EXPECT_NE(result.output.find("fig1_setup skipped"), std::string::npos) << result.output;
-    }
-
-    // Without the initial snapshot the set-up figure is skipped with a note, not a crash.
+    // Without the snapshots the set-up and depth figures are skipped with a
+    // note, not a crash.
     fs::remove_all(run / "snapshots");
+    fs::remove(run / "depth_mobility.csv");
     const fs::path figures2 = dir_ / "figures2";
     const Result again = plot(python_, "run " + quoted(run) + " --out " + quoted(figures2));
     ASSERT_EQ(again.exit_code, 0) << again.output;
     EXPECT_NE(again.output.find("fig1_setup skipped"), std::string::npos) << again.output;
+    EXPECT_NE(again.output.find("fig_depth skipped"), std::string::npos) << again.output;
     EXPECT_FALSE(fs::exists(figures2 / "fig1_setup.png"));
     expect_figure(figures2, "fig_z");
 
@@ -124,22 +121,23 @@ TEST_F(Plot, SweepTableGivesTheSweepFigures) {
         std::ofstream out(table);
         out << "omega,froude,mode,seed,D_left,D_stderr_left,D_right,D_stderr_right,"
                "D_material-1,D_stderr_material-1,D_material-2,D_stderr_material-2,"
-               "ke_ratio_total,ke_ratio_total_ref,ke_ratio_per_grain,ke_ratio_per_grain_ref\n"
-               "2,0.0163,self,1,1.0e-5,2e-6,1.2e-5,2e-6,,,,,,,,\n"
-               "2,0.0163,self,2,1.1e-5,2e-6,0.9e-5,2e-6,,,,,,,,\n"
-               "5,0.102,self,1,2.0e-5,3e-6,2.4e-5,3e-6,,,,,,,,\n"
-               "5,0.102,self,2,2.2e-5,3e-6,,,,,,,,,,\n"
-               "10,0.408,self,1,3.5e-5,5e-6,3.1e-5,5e-6,,,,,,,,\n"
-               "2,0.0163,two-component,1,,,,,3.0e-5,4e-6,2.0e-5,4e-6,1.4,0.998,0.42,0.296\n"
-               "2,0.0163,two-component,2,,,,,3.3e-5,4e-6,2.2e-5,4e-6,1.5,0.995,0.44,0.296\n"
-               "5,0.102,two-component,1,,,,,3.3e-5,4e-6,2.3e-5,5e-6,1.52,0.998,0.451,0.296\n"
-               "10,0.408,two-component,1,,,,,2.9e-5,4e-6,,,1.7,0.998,0.5,0.296\n";
+               "ke_ratio_total,ke_ratio_total_ref,ke_ratio_per_grain,ke_ratio_per_grain_ref,"
+               "surface_share_left,surface_share_material-2\n"
+               "2,0.0163,self,1,1.0e-5,2e-6,1.2e-5,2e-6,,,,,,,,,0.9,\n"
+               "2,0.0163,self,2,1.1e-5,2e-6,0.9e-5,2e-6,,,,,,,,,0.92,\n"
+               "5,0.102,self,1,2.0e-5,3e-6,2.4e-5,3e-6,,,,,,,,,0.88,\n"
+               "5,0.102,self,2,2.2e-5,3e-6,,,,,,,,,,,,\n"
+               "10,0.408,self,1,3.5e-5,5e-6,3.1e-5,5e-6,,,,,,,,,0.85,\n"
+               "2,0.0163,two-component,1,,,,,3.0e-5,4e-6,2.0e-5,4e-6,1.4,0.998,0.42,0.296,,0.7\n"
+               "2,0.0163,two-component,2,,,,,3.3e-5,4e-6,2.2e-5,4e-6,1.5,0.995,0.44,0.296,,0.72\n"
+               "5,0.102,two-component,1,,,,,3.3e-5,4e-6,2.3e-5,5e-6,1.52,0.998,0.451,0.296,,0.6\n"
+               "10,0.408,two-component,1,,,,,2.9e-5,4e-6,,,1.7,0.998,0.5,0.296,,\n";
     }
     const fs::path figures = dir_ / "figures";
     const Result result = plot(python_, "sweep " + quoted(table) + " --out " + quoted(figures));
     ASSERT_EQ(result.exit_code, 0) << result.output;
     for (const char* name : {"fig3_self_D_vs_omega", "fig5_two_component_D_vs_omega",
-                             "fig6_ke_ratio_vs_omega", "fig_D_vs_froude"})
+                             "fig6_ke_ratio_vs_omega", "fig_D_vs_froude", "fig_surface_share_vs_omega"})
         expect_figure(figures, name);
 
     // A table with only two-component rows: Fig. 3 is skipped with a note.
@@ -154,6 +152,8 @@ TEST_F(Plot, SweepTableGivesTheSweepFigures) {
     const Result partial = plot(python_, "sweep " + quoted(two) + " --out " + quoted(dir_ / "f2"));
     ASSERT_EQ(partial.exit_code, 0) << partial.output;
     EXPECT_NE(partial.output.find("fig3_self_D_vs_omega skipped"), std::string::npos)
+        << partial.output;
+    EXPECT_NE(partial.output.find("fig_surface_share_vs_omega skipped"), std::string::npos)
         << partial.output;
     expect_figure(dir_ / "f2", "fig5_two_component_D_vs_omega");
 }

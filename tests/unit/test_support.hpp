@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -38,13 +39,15 @@ inline std::string read_file(const std::filesystem::path& file) {
 }
 
 // A fresh directory per test, removed afterwards:
-// <tmp>/tumble-<suite>-<test>.
+// <tmp>/tumble-<suite>-<test>-<pid>: the process id keeps apart the same
+// test run at once from several checkouts (or build directories).
 class ScratchTest : public ::testing::Test {
 protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
         dir_ = std::filesystem::temp_directory_path() /
-               ("tumble-" + std::string(info->test_suite_name()) + "-" + info->name());
+               ("tumble-" + std::string(info->test_suite_name()) + "-" + info->name() + "-" +
+                std::to_string(::getpid()));
         std::filesystem::remove_all(dir_);
         std::filesystem::create_directories(dir_);
     }

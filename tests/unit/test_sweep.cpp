@@ -7,6 +7,7 @@
 
 #include "test_support.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "io/config.hpp"
 #include "io/drum_output.hpp"
@@ -374,6 +376,8 @@ std::string summary_json(const std::string& mode, double d1, double d2, bool det
         text += "  \"kinetic_energy_ratio_total\": " + std::to_string(ke) +
                 ",\n  \"kinetic_energy_ratio_total_equal_velocity\": 1,\n  \"kinetic_energy_ratio_per_grain\": 0.45,\n"
                 "  \"kinetic_energy_ratio_per_grain_equal_velocity\": 0.296,\n";
+    text += "  \"depth_mobility\": [{\"name\": \"" + names[0] + "\", \"surface_share\": 0.9, \"surface_occupancy\": 0.5}],\n";
+    text += "  \"angle_of_repose\": 38.5,\n";
     text += "  \"grain_updates_per_second\": " + std::to_string(speed) + "\n}\n";
     return text;
 }
@@ -410,10 +414,12 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     ASSERT_EQ(rows.size(), 13u);
     const std::string header =
         "mode,omega,froude,seed,revolutions,grains,"
-        "D_material-1,D_stderr_material-1,D_one_term_material-1,determined_material-1,"
-        "D_material-2,D_stderr_material-2,D_one_term_material-2,determined_material-2,"
-        "D_left,D_stderr_left,D_one_term_left,determined_left,D_right,D_stderr_right,D_one_term_right,determined_right,"
-        "ke_ratio_total,ke_ratio_total_ref,ke_ratio_per_grain,ke_ratio_per_grain_ref,grain_updates_per_second,status";
+        "D_material-1,D_stderr_material-1,D_one_term_material-1,determined_material-1,surface_share_material-1,"
+        "D_material-2,D_stderr_material-2,D_one_term_material-2,determined_material-2,surface_share_material-2,"
+        "D_left,D_stderr_left,D_one_term_left,determined_left,surface_share_left,"
+        "D_right,D_stderr_right,D_one_term_right,determined_right,surface_share_right,"
+        "ke_ratio_total,ke_ratio_total_ref,ke_ratio_per_grain,ke_ratio_per_grain_ref,angle_of_repose,"
+        "grain_updates_per_second,status";
     EXPECT_EQ(slurp(dir_ / "sweep.csv").substr(0, header.size() + 1), header + "\n");
     auto r1 = row_map(rows, 1);
     EXPECT_EQ(r1["mode"], "two-component");
@@ -427,6 +433,9 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     EXPECT_EQ(r1["D_left"], "");
     EXPECT_EQ(r1["ke_ratio_total"], "1");
     EXPECT_EQ(r1["ke_ratio_per_grain_ref"], "0.296");
+    EXPECT_EQ(r1["surface_share_material-1"], "0.9");
+    EXPECT_EQ(r1["surface_share_material-2"], "");  // absent from depth_mobility
+    EXPECT_EQ(r1["angle_of_repose"], "38.5");
     EXPECT_EQ(r1["grain_updates_per_second"], "1000000");
     EXPECT_EQ(r1["status"], "finished");
     EXPECT_EQ(row_map(rows, 3)["determined_material-2"], "false");
@@ -459,6 +468,8 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     EXPECT_NEAR(std::stod(s1["ke_ratio_total_std"]), 1.0, 1e-12);
     EXPECT_EQ(s1["D_left_n"], "0");
     EXPECT_EQ(s1["D_left_mean"], "");
+    EXPECT_NEAR(std::stod(s1["angle_of_repose_mean"]), 38.5, 1e-12);
+    EXPECT_NEAR(std::stod(s1["surface_share_material-1_mean"]), 0.9, 1e-12);
     auto s2 = row_map(sum, 2);
     EXPECT_EQ(s2["omega"], "5");
     EXPECT_EQ(s2["finished"], "1");
@@ -498,6 +509,7 @@ TEST_F(Sweep, ReadsTheSummaryJsonOfARealAnalysis) {
         for (int k = 0; k <= 100; ++k) {
             const double N = 0.1 * k;
             analysis::DrumState st;
+            st.angle_of_repose = N < 1.0 ? 60.0 : 30.0;  // the first revolution (spin-up) is left out of the mean
             for (int c = 0; c < 2; ++c) {
                 analysis::ComponentState cs;
                 cs.grains = info.components[c].grains;
@@ -524,6 +536,7 @@ TEST_F(Sweep, ReadsTheSummaryJsonOfARealAnalysis) {
     EXPECT_TRUE(std::isfinite(r.components.at("material-2").D_one_term));
     EXPECT_NEAR(r.ke_ratio_total, 1.5, 1e-9);
     EXPECT_NEAR(r.ke_ratio_total_ref, 1.0, 1e-12);
+    EXPECT_NEAR(r.angle_of_repose, 30.0, 1e-12);
     EXPECT_NEAR(r.grain_updates_per_second, 4.5e6, 1.0);
 }
 
@@ -653,6 +666,52 @@ snapshots_per_revolution = 0
     fs::remove(point.directory / "summary.json");
     const Result again = run(bin + " sweep " + file.string() + " -o " + out.string());
     EXPECT_NE(again.output.find("running it again from the start"), std::string::npos) << again.output;
+}
+
+// The rows of a sweep table without the one column that measures the
+// machine rather than the physics (grain_updates_per_second).
+std::vector<std::vector<std::string>> without_speed(std::vector<std::vector<std::string>> rows) {
+    const auto at = std::find(rows[0].begin(), rows[0].end(), "grain_updates_per_second") - rows[0].begin();
+    for (auto& row : rows)
+        if (static_cast<std::size_t>(at) < row.size()) row.erase(row.begin() + at);
+    return rows;
+}
+
+// A sweep killed (SIGKILL to the sweep and its children) while some points
+// are finished and others running, then started again, ends with the same
+// table as an uninterrupted sweep: the same numbers in every column but the
+// measured speed. Each point is deterministic for its seed, so "the same"
+// is exact.
+TEST_F(Sweep, KilledHalfWayAndRestartedGivesTheUninterruptedTable) {
+    const std::string bin = tumble_binary();
+    if (!has_sweep_command(bin)) GTEST_SKIP() << bin << " has no `sweep` command yet";
+    const std::string file = std::string(TUMBLE_SOURCE_DIR) + "/examples/sweep_tiny.toml";
+    const fs::path whole = dir_ / "whole", killed = dir_ / "killed";
+    ASSERT_EQ(run(bin + " sweep -q " + file + " -o " + whole.string() + " -j 2").exit_code, 0);
+
+    // setsid: the sweep leads a process group of its own, with its children.
+    const fs::path pid_file = dir_ / "sweep.pid";
+    ASSERT_EQ(std::system(("setsid sh -c 'echo $$ > " + pid_file.string() + "; exec " + bin + " sweep -q " + file +
+                           " -o " + killed.string() + " -j 1 > /dev/null 2>&1' &")
+                              .c_str()),
+              0);
+    // Wait (at most 2 minutes) until the first point is finished: with -j 1
+    // the second is then running.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(2);
+    const fs::path first_point = killed / "points" / "self_omega3.000_seed1" / "summary.json";
+    while (!fs::exists(first_point) && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    const std::string pid = slurp(pid_file);
+    ASSERT_FALSE(pid.empty());
+    ASSERT_EQ(run("kill -9 -- -" + pid).exit_code, 0) << "the sweep ended before it could be killed";
+    ASSERT_TRUE(fs::exists(first_point));
+    EXPECT_FALSE(fs::exists(killed / "points" / "self_omega5.000_seed2" / "summary.json"));
+
+    const Result again = run(bin + " sweep " + file + " -o " + killed.string() + " -j 2");
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    EXPECT_NE(again.output.find("1 finished before, 3 to run"), std::string::npos) << again.output;
+    EXPECT_EQ(without_speed(read_csv(killed / "sweep.csv")), without_speed(read_csv(whole / "sweep.csv")));
 }
 
 // END TO END under mpirun (skipped without mpirun or the sweep command): two

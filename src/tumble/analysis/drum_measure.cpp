@@ -91,7 +91,7 @@ DrumState measure_drum(const ParticleStore& p, const DrumFrame& frame) {
     return state;
 }
 
-double segment_fill_fraction(double centroid_distance, double R) {
+double segment_angle(double centroid_distance, double R) {
     // A segment of central angle theta has its centroid at
     // 4 R sin^3(theta/2) / (3 (theta - sin theta)) from the centre, falling
     // monotonically from R (theta -> 0) to 0 (theta = 2 pi): bisect.
@@ -103,7 +103,11 @@ double segment_fill_fraction(double centroid_distance, double R) {
         const double centroid = 4.0 * R * s * s * s / (3.0 * (theta - std::sin(theta)));
         (centroid > d ? lo : hi) = theta;
     }
-    const double theta = 0.5 * (lo + hi);
+    return 0.5 * (lo + hi);
+}
+
+double segment_fill_fraction(double centroid_distance, double R) {
+    const double theta = segment_angle(centroid_distance, R);
     return (theta - std::sin(theta)) / (2.0 * pi);
 }
 

@@ -53,9 +53,12 @@ struct DrumState {
 
 DrumState measure_drum(const ParticleStore& p, const DrumFrame& frame);
 
-// The fraction (theta - sin theta) / (2 pi) of a circle of radius R filled
-// by the segment whose centroid lies `distance` from the centre (0 <=
-// distance < R; distance R: empty, 0: full).
+// The circular segment of a circle of radius R whose centroid lies
+// `centroid_distance` from the centre (0 <= distance < R; distance R: empty,
+// 0: full): its central angle theta, radians. It fills the fraction
+// (theta - sin theta) / (2 pi) of the circle, and its chord lies R cos(theta/2)
+// from the centre, on the side of the centroid.
+double segment_angle(double centroid_distance, double R);
 double segment_fill_fraction(double centroid_distance, double R);
 
 }  // namespace tumble::analysis
