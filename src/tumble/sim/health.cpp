@@ -51,6 +51,7 @@ std::string contact_problem(const Simulation& sim, const HealthLimits& limits) {
     const PairList& pairs = sim.neighbors().pairs();
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const std::uint32_t i = pairs.first[k], j = pairs.second[k];
+        if (p.is_kinematic(i) && p.is_kinematic(j)) continue;  // wall spheres may overlap each other
         const double distance = norm(p.position[i] - p.position[j] + sim.neighbors().images()[pairs.image[k]]);
         const double overlap = p.radius[i] + p.radius[j] - distance;
         const double ratio = overlap / std::min(p.radius[i], p.radius[j]);

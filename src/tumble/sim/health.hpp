@@ -32,7 +32,7 @@ HealthLimits default_health_limits(const Scenario& s);
 // Empty if the run looks physical, else what is wrong: the step and time,
 // which particle (global id) or contact, where, and the limit it broke.
 // Checks non-finite positions, velocities and spins; speeds; the region;
-// and the overlap of every pair of the neighbour list.
+// and the overlap of every pair of the neighbour list with a free sphere.
 std::string health_problem(const Simulation& sim, const HealthLimits& limits);
 
 }  // namespace tumble
