@@ -104,12 +104,6 @@ HealthLimits drum_limits(const Scenario& s) {
     return limits;
 }
 
-std::size_t grain_count(const Simulation& sim) {
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < sim.particles().size(); ++i) n += !sim.particles().is_kinematic(i);
-    return n;
-}
-
 // Settling and rotation from wherever `sim` stands, then the analysis.
 class DrumLoop {
 public:
@@ -141,9 +135,8 @@ private:
     bool talk() const { return !plan_.quiet; }
 
     CheckpointPolicy with_revolutions(CheckpointPolicy policy) const {
-        policy.every_steps = plan_.checkpoint_revolutions > 0.0
-                                 ? std::max<std::int64_t>(1, std::llround(plan_.checkpoint_revolutions * period_ / sim_.dt()))
-                                 : 0;
+        const double steps = plan_.checkpoint_revolutions * period_ / sim_.dt();
+        policy.every_steps = steps > 0.0 ? std::max<std::int64_t>(1, std::llround(steps)) : 0;
         return policy;
     }
 
@@ -152,7 +145,7 @@ private:
     Checkpointer::Due settle() {
         const std::int64_t check_every = std::max<std::int64_t>(1, std::llround(1e-3 / sim_.dt()));
         const std::int64_t first = sim_.step_count();  // > 0 after a resume
-        Progress progress(std::llround(plan_.settle_max_time / sim_.dt()) - first, grain_count(sim_),
+        Progress progress(std::llround(plan_.settle_max_time / sim_.dt()) - first, sim_.particles().free_count(),
                           talk() && progress_wanted());
         while (sim_.time() < plan_.settle_max_time) {
             sim_.advance(check_every);
@@ -202,7 +195,7 @@ private:
 
     Checkpointer::Due rotate() {
         const std::int64_t done = sim_.step_count() - plan_.rotation_start_step;  // > 0 after a resume
-        Progress progress(steps_ - done, grain_count(sim_), talk() && progress_wanted());
+        Progress progress(steps_ - done, sim_.particles().free_count(), talk() && progress_wanted());
         for (std::int64_t k = done + 1; k <= steps_; ++k) {
             sim_.step();
             if (k % sample_every_ == 0) sample();
@@ -231,9 +224,8 @@ private:
     int finish() {
         io::DrumRunInfo& info = plan_.info;
         checkpoint(true, 0.0);
-        const double rotation_steps = static_cast<double>(steps_);
-        info.grain_updates_per_second =
-            info.wall_seconds > 0.0 ? static_cast<double>(grain_count(sim_)) * rotation_steps / info.wall_seconds : 0.0;
+        const double updates = static_cast<double>(sim_.particles().free_count()) * static_cast<double>(steps_);
+        info.grain_updates_per_second = info.wall_seconds > 0.0 ? updates / info.wall_seconds : 0.0;
         io::write_drum_run_info(dir_ / "drum_run.toml", info);
         if (talk())
             fmt::print("rotation simulated in {:.1f} s: {:.3g} grain updates/s ({:.1f} s per revolution)\n\n",
@@ -317,7 +309,7 @@ int drum_command(const DrumOptions& options) {
     if (!options.quiet) {
         fmt::print("tumble drum: {} mode, {} grains ({} {}, {} {}), {} wall particles, inner radius {:.4g} m, "
                    "length {:.4g} m; dt = {:.3g} s\n",
-                   s.mode, grain_count(sim), info.components[0].grains, info.components[0].name,
+                   s.mode, sim.particles().free_count(), info.components[0].grains, info.components[0].name,
                    info.components[1].grains, info.components[1].name, info.wall_particles, info.inner_radius,
                    info.inner_length, sim.dt());
         fmt::print("settling (rms grain speed below {} m/s, at most {} s)\n", s.settle_speed, s.settle_max_time);

@@ -59,18 +59,13 @@ RunPlan load_plan(const io::CheckpointRecord& r) {
     return plan;
 }
 
-std::size_t free_particles(const Simulation& sim) {
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < sim.particles().size(); ++i) n += !sim.particles().is_kinematic(i);
-    return n;
-}
-
 // The run from wherever `sim` stands to the end.
 class RunLoop {
 public:
     RunLoop(Simulation& sim, RunPlan plan, fs::path dir, CheckpointPolicy policy, bool continuing,
             const std::vector<double>& snapshot_times)
-        : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)), checkpoints_(dir_, policy, default_health_limits(sim.scenario())),
+        : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)),
+          checkpoints_(dir_, policy, default_health_limits(sim.scenario())),
           series_(dir_ / "time_series.csv", sim.scenario().materials, continuing) {
         if (plan_.snapshot_every) snapshots_.emplace(dir_, snapshot_times);
     }
@@ -78,7 +73,7 @@ public:
     int run() {
         const bool talk = !plan_.quiet;
         const std::int64_t first = sim_.step_count();  // > 0 after a resume
-        Progress progress(plan_.steps - first, free_particles(sim_), talk && progress_wanted());
+        Progress progress(plan_.steps - first, sim_.particles().free_count(), talk && progress_wanted());
         while (sim_.step_count() < plan_.steps) {
             sim_.step();
             sample();
@@ -97,10 +92,10 @@ public:
         checkpoint(true, progress.elapsed_seconds());
         io::write_run_json(dir_ / "run.json", sim_,
                            {plan_.scenario_file, plan_.seed, plan_.duration, plan_.steps, seconds,
-                            sim_.particles().size(), free_particles(sim_)});
+                            sim_.particles().size(), sim_.particles().free_count()});
         if (talk)
             fmt::print("done in {:.1f} s ({:.3g} particle updates/s); output in {}\n", seconds,
-                       seconds > 0 ? static_cast<double>(free_particles(sim_)) * plan_.steps / seconds : 0.0,
+                       seconds > 0 ? static_cast<double>(sim_.particles().free_count()) * plan_.steps / seconds : 0.0,
                        dir_.string());
         return 0;
     }
@@ -155,7 +150,7 @@ int run_command(const RunOptions& options) {
     if (!options.quiet) {
         const TimeStepReport& t = sim.time_step_report();
         fmt::print("tumble run {}: {} particles ({} free), {} steps of {:.3g} s ({}; safe maximum {:.3g} s)\n",
-                   options.scenario_file, sim.particles().size(), free_particles(sim), plan.steps, dt,
+                   options.scenario_file, sim.particles().size(), sim.particles().free_count(), plan.steps, dt,
                    t.automatic ? "chosen automatically" : "given", t.maximum);
     }
     RunLoop loop(sim, plan, dir, options.checkpoints, false, {});

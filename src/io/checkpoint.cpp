@@ -275,7 +275,8 @@ LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory) {
     const std::vector<fs::path> files = checkpoint_files(run_directory);
     for (auto file = files.rbegin(); file != files.rend(); ++file) {
         try {
-            loaded.checkpoint = decode_checkpoint(read_text_file(*file, std::numeric_limits<std::size_t>::max()), file->string());
+            const std::string bytes = read_text_file(*file, std::numeric_limits<std::size_t>::max());
+            loaded.checkpoint = decode_checkpoint(bytes, file->string());
             loaded.file = *file;
             return loaded;
         } catch (const Error& e) {

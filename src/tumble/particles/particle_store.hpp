@@ -34,6 +34,11 @@ struct ParticleStore {
 
     std::size_t size() const { return id.size(); }
     bool is_kinematic(std::size_t i) const { return motion[i] != free_motion; }
+    std::size_t free_count() const {
+        std::size_t n = 0;
+        for (std::int32_t m : motion) n += m == free_motion;
+        return n;
+    }
 
     // Reorder every field: new index k holds the particle that was at order[k].
     void permute(const std::vector<std::uint32_t>& order);

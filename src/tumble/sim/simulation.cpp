@@ -188,7 +188,8 @@ std::string state_problem(const SimulationState& s, std::size_t n) {
         seen[static_cast<std::size_t>(id)] = true;
     }
     const PairList& pairs = s.neighbors.pairs;
-    if (pairs.second.size() != pairs.size() || pairs.image.size() != pairs.size() || pairs.history.size() != pairs.size())
+    const std::size_t n_pairs = pairs.size();
+    if (pairs.second.size() != n_pairs || pairs.image.size() != n_pairs || pairs.history.size() != n_pairs)
         return "the neighbour pairs have fields of unequal length";
     for (std::size_t k = 0; k < pairs.size(); ++k)
         if (pairs.first[k] >= n || pairs.second[k] >= n || pairs.image[k] >= 27)
@@ -208,7 +209,8 @@ void Simulation::restore(SimulationState state) {
         text << "its time step " << state.dt << " s differs from the scenario's " << dt_ << " s";
         why = text.str();
     }
-    if (why.empty() && state.wall_history.size() != wall_history_.size()) why = "its wall-contact history does not match the domain";
+    if (why.empty() && state.wall_history.size() != wall_history_.size())
+        why = "its wall-contact history does not match the domain";
     if (why.empty() && state.motions.size() != motions_.size()) why = "its number of prescribed motions differs";
     if (!why.empty()) throw Error("restoring a simulation state: " + why);
     particles_ = std::move(state.particles);
