@@ -15,6 +15,7 @@ struct RunOptions {
     std::string output_directory;  // empty: the scenario's [output] directory
     bool force = false;            // overwrite an earlier run's output
     bool quiet = false;
+    int threads = 1;               // 0: every core of the machine (resolve_threads)
 };
 int run_command(const RunOptions& options);
 
@@ -24,14 +25,24 @@ struct BenchOptions {
     std::int64_t warmup = 200;
     std::uint64_t seed = 1;
     bool json = false;
+    int threads = 1;           // 0: every core of the machine (resolve_threads)
 };
 int bench_command(const BenchOptions& options);
+
+// The thread count to run with: `requested`, or every core of the machine
+// for 0; 1 in a build without OpenMP (with a note on stderr if more were asked).
+// Every command defaults to 1 thread: sweeps, test suites and peer
+// benchmarks run several tumble processes side by side, and threads that
+// wait at each step's barriers for a core held by another process lose
+// more than they gain (docs/BENCHMARKS.md "Threads").
+int resolve_threads(int requested);
 
 struct DrumOptions {
     io::DrumSettings settings;  // from --config and the command line
     bool force = false;
     bool quiet = false;
     bool plot = true;  // draw the figures at the end (tools/plot_drum.py)
+    int threads = 1;   // 0: every core of the machine (resolve_threads)
 };
 int drum_command(const DrumOptions& options);
 

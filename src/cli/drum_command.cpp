@@ -58,7 +58,7 @@ int drum_command(const DrumOptions& options) {
 
     DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed);
     if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
-    Simulation sim(std::move(setup.scenario));
+    Simulation sim(std::move(setup.scenario), resolve_threads(options.threads));
     const double dt = sim.dt();
 
     io::DrumRunInfo info;
@@ -71,6 +71,7 @@ int drum_command(const DrumOptions& options) {
     info.inner_radius = setup.wall.inner_radius;
     info.inner_length = setup.wall.inner_length;
     info.dt = dt;
+    info.threads = sim.threads();
     info.samples_per_revolution = s.samples_per_revolution;
     info.profile_bins = s.profile_bins;
     info.components = components_of(sim, s.mode);
@@ -161,8 +162,9 @@ int drum_command(const DrumOptions& options) {
         info.wall_seconds > 0.0 ? static_cast<double>(grains) * static_cast<double>(steps) / info.wall_seconds : 0.0;
     io::write_drum_run_info(s.output / "drum_run.toml", info);
     if (talk)
-        fmt::print("rotation simulated in {:.1f} s: {:.3g} grain updates/s ({:.1f} s per revolution)\n\n",
-                   info.wall_seconds, info.grain_updates_per_second, info.wall_seconds / s.revolutions);
+        fmt::print("rotation simulated in {:.1f} s: {:.3g} grain updates/s on {} thread{} ({:.1f} s per revolution)\n\n",
+                   info.wall_seconds, info.grain_updates_per_second, info.threads, info.threads == 1 ? "" : "s",
+                   info.wall_seconds / s.revolutions);
     const std::string summary = io::analyze_drum_run(s.output);
     if (talk) fmt::print("{}\nwritten to {}\n", summary, s.output.string());
     if (options.plot) {

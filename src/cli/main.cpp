@@ -23,6 +23,8 @@ int main(int argc, char** argv) {
     run_cmd->add_option("-o,--out", run.output_directory, "Output directory (default: the scenario's [output] directory)");
     run_cmd->add_flag("--force", run.force, "Overwrite the output of an earlier run in that directory");
     run_cmd->add_flag("-q,--quiet", run.quiet, "Print nothing but errors");
+    const char* threads_help = "Threads of the time step (0: every core; default 1)";
+    run_cmd->add_option("--threads", run.threads, threads_help)->check(CLI::NonNegativeNumber);
 
     BenchOptions bench;
     CLI::App* bench_cmd = app.add_subcommand("bench", "Speed on the paper's dense periodic cube (SPEC-NOTES \"Speed\")");
@@ -32,6 +34,7 @@ int main(int argc, char** argv) {
     bench_cmd->add_option("--warmup", bench.warmup, "Untimed steps before timing")->check(CLI::NonNegativeNumber);
     bench_cmd->add_option("--seed", bench.seed, "Seed of the random initial velocities");
     bench_cmd->add_flag("--json", bench.json, "Print one JSON object instead of the table");
+    bench_cmd->add_option("--threads", bench.threads, threads_help)->check(CLI::NonNegativeNumber);
 
     // tumble drum: every setting of the drum file can be given here too.
     DrumOptions drum;
@@ -66,6 +69,7 @@ int main(int argc, char** argv) {
     drum_cmd->add_flag("--force", drum.force, "Overwrite an earlier run in that directory");
     drum_cmd->add_flag("-q,--quiet", drum.quiet, "Print nothing but errors");
     drum_cmd->add_flag("!--no-plot", drum.plot, "Do not draw the figures at the end");
+    drum_cmd->add_option("--threads", drum.threads, threads_help)->check(CLI::NonNegativeNumber);
 
     std::string analyze_dir;
     CLI::App* analyze_cmd = app.add_subcommand("analyze", "Analyse a drum run directory again (summary.json, summary.txt)");

@@ -25,7 +25,7 @@ int run_command(const RunOptions& options) {
     // Everything is read and checked before anything is written.
     io::RunConfig config = io::load_run_config(options.scenario_file);
     if (!options.output_directory.empty()) config.output.directory = options.output_directory;
-    Simulation sim(std::move(config.scenario));
+    Simulation sim(std::move(config.scenario), resolve_threads(options.threads));
     const double dt = sim.dt();
     const std::int64_t steps = std::llround(std::ceil(config.duration / dt - 1e-9));
     const std::int64_t sample_every = every(config.output.time_series_interval, dt);
