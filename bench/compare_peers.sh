@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# tumble against LIGGGHTS on the paper's dense periodic cube (SPEC-NOTES
-# "Speed"; docs/BENCHMARKS.md). Run from the repository root:
+# tumble against LIGGGHTS and LAMMPS on the paper's dense periodic cube
+# (SPEC-NOTES "Speed"; docs/BENCHMARKS.md). Run from the repository root:
 #
-#   bash bench/compare_peers.sh                      # 21^3 = 9261 spheres, 3 rounds, medians
+#   bash bench/compare_peers.sh                      # 21^3 = 9261 spheres, 1 and 2 cores, 3 rounds, medians
 #   bash bench/compare_peers.sh --size 21 --size 46  # also 46^3 = 97336
-#   bash bench/compare_peers.sh --peers-only         # LIGGGHTS alone (no tumble needed)
+#   bash bench/compare_peers.sh --np 1               # one thread / one process only
+#   bash bench/compare_peers.sh --peers-only         # the peers alone (no tumble needed)
 #   TUMBLE=/path/to/tumble bash bench/compare_peers.sh
 #
 # Options:
@@ -13,15 +14,20 @@
 #   --steps N       timed steps per run (default 2000)
 #   --warmup N      untimed steps before them (default 200)
 #   --repeats N     rounds; the table shows medians (default 3)
+#   --np N          also N threads (tumble) and N MPI ranks (peers); 1: single only (default 2)
 #   --peers-only    skip tumble
-#   --mpi           also LIGGGHTS under `mpirun -np 2` (needs mpirun)
+#   --no-liggghts   skip LIGGGHTS
+#   --no-lammps     skip LAMMPS
 #   --lean          also LIGGGHTS without rolling friction (the only model
 #                   combination near ours that this LIGGGHTS build compiles
 #                   into an optimised template)
+#   --mpi           (kept for old command lines; 2 ranks are the default now)
 #   --out DIR       keep logs and results.jsonl there (default build/compare_peers)
 #
-# Every round runs tumble, then each LIGGGHTS configuration, one after the
+# Every round runs tumble, then each peer configuration, one after the
 # other (never concurrently), so that background load hits all codes alike.
+# The peers come from Debian (apt-get install liggghts lammps); run as root,
+# the script installs them when they are missing.
 set -euo pipefail
 
 invocation_dir=$(pwd)
@@ -32,7 +38,9 @@ steps=2000
 warmup=200
 repeats=3
 peers_only=0
-mpi=0
+np=2
+liggghts=1
+lammps=1
 lean=0
 out=""
 
@@ -46,8 +54,11 @@ while [[ $# -gt 0 ]]; do
         --steps) need_int "$1" "${2:-}"; steps=$2; shift 2 ;;
         --warmup) [[ "${2:-}" =~ ^[0-9]+$ ]] || die "--warmup needs an integer"; warmup=$2; shift 2 ;;
         --repeats) need_int "$1" "${2:-}"; repeats=$2; shift 2 ;;
+        --np) need_int "$1" "${2:-}"; np=$2; shift 2 ;;
         --peers-only) peers_only=1; shift ;;
-        --mpi) mpi=1; shift ;;
+        --no-liggghts) liggghts=0; shift ;;
+        --no-lammps) lammps=0; shift ;;
+        --mpi) shift ;;
         --lean) lean=1; shift ;;
         --out) [[ -n "${2:-}" ]] || die "--out needs a directory"; out=$2; shift 2 ;;
         -h|--help) usage; exit 0 ;;
@@ -60,10 +71,24 @@ for n in "${sizes[@]}"; do [[ $n -ge 4 ]] || die "--size must be at least 4"; do
 # ------------------------------------------------------------------ tools
 command -v python3 >/dev/null || die "python3 is required (JSON parsing and medians)"
 liggghts_bin=${LIGGGHTS:-liggghts}
-command -v "$liggghts_bin" >/dev/null || die "LIGGGHTS not found ('$liggghts_bin'); apt-get install liggghts, or set LIGGGHTS=/path"
+lammps_bin=${LAMMPS:-lmp}
+# the peers' own install step (Debian 12 packages; OpenMPI comes with them)
+want=()
+[[ $liggghts -eq 1 ]] && ! command -v "$liggghts_bin" >/dev/null && want+=(liggghts)
+[[ $lammps -eq 1 ]] && ! command -v "$lammps_bin" >/dev/null && want+=(lammps)
+[[ $np -gt 1 ]] && ! command -v mpirun >/dev/null && want+=(openmpi-bin)
+if [[ ${#want[@]} -gt 0 && $(id -u) -eq 0 ]] && command -v apt-get >/dev/null; then
+    echo "compare_peers.sh: installing ${want[*]}" >&2
+    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${want[@]}" >/dev/null
+fi
+[[ $liggghts -eq 0 ]] || command -v "$liggghts_bin" >/dev/null ||
+    die "LIGGGHTS not found ('$liggghts_bin'); apt-get install liggghts, set LIGGGHTS=/path, or --no-liggghts"
+[[ $lammps -eq 0 ]] || command -v "$lammps_bin" >/dev/null ||
+    die "LAMMPS not found ('$lammps_bin'); apt-get install lammps, set LAMMPS=/path, or --no-lammps"
 deck="$repo/bench/peers/liggghts_cube.in"
+lammps_deck="$repo/bench/peers/lammps_cube.in"
 lib="$repo/bench/peers/peerlib.py"
-[[ -f "$deck" && -f "$lib" ]] || die "missing $deck or $lib"
+[[ -f "$deck" && -f "$lammps_deck" && -f "$lib" ]] || die "missing $deck, $lammps_deck or $lib"
 
 tumble=""
 if [[ $peers_only -eq 0 ]]; then
@@ -80,9 +105,9 @@ if [[ $peers_only -eq 0 ]]; then
 fi
 
 mpirun_cmd=()
-if [[ $mpi -eq 1 ]]; then
-    command -v mpirun >/dev/null || die "--mpi: mpirun not found (OpenMPI comes with the liggghts package's mpi-default-bin)"
-    mpirun_cmd=(mpirun -np 2)
+if [[ $np -gt 1 && $liggghts$lammps != 00 ]]; then
+    command -v mpirun >/dev/null || die "--np $np: mpirun not found (OpenMPI comes with the peers' packages)"
+    mpirun_cmd=(mpirun -np "$np")
     [[ $(id -u) -eq 0 ]] && mpirun_cmd+=(--allow-run-as-root)
 fi
 
@@ -93,32 +118,48 @@ results="$out/results.jsonl"
 : > "$results"
 
 # ------------------------------------------------------------------ runners
-run_tumble() {  # size round
-    local log="$out/tumble_N$1_r$2.out"
+run_tumble() {  # size round threads
+    local log="$out/tumble_N$1_r$2_t$3.out" label="$3 threads"
+    [[ $3 -eq 1 ]] && label="1 thread"
     if ! python3 "$lib" exec "$log.time" "$log" "$log.err" -- \
-            "$tumble" bench --json --size "$1" --steps "$steps" --warmup "$warmup"; then
+            "$tumble" bench --json --size "$1" --steps "$steps" --warmup "$warmup" --threads "$3"; then
         cat "$log.err" >&2
-        die "tumble bench failed (size $1), see $log.err"
+        die "tumble bench failed (size $1, $3 threads), see $log.err"
     fi
-    python3 "$lib" tumble "$log" tumble "1 thread" "$log.time" >> "$results"
+    python3 "$lib" tumble "$log" tumble "$label" "$log.time" >> "$results"
 }
 
-run_liggghts() {  # size round config-name rolling np label
-    local log="$out/liggghts_N$1_r$2_$3.log" cmd=()
+run_peer() {  # size round config-name rolling np label code
+    local log="$out/$7_N$1_r$2_$3.log" cmd=()
     [[ $5 -gt 1 ]] && cmd+=("${mpirun_cmd[@]}")
-    cmd+=("$liggghts_bin" -in "$deck" -log "$log" -screen none -nocite
-          -var N "$1" -var steps "$steps" -var warmup "$warmup" -var rolling "$4")
+    if [[ $7 == lammps ]]; then
+        cmd+=("$lammps_bin" -in "$lammps_deck" -log "$log" -screen none -nocite
+              -var N "$1" -var steps "$steps" -var warmup "$warmup")
+    else
+        cmd+=("$liggghts_bin" -in "$deck" -log "$log" -screen none -nocite
+              -var N "$1" -var steps "$steps" -var warmup "$warmup" -var rolling "$4")
+    fi
     # run inside $out so that nothing LIGGGHTS writes lands in the repository
     if ! (cd "$out" && python3 "$lib" exec "$log.time" "$log.screen" "$log.screen" -- "${cmd[@]}"); then
         tail -5 "$log" >&2 || true
-        die "LIGGGHTS failed (size $1, $3), see $log"
+        die "$7 failed (size $1, $3), see $log"
     fi
-    python3 "$lib" liggghts "$log" liggghts "$6" "$log.time" >> "$results"
+    python3 "$lib" liggghts "$log" "$7" "$6" "$log.time" >> "$results"
 }
 
-configs=("full 1p|cdt|1|hertz+history+sjkr+cdt, 1 proc")
-[[ $lean -eq 1 ]] && configs+=("lean 1p|off|1|hertz+history+sjkr, no rolling, 1 proc")
-[[ $mpi -eq 1 ]] && configs+=("full 2p|cdt|2|hertz+history+sjkr+cdt, mpirun -np 2")
+# code|name|rolling|procs|label
+configs=()
+if [[ $liggghts -eq 1 ]]; then
+    configs+=("liggghts|full 1p|cdt|1|hertz+history+sjkr+cdt, 1 proc")
+    [[ $lean -eq 1 ]] && configs+=("liggghts|lean 1p|off|1|hertz+history+sjkr, no rolling, 1 proc")
+    [[ $np -gt 1 ]] && configs+=("liggghts|full ${np}p|cdt|$np|hertz+history+sjkr+cdt, mpirun -np $np")
+fi
+if [[ $lammps -eq 1 ]]; then
+    configs+=("lammps|granular 1p|-|1|granular hertz/material+viscoelastic+mindlin+marshall, 1 proc")
+    [[ $np -gt 1 ]] && configs+=("lammps|granular ${np}p|-|$np|granular hertz/material+viscoelastic+mindlin+marshall, mpirun -np $np")
+fi
+tumble_threads=(1)
+[[ $np -gt 1 ]] && tumble_threads+=("$np")
 
 # ------------------------------------------------------------------ machine
 # total and steal jiffies of all CPUs (steal: time the hypervisor gave our
@@ -126,10 +167,11 @@ configs=("full 1p|cdt|1|hertz+history+sjkr+cdt, 1 proc")
 cpu_jiffies() { awk '/^cpu /{print $2+$3+$4+$5+$6+$7+$8+$9, $9}' /proc/stat 2>/dev/null || echo "0 0"; }
 read -r jiffies0 steal0 <<< "$(cpu_jiffies)"
 cpu=$(lscpu 2>/dev/null | sed -n 's/^Model name:[[:space:]]*//p' | head -1)
-echo "== tumble vs LIGGGHTS, dense periodic cube (SPEC-NOTES \"Speed\")"
+echo "== tumble vs LIGGGHTS and LAMMPS, dense periodic cube (SPEC-NOTES \"Speed\")"
 echo "machine : ${cpu:-unknown CPU}, $(nproc) logical cores, $(free -g 2>/dev/null | awk '/^Mem:/{print $2" GiB"}') memory, $(uname -sr)"
 echo "date    : $(date -u '+%Y-%m-%d %H:%M:%S UTC')   load average at start: $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "liggghts: $(dpkg-query -W -f='${Package} ${Version}' liggghts 2>/dev/null || echo "$liggghts_bin")  deck: bench/peers/liggghts_cube.in"
+[[ $liggghts -eq 1 ]] && echo "liggghts: $(dpkg-query -W -f='${Package} ${Version}' liggghts 2>/dev/null || echo "$liggghts_bin")  deck: bench/peers/liggghts_cube.in"
+[[ $lammps -eq 1 ]] && echo "lammps  : $(dpkg-query -W -f='${Package} ${Version}' lammps 2>/dev/null || echo "$lammps_bin")  deck: bench/peers/lammps_cube.in"
 [[ -n "$tumble" ]] && echo "tumble  : $tumble"
 echo "runs    : sizes ${sizes[*]}, $steps timed steps after $warmup warm-up steps, $repeats rounds, logs in $out"
 echo
@@ -137,13 +179,15 @@ echo
 for n in "${sizes[@]}"; do
     for ((r = 1; r <= repeats; r++)); do
         if [[ -n "$tumble" ]]; then
-            echo "  N=$n^3 round $r/$repeats: tumble" >&2
-            run_tumble "$n" "$r"
+            for t in "${tumble_threads[@]}"; do
+                echo "  N=$n^3 round $r/$repeats: tumble $t thread(s)" >&2
+                run_tumble "$n" "$r" "$t"
+            done
         fi
         for c in "${configs[@]}"; do
-            IFS='|' read -r name rolling np label <<< "$c"
-            echo "  N=$n^3 round $r/$repeats: liggghts $name" >&2
-            run_liggghts "$n" "$r" "${name// /_}" "$rolling" "$np" "$label"
+            IFS='|' read -r code name rolling procs label <<< "$c"
+            echo "  N=$n^3 round $r/$repeats: $code $name" >&2
+            run_peer "$n" "$r" "${name// /_}" "$rolling" "$procs" "$label" "$code"
         done
     done
 done

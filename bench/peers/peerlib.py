@@ -29,7 +29,10 @@ import time
 LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 BUILDS = re.compile(r"Neighbor list builds = (\d+)")
 DANGEROUS = re.compile(r"Dangerous builds = (\d+)")
-THERMO_HEAD = re.compile(r"^\s*Step\s+Atoms\s+KinEng\s+rke\s+zavg\s*$")
+# the code's own count of its memory per process, MB: LIGGGHTS, then LAMMPS
+MEMORY = re.compile(r"(?:Memory usage per processor = |Per MPI rank memory allocation \(min/avg/max\) = [0-9.]+ \| )"
+                    r"([0-9.]+)")
+THERMO_HEAD = re.compile(r"^\s*Step\s+Atoms\s+KinEng\s+(c_)?rke\s+(c_)?zavg\s*$")  # LIGGGHTS, LAMMPS
 
 
 def fail(msg):
@@ -61,6 +64,7 @@ def parse_liggghts(path, code, config):
                 atoms_end, z = int(f[1]), float(f[4])
                 j += 1
     size = round(atoms ** (1.0 / 3.0))
+    memory = MEMORY.findall(text)
     return {
         "code": code, "config": config, "size": size, "particles": atoms,
         "particles_end": atoms_end, "steps": steps, "seconds": seconds,
@@ -69,6 +73,7 @@ def parse_liggghts(path, code, config):
         "neighbor_builds": int(builds[-1]) if builds else None,
         "dangerous_builds": int(dangerous[-1]) if dangerous else None,
         "procs": procs,
+        "bytes_per_particle": float(memory[-1]) * 2**20 * procs / atoms if memory else None,
     }
 
 
@@ -91,6 +96,7 @@ def parse_tumble(path, code, config):
         "contacts_per_particle": float(d["contacts_per_particle"]),
         "neighbor_builds": d.get("neighbor_builds"), "dangerous_builds": None,
         "procs": int(d.get("threads", 1)), "version": d.get("version"),
+        "bytes_per_particle": d.get("bytes_per_particle"),
     }
 
 
@@ -140,15 +146,19 @@ def table(path):
             "z": rs[-1]["contacts_per_particle"], "builds": rs[-1]["neighbor_builds"],
             "lost": any(r["particles_end"] not in (None, r["particles"]) for r in rs),
             "cpu_wall": [r["cpu_per_wall"] for r in rs if r.get("cpu_per_wall") is not None],
+            "procs": rs[0].get("procs", 1),
+            "memory": rs[-1].get("bytes_per_particle"),
         })
-    summary.sort(key=lambda s: (s["size"], s["code"] != "tumble", s["code"], s["config"]))
+    summary.sort(key=lambda s: (s["size"], s["code"] != "tumble", s["code"], s["procs"], s["config"]))
     hdr = ("N", "code", "config", "runs", "median updates/s", "min..max", "wall s",
-           "cpu/wall", "contacts/sphere", "nbr builds", "tumble/peer")
+           "cpu/wall", "contacts/sphere", "nbr builds", "bytes/sphere", "tumble/peer")
     out = []
     for s in summary:
-        t = [x for x in summary if x["size"] == s["size"] and x["code"] == "tumble"]
+        # tumble on as many threads as the peer has processes
+        t = [x for x in summary if x["size"] == s["size"] and x["code"] == "tumble" and x["procs"] == s["procs"]]
+        t1 = [x for x in summary if x["size"] == s["size"] and x["code"] == "tumble" and x["procs"] == 1]
         if s["code"] == "tumble":
-            ratio = "-"
+            ratio = "-" if s["procs"] == 1 or not t1 else f"x{s['median'] / t1[0]['median']:.2f} vs 1 thread"
         elif t:
             ratio = f"{t[0]['median'] / s['median']:.2f}"
         else:
@@ -157,7 +167,8 @@ def table(path):
                     f"{fmt_rate(s['min'])}..{fmt_rate(s['max'])}", f"{s['seconds']:.2f}",
                     "?" if not s["cpu_wall"] else f"{min(s['cpu_wall']):.2f}..{max(s['cpu_wall']):.2f}",
                     "?" if s["z"] is None else f"{s['z']:.3f}",
-                    "?" if s["builds"] is None else str(s["builds"]), ratio))
+                    "?" if s["builds"] is None else str(s["builds"]),
+                    "?" if s["memory"] is None else f"{s['memory']:.0f}", ratio))
     widths = [max(len(h), *(len(r[i]) for r in out)) for i, h in enumerate(hdr)]
     line = lambda cells: "  ".join(c.ljust(w) for c, w in zip(cells, widths)).rstrip()
     print(line(hdr))
@@ -172,7 +183,11 @@ def table(path):
             print(f"WARNING: {s['code']} {s['config']} N={s['particles']}: "
                   f"{s['z']:.3f} contacts per sphere, expected about 6")
     print("steps per run: " + ", ".join(sorted({f"{s['steps']}" for s in summary})) +
-          "; updates/s = particles x steps / wall time of the timed steps; ratio = tumble median / peer median")
+          "; updates/s = particles x steps / wall time of the timed steps; ratio = tumble median / peer median,"
+          " tumble on as many threads as the peer has MPI ranks")
+    print("bytes/sphere: tumble: growth of its resident memory over the set-up and run; peers: their own"
+          " count of memory per process (LIGGGHTS 'Memory usage per processor', LAMMPS 'Per MPI rank memory"
+          " allocation', avg) x processes / spheres, fixed overhead included")
     print("cpu/wall: CPU time over wall time of each whole process, about 1 per process when it had"
           " its cores to itself; lower values mean it waited for a CPU and its numbers are low")
 

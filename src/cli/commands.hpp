@@ -18,6 +18,7 @@ struct RunOptions {
     bool force = false;            // overwrite an earlier run's output
     bool quiet = false;
     CheckpointPolicy checkpoints;
+    int threads = 1;               // 0: every core of the machine (resolve_threads)
 };
 int run_command(const RunOptions& options);
 
@@ -27,8 +28,17 @@ struct BenchOptions {
     std::int64_t warmup = 200;
     std::uint64_t seed = 1;
     bool json = false;
+    int threads = 1;           // 0: every core of the machine (resolve_threads)
 };
 int bench_command(const BenchOptions& options);
+
+// The thread count to run with: `requested`, or every core of the machine
+// for 0; 1 in a build without OpenMP (with a note on stderr if more were asked).
+// Every command defaults to 1 thread: sweeps, test suites and peer
+// benchmarks run several tumble processes side by side, and threads that
+// wait at each step's barriers for a core held by another process lose
+// more than they gain (docs/BENCHMARKS.md "Threads").
+int resolve_threads(int requested);
 
 struct DrumOptions {
     io::DrumSettings settings;  // from --config and the command line
@@ -36,8 +46,9 @@ struct DrumOptions {
     bool quiet = false;
     bool plot = true;  // draw the figures at the end (tools/plot_drum.py)
     CheckpointPolicy checkpoints;  // every_steps unused: see checkpoint_revolutions
-    double checkpoint_revolutions = 1.0;
-    bool allow_unsafe_dt = false;  // accept a --dt above the safe maximum (then only the blow-up check guards the run)  // revolutions between checkpoints while turning; 0: not by revolutions
+    double checkpoint_revolutions = 1.0;  // revolutions between checkpoints while turning; 0: not by revolutions
+    bool allow_unsafe_dt = false;  // accept a --dt above the safe maximum (then only the blow-up check guards the run)
+    int threads = 1;   // 0: every core of the machine (resolve_threads)
 };
 int drum_command(const DrumOptions& options);
 

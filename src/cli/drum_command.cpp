@@ -247,6 +247,7 @@ private:
         save_plan(c.record, now);
         save_policy(c.record, checkpoints_.policy());
         c.record.set("finished", std::int64_t{finished});
+        c.record.set("threads", std::int64_t{sim_.threads()});  // the force sums' order depends on it
         c.record.set("snapshot_times", snapshots_ ? snapshots_->times() : std::vector<double>{});
         io::record_file_lengths(c.record, dir_, {"time_series.csv", "drum_series.csv", "profiles.csv"});
         checkpoints_.write(c);
@@ -277,7 +278,7 @@ int drum_command(const DrumOptions& options) {
     DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed);
     if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
     setup.scenario.time_step.allow_unsafe = options.allow_unsafe_dt;
-    Simulation sim(std::move(setup.scenario));
+    Simulation sim(std::move(setup.scenario), resolve_threads(options.threads));
 
     DrumPlan plan;
     io::DrumRunInfo& info = plan.info;
@@ -290,6 +291,7 @@ int drum_command(const DrumOptions& options) {
     info.inner_radius = setup.wall.inner_radius;
     info.inner_length = setup.wall.inner_length;
     info.dt = sim.dt();
+    info.threads = sim.threads();
     info.samples_per_revolution = s.samples_per_revolution;
     info.profile_bins = s.profile_bins;
     info.components = components_of(sim, s.mode);
@@ -321,7 +323,7 @@ int drum_command(const DrumOptions& options) {
 int resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
     DrumPlan plan = load_plan(checkpoint.record);
     plan.quiet = quiet;
-    Simulation sim(std::move(checkpoint.scenario));
+    Simulation sim(std::move(checkpoint.scenario), static_cast<int>(checkpoint.record.integer("threads")));
     sim.restore(std::move(checkpoint.state));
     io::truncate_to_recorded_lengths(checkpoint.record, dir);
     if (!quiet)

@@ -6,6 +6,9 @@
 
 #include <fmt/format.h>
 
+#include "cli/commands.hpp"
+#include "tumble/core/parallel.hpp"
+
 namespace tumble::cli {
 
 std::string machine_description() {
@@ -17,6 +20,15 @@ std::string machine_description() {
             break;
         }
     return fmt::format("{}, {} logical cores", model, std::thread::hardware_concurrency());
+}
+
+int resolve_threads(int requested) {
+    const int threads = requested > 0 ? requested : hardware_threads();
+    if (threads > 1 && !parallel_build()) {
+        fmt::print(stderr, "tumble: note: built without OpenMP (TUMBLE_OPENMP=OFF); running on 1 thread\n");
+        return 1;
+    }
+    return threads;
 }
 
 }  // namespace tumble::cli

@@ -40,6 +40,8 @@ int main(int argc, char** argv) {
     add_checkpoint_options(run_cmd, run.checkpoints);
     run_cmd->add_option("--checkpoint-every-steps", run.checkpoints.every_steps, "Steps between checkpoints (default: none)")
         ->check(CLI::NonNegativeNumber);
+    const char* threads_help = "Threads of the time step (0: every core; default 1)";
+    run_cmd->add_option("--threads", run.threads, threads_help)->check(CLI::NonNegativeNumber);
 
     BenchOptions bench;
     CLI::App* bench_cmd = app.add_subcommand("bench", "Speed on the paper's dense periodic cube (SPEC-NOTES \"Speed\")");
@@ -49,6 +51,7 @@ int main(int argc, char** argv) {
     bench_cmd->add_option("--warmup", bench.warmup, "Untimed steps before timing")->check(CLI::NonNegativeNumber);
     bench_cmd->add_option("--seed", bench.seed, "Seed of the random initial velocities");
     bench_cmd->add_flag("--json", bench.json, "Print one JSON object instead of the table");
+    bench_cmd->add_option("--threads", bench.threads, threads_help)->check(CLI::NonNegativeNumber);
 
     // tumble drum: every setting of the drum file can be given here too.
     DrumOptions drum;
@@ -89,6 +92,7 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("--checkpoint-every-revolutions", drum.checkpoint_revolutions,
                          "Revolutions between checkpoints while the drum turns (default 1; 0: not by revolutions)")
         ->check(CLI::NonNegativeNumber);
+    drum_cmd->add_option("--threads", drum.threads, threads_help)->check(CLI::NonNegativeNumber);
 
     std::string resume_dir;
     bool resume_quiet = false;

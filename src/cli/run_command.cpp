@@ -115,6 +115,7 @@ private:
         save_plan(c.record, now);
         save_policy(c.record, checkpoints_.policy());
         c.record.set("finished", static_cast<std::int64_t>(finished));
+        c.record.set("threads", std::int64_t{sim_.threads()});  // the force sums' order depends on it
         c.record.set("snapshot_times", snapshots_ ? snapshots_->times() : std::vector<double>{});
         io::record_file_lengths(c.record, dir_, {"time_series.csv"});
         checkpoints_.write(c);
@@ -134,7 +135,7 @@ int run_command(const RunOptions& options) {
     // Everything is read and checked before anything is written.
     io::RunConfig config = io::load_run_config(options.scenario_file);
     if (!options.output_directory.empty()) config.output.directory = options.output_directory;
-    Simulation sim(std::move(config.scenario));
+    Simulation sim(std::move(config.scenario), resolve_threads(options.threads));
     const double dt = sim.dt();
     RunPlan plan{options.scenario_file,
                  config.seed,
@@ -161,7 +162,7 @@ int run_command(const RunOptions& options) {
 int resume_run(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
     RunPlan plan = load_plan(checkpoint.record);
     plan.quiet = quiet;
-    Simulation sim(std::move(checkpoint.scenario));
+    Simulation sim(std::move(checkpoint.scenario), static_cast<int>(checkpoint.record.integer("threads")));
     sim.restore(std::move(checkpoint.state));
     io::truncate_to_recorded_lengths(checkpoint.record, dir);
     if (!quiet)

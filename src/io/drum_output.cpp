@@ -47,6 +47,7 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                         {"settled", info.settled},
                         {"wall_seconds", info.wall_seconds},
                         {"grain_updates_per_second", info.grain_updates_per_second},
+                        {"threads", info.threads},
                         {"component", components}};
     std::ostringstream text;
     text << "# tumble drum run: what was run (read by `tumble analyze`)\n" << t << '\n';
@@ -81,6 +82,7 @@ DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
     info.settled = r.boolean(r.required(t, "", "settled"), "settled");
     info.wall_seconds = num("wall_seconds");
     info.grain_updates_per_second = num("grain_updates_per_second");
+    info.threads = t["threads"].value_or(1);  // absent in runs of tumble before threads
     const auto entries = r.tables(t, "", "component");
     for (std::size_t i = 0; i < entries.size(); ++i) {
         const std::string p = at("component", i);

@@ -45,6 +45,7 @@ struct DrumRunInfo {
     bool settled = false;          // reached the settling criterion
     double wall_seconds = 0.0;     // of the rotating phase
     double grain_updates_per_second = 0.0;
+    int threads = 1;               // of the time step (tumble drum --threads)
     std::vector<DrumComponent> components;
 };
 

@@ -148,6 +148,7 @@ void write_run_json(const fs::path& file, const Simulation& sim, const RunSummar
                        t.collision_time, t.viscous_time, t.rayleigh_time)
         << fmt::format("  \"neighbor_skin\": {},\n  \"neighbor_builds\": {},\n", sim.neighbors().skin(),
                        sim.neighbors().builds())
+        << fmt::format("  \"threads\": {},\n", sim.threads())
         << fmt::format("  \"wall_seconds\": {},\n  \"updates_per_second\": {}\n", s.wall_seconds, updates) << "}\n";
     write_file_atomically(file, out.str());
 }

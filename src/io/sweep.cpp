@@ -169,7 +169,9 @@ std::vector<std::string> drum_arguments(const SweepPoint& p) {
             std::to_string(p.snapshots_per_revolution),
             "--out",
             p.directory.string(),
-            "--force"};
+            "--force",
+            "--threads",  // the sweep runs its points side by side, one core each
+            "1"};
 }
 
 std::vector<std::string> resume_arguments(const SweepPoint& p) { return {"resume", "-q", p.directory.string()}; }

@@ -13,31 +13,6 @@
 namespace physics_test {
 namespace {
 
-// 64 grains of all three materials on a jittered 4 x 4 x 4 lattice in a box
-// periodic on all axes, random velocities (0.5 m/s) and spins.
-tumble::Scenario shaken_box() {
-    tumble::Scenario s = open_scenario(5e-6);
-    const double spacing = 7.5e-3, L = 4 * spacing;  // 4 cells of 2 R_max + skin per axis
-    s.domain.lo = {0.0, 0.0, 0.0};
-    s.domain.hi = {L, L, L};
-    s.domain.periodic = {true, true, true};
-    s.neighbor.skin = 0.05 * R1;  // small: a rebuild every ~0.2 ms
-    s.neighbor.sort_every = 1;    // re-sort at every rebuild
-    std::mt19937_64 rng(99);
-    std::uniform_int_distribution<int> material(0, 2);
-    std::uniform_real_distribution<double> jitter(-0.1e-3, 0.1e-3);
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j)
-            for (int k = 0; k < 4; ++k) {
-                const int m = material(rng);
-                const Vec3 x{(i + 0.5) * spacing + jitter(rng), (j + 0.5) * spacing + jitter(rng),
-                             (k + 0.5) * spacing + jitter(rng)};
-                s.particles.push_back(
-                    sphere(x, s.materials[m].radius, m, 0.5 * random_vector(rng), 50.0 * random_vector(rng)));
-            }
-    return s;
-}
-
 TEST(Determinism, TwoRunsOfOneScenarioAreBitwiseIdentical) {
     const tumble::Scenario s = shaken_box();
     tumble::Simulation a(s), b(s);

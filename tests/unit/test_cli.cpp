@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.hpp"
+#include "tumble/core/parallel.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -156,6 +157,16 @@ TEST(CliBench, JsonLastLineHasTheBenchmarkKeys) {
         EXPECT_NE(last.find(key), std::string::npos) << key << " missing in: " << last;
     // Each sphere of the 1.98 R lattice overlaps its six neighbours.
     EXPECT_NE(last.find("\"contacts_per_particle\": 6"), std::string::npos) << last;
+}
+
+TEST(CliBench, ThreadsAndMemoryAreReported) {
+    const Result r = run_tumble("bench --size 8 --steps 5 --warmup 0 --threads 2 --json");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    // Without OpenMP the command runs on one thread and says so.
+    const std::string threads = tumble::parallel_build() ? "\"threads\": 2" : "\"threads\": 1";
+    EXPECT_NE(r.output.find(threads), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("\"bytes_per_particle\": "), std::string::npos) << r.output;
+    EXPECT_NE(run_tumble("bench --size 8 --steps 5 --threads -1").exit_code, 0);
 }
 
 TEST_F(Cli, DrumRefusesImpossibleSettingsAndWritesNothing) {

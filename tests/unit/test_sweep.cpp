@@ -182,7 +182,7 @@ TEST(SweepPoints, NamesAndOrder) {
                                             "--seed", "1",         "--revolutions", "5",         "--grains", "200",
                                             "--samples", "20",     "--snapshots", "0",           "--out",
                                             (fs::path("out") / "points" / "two-component_omega5.000_seed1").string(),
-                                            "--force"};
+                                            "--force", "--threads", "1"};
     EXPECT_EQ(args, expected);
 }
 

@@ -4,6 +4,8 @@
 // evaluated with the half-step velocities v(t + dt/2), so velocity-dependent
 // terms (internal friction, shear, twisting) are first order in dt; with
 // those terms off the scheme is symplectic. Spheres need no orientation.
+// Each particle is updated on its own, so `chunks` threads give the same
+// numbers as one.
 #pragma once
 
 #include "tumble/particles/particle_store.hpp"
@@ -11,9 +13,9 @@
 namespace tumble {
 
 // v += half_dt (F/m + g), omega += half_dt T/I, for free particles.
-void kick(ParticleStore& p, const Vec3& gravity, double half_dt);
+void kick(ParticleStore& p, const Vec3& gravity, double half_dt, int chunks = 1);
 
 // x += dt v, for free particles.
-void drift(ParticleStore& p, double dt);
+void drift(ParticleStore& p, double dt, int chunks = 1);
 
 }  // namespace tumble

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "tumble/neighbor/verlet_list.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 #include <utility>
 
+#include "tumble/core/parallel.hpp"
 #include "tumble/neighbor/candidate_pairs.hpp"
 
 namespace tumble {
@@ -39,12 +41,19 @@ void wrap_into_box(ParticleStore& p, const Domain& domain) {
 VerletList::VerletList(const Domain& domain, double skin, int sort_every)
     : domain_(domain), skin_(skin), sort_every_(sort_every), images_(domain.length()) {}
 
-bool VerletList::needs_rebuild(const ParticleStore& p) const {
+bool VerletList::needs_rebuild(const ParticleStore& p, int chunks) const {
     if (position_at_build_.size() != p.size()) return true;
     const double limit2 = 0.25 * skin_ * skin_;  // (skin/2)^2
-    for (std::size_t i = 0; i < p.size(); ++i)
-        if (norm2(p.position[i] - position_at_build_[i]) > limit2) return true;
-    return false;
+    std::vector<char> moved(static_cast<std::size_t>(chunks), 0);
+    for_each_chunk(chunks, [&](int c) {
+        const IndexRange r = chunk_range(c, chunks, p.size());
+        for (std::size_t i = r.begin; i < r.end; ++i)
+            if (norm2(p.position[i] - position_at_build_[i]) > limit2) {
+                moved[static_cast<std::size_t>(c)] = 1;
+                return;
+            }
+    });
+    return std::find(moved.begin(), moved.end(), 1) != moved.end();
 }
 
 void VerletList::rebuild(ParticleStore& p) {

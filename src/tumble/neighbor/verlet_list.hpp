@@ -23,7 +23,9 @@ public:
     VerletList() = default;
     VerletList(const Domain& domain, double skin, int sort_every);
 
-    bool needs_rebuild(const ParticleStore& p) const;
+    // Whether some particle has moved more than skin/2 since the last build
+    // (checked in `chunks` parts on as many threads).
+    bool needs_rebuild(const ParticleStore& p, int chunks = 1) const;
     // Wraps positions into periodic axes, sorts (every sort_every-th build),
     // rebuilds the pairs and carries the contact history over.
     void rebuild(ParticleStore& p);

@@ -6,8 +6,10 @@
 #include <utility>
 
 #include "tumble/core/error.hpp"
+#include "tumble/core/parallel.hpp"
 #include "tumble/integrate/velocity_verlet.hpp"
 #include "tumble/particles/rigid_motion.hpp"
+#include "tumble/sim/pair_loop.hpp"
 #include "tumble/sim/particle_setup.hpp"
 
 namespace tumble {
@@ -20,41 +22,11 @@ double default_skin(const Scenario& s) {
     return 0.2 * largest;
 }
 
-// The pair loop: for every candidate pair in contact, build the contact
-// geometry, apply the contact law, and add the result to both particles
-// (Newton's third law; the half list holds each pair once). A pair that is
-// not touching drops its history. Threads will split this loop; the force
-// law itself does not change.
-template <bool Record>
-void add_contact_forces(ParticleStore& p, PairList& pairs, const PeriodicImages& images, const PairTable& table,
-                        const ContactModel& model, double dt, std::vector<ContactRecord>& records) {
-    const std::size_t n_pairs = pairs.size();
-    for (std::size_t k = 0; k < n_pairs; ++k) {
-        const std::uint32_t i = pairs.first[k], j = pairs.second[k];
-        const Vec3 d = p.position[i] - p.position[j] + images[pairs.image[k]];
-        const double distance2 = norm2(d);
-        const double reach = p.radius[i] + p.radius[j];
-        ContactHistory& history = pairs.history[k];
-        if (distance2 >= reach * reach) {
-            if (!history.is_zero()) history = ContactHistory{};  // contact ended
-            continue;
-        }
-        const ContactGeometry g =
-            make_contact_geometry(d, std::sqrt(distance2), p.radius[i], p.radius[j], p.velocity[i], p.velocity[j],
-                                  p.angular_velocity[i], p.angular_velocity[j]);
-        const ContactForces f = contact_law(table(p.material[i], p.material[j]), g, model, dt, history);
-        p.force[i] += f.force_i;
-        p.force[j] -= f.force_i;
-        p.torque[i] += f.torque_i;
-        p.torque[j] += f.torque_j;
-        if constexpr (Record) records.push_back({p.id[i], p.id[j], g, f, history});
-    }
-}
-
 }  // namespace
 
-Simulation::Simulation(Scenario scenario) : scenario_(std::move(scenario)) {
+Simulation::Simulation(Scenario scenario, int threads) : scenario_(std::move(scenario)) {
     if (const std::string why = scenario_problem(scenario_); !why.empty()) throw Error("scenario: " + why);
+    set_threads(threads);
     pair_table_ = PairTable(scenario_.materials, scenario_.pair_properties);
     time_step_report_ = assess_time_step(scenario_);
     dt_ = time_step_report_.dt;
@@ -72,40 +44,74 @@ Simulation::Simulation(Scenario scenario) : scenario_(std::move(scenario)) {
 // One time step of velocity Verlet; see integrate/velocity_verlet.hpp.
 void Simulation::step() {
     const double half_dt = 0.5 * dt_;
-    kick(particles_, scenario_.gravity, half_dt);  // v(t) -> v(t + dt/2)
-    drift(particles_, dt_);                        // x(t) -> x(t + dt)
+    kick(particles_, scenario_.gravity, half_dt, threads_);  // v(t) -> v(t + dt/2)
+    drift(particles_, dt_, threads_);                        // x(t) -> x(t + dt)
     ++step_;
     time_ = static_cast<double>(step_) * dt_;
-    move_kinematic();                              // prescribed x, v, omega at t + dt
-    if (neighbors_.needs_rebuild(particles_)) neighbors_.rebuild(particles_);
-    compute_forces();                              // F(t + dt), with v(t + dt/2)
-    kick(particles_, scenario_.gravity, half_dt);  // v(t + dt/2) -> v(t + dt)
+    move_kinematic();                                        // prescribed x, v, omega at t + dt
+    if (neighbors_.needs_rebuild(particles_, threads_)) neighbors_.rebuild(particles_);
+    compute_forces();                                        // F(t + dt), with v(t + dt/2)
+    kick(particles_, scenario_.gravity, half_dt, threads_);  // v(t + dt/2) -> v(t + dt)
+}
+
+void Simulation::set_threads(int threads) {
+    if (threads < 1) throw Error("threads: need at least 1, got " + std::to_string(threads));
+    threads_ = threads;
 }
 
 void Simulation::advance(std::int64_t steps) {
     for (std::int64_t s = 0; s < steps; ++s) step();
 }
 
+// Forces and torques on every particle from its contacts. With several
+// threads, thread c takes the c-th part of the pair list and sums into its
+// own arrays (thread 0 into the particles' own); then every particle adds up
+// its parts in thread order. The sums are thus the same bitwise on every run
+// with the same thread count, and differ from one thread's only by the order
+// of the additions (round-off). Recording runs on one thread.
 void Simulation::compute_forces() {
-    std::fill(particles_.force.begin(), particles_.force.end(), Vec3{});
-    std::fill(particles_.torque.begin(), particles_.torque.end(), Vec3{});
+    ParticleStore& p = particles_;
+    const std::size_t n = p.size();
+    const int chunks = recording_ ? 1 : threads_;
+    const auto extra = static_cast<std::size_t>(chunks - 1) * n;
+    if (chunk_force_.size() != extra) {
+        chunk_force_.assign(extra, Vec3{});
+        chunk_torque_.assign(extra, Vec3{});
+    }
     records_.clear();
-    if (recording_)
-        add_contact_forces<true>(particles_, neighbors_.pairs(), neighbors_.images(), pair_table_, scenario_.model, dt_,
-                                 records_);
-    else
-        add_contact_forces<false>(particles_, neighbors_.pairs(), neighbors_.images(), pair_table_, scenario_.model,
-                                  dt_, records_);
-    if (!wall_history_.empty()) add_wall_forces();
+    for_each_chunk(chunks, [&](int c) {
+        const std::size_t offset = static_cast<std::size_t>(c - 1) * n;
+        Vec3* force = c == 0 ? p.force.data() : chunk_force_.data() + offset;
+        Vec3* torque = c == 0 ? p.torque.data() : chunk_torque_.data() + offset;
+        std::fill(force, force + n, Vec3{});
+        std::fill(torque, torque + n, Vec3{});
+        const IndexRange range = chunk_range(c, chunks, neighbors_.pairs().size());
+        if (recording_)
+            add_contact_forces<true>(p, neighbors_.pairs(), range, neighbors_.images(), pair_table_,
+                                     scenario_.model, dt_, force, torque, records_);
+        else
+            add_contact_forces<false>(p, neighbors_.pairs(), range, neighbors_.images(), pair_table_,
+                                      scenario_.model, dt_, force, torque, records_);
+    });
+    if (chunks > 1)
+        parallel_for(chunks, n, [&](std::size_t i) {
+            for (std::size_t offset = 0; offset < extra; offset += n) {
+                p.force[i] += chunk_force_[offset + i];
+                p.torque[i] += chunk_torque_[offset + i];
+            }
+        });
+    if (!wall_history_.empty()) add_wall_forces(chunks);
 }
 
 // Flat walls at both ends of each walled axis: every free sphere closer to a
 // wall than its radius is in contact with it (a sphere of infinite radius).
-void Simulation::add_wall_forces() {
+// Each particle only touches its own forces and wall histories, so the
+// particles are split between the threads as they come.
+void Simulation::add_wall_forces(int chunks) {
     ParticleStore& p = particles_;
     const Domain& box = scenario_.domain;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        if (p.is_kinematic(i)) continue;
+    parallel_for(chunks, p.size(), [&](std::size_t i) {
+        if (p.is_kinematic(i)) return;
         for (int axis = 0; axis < 3; ++axis) {
             if (!box.walls[axis]) continue;
             for (int side = 0; side < 2; ++side) {
@@ -125,7 +131,7 @@ void Simulation::add_wall_forces() {
                 if (recording_) records_.push_back({p.id[i], wall_id(face), g, f, history});
             }
         }
-    }
+    });
 }
 
 void Simulation::move_kinematic() {

@@ -11,6 +11,7 @@
 #include "tumble/materials/pair_table.hpp"
 #include "tumble/neighbor/verlet_list.hpp"
 #include "tumble/particles/particle_store.hpp"
+#include "tumble/sim/pair_loop.hpp"
 #include "tumble/sim/scenario.hpp"
 #include "tumble/sim/simulation_state.hpp"
 
@@ -35,15 +36,6 @@ struct Observables {
     std::int64_t neighbor_builds = 0;
 };
 
-// One contact as seen by the force law in the last step (when recording).
-// For a contact with a flat wall, id_j is wall_id(face).
-struct ContactRecord {
-    std::int64_t id_i = 0, id_j = 0;
-    ContactGeometry geometry;
-    ContactForces forces;
-    ContactHistory history;  // after the step
-};
-
 // The id that stands for a flat wall in a ContactRecord: face = 2 axis + (0 at
 // lo, 1 at hi).
 constexpr std::int64_t wall_id(int face) { return -1 - face; }
@@ -52,7 +44,16 @@ class Simulation {
 public:
     // Checks the scenario (throws tumble::Error with the reason), chooses or
     // checks the time step, builds the neighbour list and the initial forces.
-    explicit Simulation(Scenario scenario);
+    // `threads` as in set_threads().
+    explicit Simulation(Scenario scenario, int threads = 1);
+
+    // Threads for the time step (>= 1; tumble::Error otherwise). The same
+    // thread count gives the same numbers bitwise on every run; another count
+    // sums each particle's contact forces in another order, so results differ
+    // by round-off (docs/BENCHMARKS.md "Threads"). Without OpenMP the work is
+    // still split this way but runs on one thread.
+    void set_threads(int threads);
+    int threads() const { return threads_; }
 
     void step();
     void advance(std::int64_t steps);
@@ -85,7 +86,7 @@ public:
 
 private:
     void compute_forces();
-    void add_wall_forces();
+    void add_wall_forces(int chunks);
     void move_kinematic();
 
     Scenario scenario_;
@@ -99,6 +100,10 @@ private:
     std::int64_t step_ = 0;
     bool recording_ = false;
     std::vector<ContactRecord> records_;
+    int threads_ = 1;
+    // Contact forces and torques summed by threads 1, 2, ... (thread 0 sums
+    // into the particles' own arrays): (threads - 1) x N each.
+    std::vector<Vec3> chunk_force_, chunk_torque_;
     // History of the contacts with the six flat walls, at 6 id + face (ids are
     // dense, 0 .. N-1); empty when the domain has no walls.
     std::vector<ContactHistory> wall_history_;
