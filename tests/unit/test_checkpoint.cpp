@@ -27,35 +27,7 @@ namespace fs = std::filesystem;
 Scenario small_drum() { return build_drum_scenario(DrumGeometry{0.03, 0.03, 3e-3}, "self", 20, 3).scenario; }
 
 Scenario walled_box() {
-    return io::parse_run_config(R"(
-[simulation]
-duration = 0.1
-gravity = [0.0, 0.0, -9.81]
-[domain]
-lo = [-0.02, -0.02, 0.0]
-hi = [0.02, 0.02, 0.04]
-walls = [true, true, true]
-wall_material = "m"
-[[material]]
-name = "m"
-E = 1.0e6
-G = 0.3e6
-nu = 0.25
-xi = 500.0
-eta = 500.0
-rho = 1000.0
-radius = 0.0036
-[[pair]]
-materials = ["m", "m"]
-mu = 0.1
-W = 0.2
-[[particles]]
-kind = "random_fill"
-material = "m"
-lo = [-0.015, -0.015, 0.005]
-hi = [0.015, 0.015, 0.035]
-count = 30
-)",
+    return io::parse_run_config(tumble::test_support::walled_box_scenario("0.1", "gravity = [0.0, 0.0, -9.81]\n"),
                                 "box.toml", ".")
         .scenario;
 }

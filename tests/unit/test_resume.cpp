@@ -166,37 +166,10 @@ TEST_F(Resume, SigintAndSigtermWriteACheckpointAndSayHowToGoOn) {
 }
 
 TEST_F(Resume, ScenarioRunsResumeToo) {
-    const fs::path scenario = write("box.toml", R"(
-[simulation]
-duration = 0.05
-[domain]
-lo = [-0.02, -0.02, 0.0]
-hi = [0.02, 0.02, 0.04]
-walls = [true, true, true]
-wall_material = "m"
-[[material]]
-name = "m"
-E = 1.0e6
-G = 0.3e6
-nu = 0.25
-xi = 500.0
-eta = 500.0
-rho = 1000.0
-radius = 0.0036
-[[pair]]
-materials = ["m", "m"]
-mu = 0.1
-W = 0.2
-[[particles]]
-kind = "random_fill"
-material = "m"
-lo = [-0.015, -0.015, 0.005]
-hi = [0.015, 0.015, 0.035]
-count = 30
-[output]
+    const fs::path scenario = write("box.toml", tumble::test_support::walled_box_scenario("0.05", "", R"([output]
 time_series_interval = 0.001
 snapshot_interval = 0.01
-)");
+)"));
     const auto full = tumble_run("run -q " + scenario.string() + " --out " + (dir_ / "full").string());
     ASSERT_EQ(full.exit_code, 0) << full.output;
     const fs::path out = dir_ / "stopped";

@@ -60,4 +60,36 @@ protected:
     std::filesystem::path dir_;
 };
 
+// A small scenario (TOML): 30 spheres of the paper's material 1 dropped at
+// random into a walled 4 cm box, for `duration` seconds. `simulation` adds
+// keys to [simulation] (e.g. gravity), `rest` tables at the end (e.g. [output]).
+inline std::string walled_box_scenario(const std::string& duration, const std::string& simulation = "",
+                                       const std::string& rest = "") {
+    return "[simulation]\nduration = " + duration + "\n" + simulation + R"([domain]
+lo = [-0.02, -0.02, 0.0]
+hi = [0.02, 0.02, 0.04]
+walls = [true, true, true]
+wall_material = "m"
+[[material]]
+name = "m"
+E = 1.0e6
+G = 0.3e6
+nu = 0.25
+xi = 500.0
+eta = 500.0
+rho = 1000.0
+radius = 0.0036
+[[pair]]
+materials = ["m", "m"]
+mu = 0.1
+W = 0.2
+[[particles]]
+kind = "random_fill"
+material = "m"
+lo = [-0.015, -0.015, 0.005]
+hi = [0.015, 0.015, 0.035]
+count = 30
+)" + rest;
+}
+
 }  // namespace tumble::test_support
