@@ -78,6 +78,19 @@ int Checkpointer::stopped(std::int64_t step) const {
     return exit_stopped;
 }
 
+io::Checkpoint checkpoint_of(const Simulation& sim) {
+    io::Checkpoint c{{}, sim.scenario(), sim.capture()};
+    c.record.set("threads", std::int64_t{sim.threads()});
+    return c;
+}
+
+Simulation restore_simulation(io::Checkpoint& checkpoint, const std::filesystem::path& run_directory) {
+    Simulation sim(std::move(checkpoint.scenario), static_cast<int>(checkpoint.record.integer("threads")));
+    sim.restore(std::move(checkpoint.state));
+    io::truncate_to_recorded_lengths(checkpoint.record, run_directory);
+    return sim;
+}
+
 void save_policy(io::CheckpointRecord& record, const CheckpointPolicy& policy) {
     record.set("checkpoint.every_minutes", policy.every_minutes);
     record.set("checkpoint.every_steps", policy.every_steps);

@@ -64,6 +64,15 @@ private:
     std::chrono::steady_clock::time_point last_;
 };
 
+// A checkpoint of the simulation now: its scenario, its state, and in the
+// record its thread count (the order of the force sums depends on it).
+io::Checkpoint checkpoint_of(const Simulation& sim);
+
+// The simulation of a checkpoint, on the recorded thread count, in the
+// recorded state; the run directory's output files are cut back to the
+// lengths they had when the checkpoint was written.
+Simulation restore_simulation(io::Checkpoint& checkpoint, const std::filesystem::path& run_directory);
+
 // The policy kept in a checkpoint record, and read back from it.
 void save_policy(io::CheckpointRecord& record, const CheckpointPolicy& policy);
 CheckpointPolicy load_policy(const io::CheckpointRecord& record);

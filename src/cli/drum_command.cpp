@@ -241,13 +241,12 @@ private:
 
     // seconds: of rotation spent by this process so far.
     void checkpoint(bool finished, double seconds) {
-        io::Checkpoint c{{}, sim_.scenario(), sim_.capture()};
+        io::Checkpoint c = checkpoint_of(sim_);
         DrumPlan now = plan_;
         now.info.wall_seconds += seconds;
         save_plan(c.record, now);
         save_policy(c.record, checkpoints_.policy());
         c.record.set("finished", std::int64_t{finished});
-        c.record.set("threads", std::int64_t{sim_.threads()});  // the force sums' order depends on it
         c.record.set("snapshot_times", snapshots_ ? snapshots_->times() : std::vector<double>{});
         io::record_file_lengths(c.record, dir_, {"time_series.csv", "drum_series.csv", "profiles.csv"});
         checkpoints_.write(c);
@@ -323,9 +322,7 @@ int drum_command(const DrumOptions& options) {
 int resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
     DrumPlan plan = load_plan(checkpoint.record);
     plan.quiet = quiet;
-    Simulation sim(std::move(checkpoint.scenario), static_cast<int>(checkpoint.record.integer("threads")));
-    sim.restore(std::move(checkpoint.state));
-    io::truncate_to_recorded_lengths(checkpoint.record, dir);
+    Simulation sim = restore_simulation(checkpoint, dir);
     if (!quiet)
         fmt::print("tumble resume: drum run at step {} (t = {:.6g} s, {})\n", sim.step_count(), sim.time(),
                    plan.rotating ? fmt::format("{:.4g} revolutions",

@@ -109,13 +109,12 @@ public:
 private:
     // seconds: spent by this process so far.
     void checkpoint(bool finished, double seconds) {
-        io::Checkpoint c{{}, sim_.scenario(), sim_.capture()};
+        io::Checkpoint c = checkpoint_of(sim_);
         RunPlan now = plan_;
         now.wall_seconds += seconds;
         save_plan(c.record, now);
         save_policy(c.record, checkpoints_.policy());
         c.record.set("finished", static_cast<std::int64_t>(finished));
-        c.record.set("threads", std::int64_t{sim_.threads()});  // the force sums' order depends on it
         c.record.set("snapshot_times", snapshots_ ? snapshots_->times() : std::vector<double>{});
         io::record_file_lengths(c.record, dir_, {"time_series.csv"});
         checkpoints_.write(c);
@@ -162,9 +161,7 @@ int run_command(const RunOptions& options) {
 int resume_run(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
     RunPlan plan = load_plan(checkpoint.record);
     plan.quiet = quiet;
-    Simulation sim(std::move(checkpoint.scenario), static_cast<int>(checkpoint.record.integer("threads")));
-    sim.restore(std::move(checkpoint.state));
-    io::truncate_to_recorded_lengths(checkpoint.record, dir);
+    Simulation sim = restore_simulation(checkpoint, dir);
     if (!quiet)
         fmt::print("tumble resume: run of {} at step {} of {} (t = {:.6g} s)\n", plan.scenario_file, sim.step_count(),
                    plan.steps, sim.time());
