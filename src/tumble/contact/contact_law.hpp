@@ -23,7 +23,7 @@ namespace tumble {
 enum class ShearModel { Off, IntegratedSlip, TangentialSpring };
 
 // The shear models a scenario can name. To add one: a kernel header in this
-// folder, an entry here, a case in contact_law() below.
+// folder, an entry here, a branch in contact_law() below.
 struct ShearModelEntry {
     std::string_view keyword;
     ShearModel model;
@@ -45,6 +45,8 @@ struct ContactModel {
     // Slip speed (m/s) below which the shear direction and the twist sign
     // fade linearly to zero (see against_slip()).
     double slip_velocity_regularisation = 1e-4;
+
+    bool all_terms_on() const { return elastic && viscous && attraction && twisting; }
 };
 
 // What one contact does to its two spheres.
@@ -56,8 +58,21 @@ struct ContactForces {
     double twisting_couple = 0;   // couple about n on i, N m
 };
 
-inline ContactForces contact_law(const PairCoefficients& c, const ContactGeometry& g, const ContactModel& model,
-                                 double dt, ContactHistory& history) {
+// The model with every term on and the shear model fixed when compiling:
+// the paper's model. It reads like a ContactModel, so contact_law() takes
+// either; with this one the law has no run-time switches, which lets the
+// pair loop run it on several contacts per instruction (sim/pair_loop.hpp).
+template <ShearModel Shear>
+struct AllTermsOn {
+    static constexpr bool elastic = true, viscous = true, attraction = true, twisting = true;
+    static constexpr ShearModel shear = Shear;
+    double slip_velocity_regularisation = 1e-4;
+};
+
+// Model: ContactModel or AllTermsOn<...>.
+template <class Model>
+inline ContactForces contact_law(const PairCoefficients& c, const ContactGeometry& g, const Model& model, double dt,
+                                 ContactHistory& history) {
     const double a = g.contact_radius;
     ContactForces out;
 
@@ -70,16 +85,11 @@ inline ContactForces contact_law(const PairCoefficients& c, const ContactGeometr
 
     // Shear force at the contact point, limited by static friction mu |F_n|.
     Vec3 F_t;
-    switch (model.shear) {
-        case ShearModel::IntegratedSlip:
-            F_t = mindlin_slip_force(c.G_star, c.mu, a, F_n_abs, g.v_t, dt, model.slip_velocity_regularisation,
-                                     history.integrated_slip);
-            break;
-        case ShearModel::TangentialSpring:
-            F_t = mindlin_spring_force(c.G_star, c.mu, a, F_n_abs, g.n, g.v_t, dt, history.tangential_spring);
-            break;
-        case ShearModel::Off: break;
-    }
+    if (model.shear == ShearModel::IntegratedSlip)
+        F_t = mindlin_slip_force(c.G_star, c.mu, a, F_n_abs, g.v_t, dt, model.slip_velocity_regularisation,
+                                 history.integrated_slip);
+    else if (model.shear == ShearModel::TangentialSpring)
+        F_t = mindlin_spring_force(c.G_star, c.mu, a, F_n_abs, g.n, g.v_t, dt, history.tangential_spring);
 
     // Twisting couple about n.
     const double M = model.twisting ? twisting_couple(c.G_star, c.mu, a, F_n_abs, g.w_n, dt,

@@ -2,6 +2,18 @@
 // The pair loop: the contact law applied to a range of the half neighbour
 // list. Simulation::compute_forces() runs it, one range per thread; the
 // micro-benchmarks (bench/) time it alone.
+//
+// The loop works through the range in blocks of ContactBlock::capacity
+// contacts, in three passes per block:
+//   1. gather: find the pairs that touch and copy what the law needs of
+//      their two spheres into the block (structure of arrays);
+//   2. law: the contact law on every contact of the block, several
+//      contacts per instruction (SIMD; `#pragma omp simd`);
+//   3. scatter: add each contact's force and torques to its two spheres,
+//      in the order of the pair list.
+// Every contact goes through exactly the operations of the scalar law and
+// the sums are made in pair order, so the results are bitwise those of one
+// contact at a time.
 #pragma once
 
 #include <cmath>
@@ -26,37 +38,161 @@ struct ContactRecord {
     ContactHistory history;  // after the step
 };
 
+// The contacts of one block, structure of arrays: one entry per touching
+// pair, lane l of every array belongs to pair list entry pair[l]. Everything
+// the law reads or writes is copied in here, so that the law's loop reads
+// and writes contiguous arrays only.
+struct ContactBlock {
+    static constexpr std::size_t capacity = 64;
+    struct Vec3s {
+        alignas(64) double x[capacity], y[capacity], z[capacity];
+        Vec3 operator[](std::size_t l) const { return {x[l], y[l], z[l]}; }
+        void set(std::size_t l, const Vec3& v) { x[l] = v.x, y[l] = v.y, z[l] = v.z; }
+    };
+    std::size_t count = 0;
+    alignas(64) std::uint32_t pair[capacity];
+    // Inputs: X_i - X_j (periodic image applied), its square, both spheres,
+    // the pair's coefficients (PairCoefficients; W is not used by the law).
+    Vec3s d, v_i, v_j, omega_i, omega_j;
+    alignas(64) double distance2[capacity], R_i[capacity], R_j[capacity];
+    alignas(64) double E_star[capacity], G_star[capacity], B_star[capacity], mu[capacity], attraction[capacity];
+    // In and out: the contact history (ContactHistory).
+    alignas(64) double integrated_slip[capacity], integrated_angular_slip[capacity];
+    Vec3s tangential_spring;
+    // Outputs of the law.
+    Vec3s force_i, torque_i, torque_j;
+    alignas(64) double normal_force[capacity], twisting_couple[capacity];
+
+    PairCoefficients coefficients(std::size_t l) const {
+        PairCoefficients c;
+        c.E_star = E_star[l], c.G_star = G_star[l], c.B_star = B_star[l], c.mu = mu[l], c.attraction = attraction[l];
+        return c;
+    }
+    void set_coefficients(std::size_t l, const PairCoefficients& c) {
+        E_star[l] = c.E_star, G_star[l] = c.G_star, B_star[l] = c.B_star, mu[l] = c.mu, attraction[l] = c.attraction;
+    }
+    ContactHistory history(std::size_t l) const {
+        ContactHistory h;
+        h.integrated_slip = integrated_slip[l];
+        h.integrated_angular_slip = integrated_angular_slip[l];
+        h.tangential_spring = tangential_spring[l];
+        return h;
+    }
+    void set_history(std::size_t l, const ContactHistory& h) {
+        integrated_slip[l] = h.integrated_slip;
+        integrated_angular_slip[l] = h.integrated_angular_slip;
+        tangential_spring.set(l, h.tangential_spring);
+    }
+};
+
+// Pass 1: pairs [k, end) of the list into the block until it is full; the
+// pairs found apart drop their history. Returns where it stopped.
+inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std::size_t k, std::size_t end,
+                                   const PeriodicImages& images, const PairTable& table, ContactBlock& b) {
+    b.count = 0;
+    for (; k < end && b.count < ContactBlock::capacity; ++k) {
+        const std::uint32_t i = pairs.first[k], j = pairs.second[k];
+        const Vec3 d = p.position[i] - p.position[j] + images[pairs.image[k]];
+        const double distance2 = norm2(d);
+        const double reach = p.radius[i] + p.radius[j];
+        if (distance2 >= reach * reach) {
+            ContactHistory& history = pairs.history[k];
+            if (!history.is_zero()) history = ContactHistory{};  // contact ended
+            continue;
+        }
+        const std::size_t l = b.count++;
+        b.pair[l] = static_cast<std::uint32_t>(k);
+        b.d.set(l, d);
+        b.distance2[l] = distance2;
+        b.R_i[l] = p.radius[i];
+        b.R_j[l] = p.radius[j];
+        b.v_i.set(l, p.velocity[i]);
+        b.v_j.set(l, p.velocity[j]);
+        b.omega_i.set(l, p.angular_velocity[i]);
+        b.omega_j.set(l, p.angular_velocity[j]);
+        b.set_coefficients(l, table(p.material[i], p.material[j]));
+        b.set_history(l, pairs.history[k]);
+    }
+    return k;
+}
+
+// Pass 2: geometry and contact law of every contact in the block; the
+// history is updated in the block. With a Model whose terms are fixed when
+// compiling (AllTermsOn) the compiler runs this loop on several contacts per
+// instruction.
+template <class Model>
+inline void apply_contact_law(ContactBlock& b, const Model& model, double dt) {
+    for (std::size_t l = 0; l < b.count; ++l) {
+        const ContactGeometry g = make_contact_geometry(b.d[l], std::sqrt(b.distance2[l]), b.R_i[l], b.R_j[l],
+                                                        b.v_i[l], b.v_j[l], b.omega_i[l], b.omega_j[l]);
+        ContactHistory history = b.history(l);
+        const ContactForces f = contact_law(b.coefficients(l), g, model, dt, history);
+        b.set_history(l, history);
+        b.force_i.set(l, f.force_i);
+        b.torque_i.set(l, f.torque_i);
+        b.torque_j.set(l, f.torque_j);
+        b.normal_force[l] = f.normal_force;
+        b.twisting_couple[l] = f.twisting_couple;
+    }
+}
+
+// Pass 3: the block's forces onto the spheres, in pair order (Newton's
+// third law: j gets -force_i), the history back into the pair list, and the
+// records when recording.
+template <bool Record>
+inline void scatter_contacts(const ParticleStore& p, PairList& pairs, const ContactBlock& b, Vec3* force,
+                             Vec3* torque, std::vector<ContactRecord>& records) {
+    for (std::size_t l = 0; l < b.count; ++l) {
+        const std::size_t k = b.pair[l];
+        const std::uint32_t i = pairs.first[k], j = pairs.second[k];
+        pairs.history[k] = b.history(l);
+        force[i] += b.force_i[l];
+        force[j] -= b.force_i[l];
+        torque[i] += b.torque_i[l];
+        torque[j] += b.torque_j[l];
+        if constexpr (Record) {
+            const ContactGeometry g = make_contact_geometry(b.d[l], std::sqrt(b.distance2[l]), b.R_i[l], b.R_j[l],
+                                                            b.v_i[l], b.v_j[l], b.omega_i[l], b.omega_j[l]);
+            const ContactForces f{b.force_i[l], b.torque_i[l], b.torque_j[l], b.normal_force[l],
+                                  b.twisting_couple[l]};
+            records.push_back({p.id[i], p.id[j], g, f, pairs.history[k]});
+        }
+    }
+}
+
 // The pair loop over pairs [range.begin, range.end) of the half list: for
 // every candidate pair in contact, build the contact geometry, apply the
 // contact law, and add the result to both particles (Newton's third law; the
 // half list holds each pair once) in `force` and `torque`. A pair that is
 // not touching drops its history. Each thread runs it on its own range of
 // pairs into its own force arrays; the force law itself does not change.
-template <bool Record>
-[[gnu::flatten]] inline void add_contact_forces(const ParticleStore& p, PairList& pairs, IndexRange range,
-                                         const PeriodicImages& images, const PairTable& table,
-                                         const ContactModel& model, double dt, Vec3* force, Vec3* torque,
-                                         std::vector<ContactRecord>& records) {
-    for (std::size_t k = range.begin; k < range.end; ++k) {
-        const std::uint32_t i = pairs.first[k], j = pairs.second[k];
-        const Vec3 d = p.position[i] - p.position[j] + images[pairs.image[k]];
-        const double distance2 = norm2(d);
-        const double reach = p.radius[i] + p.radius[j];
-        ContactHistory& history = pairs.history[k];
-        if (distance2 >= reach * reach) {
-            if (!history.is_zero()) history = ContactHistory{};  // contact ended
-            continue;
-        }
-        const ContactGeometry g =
-            make_contact_geometry(d, std::sqrt(distance2), p.radius[i], p.radius[j], p.velocity[i], p.velocity[j],
-                                  p.angular_velocity[i], p.angular_velocity[j]);
-        const ContactForces f = contact_law(table(p.material[i], p.material[j]), g, model, dt, history);
-        force[i] += f.force_i;
-        force[j] -= f.force_i;
-        torque[i] += f.torque_i;
-        torque[j] += f.torque_j;
-        if constexpr (Record) records.push_back({p.id[i], p.id[j], g, f, history});
+template <bool Record, class Model>
+void add_contact_forces(const ParticleStore& p, PairList& pairs, IndexRange range, const PeriodicImages& images,
+                        const PairTable& table, const Model& model, double dt, Vec3* force, Vec3* torque,
+                        std::vector<ContactRecord>& records) {
+    ContactBlock block;
+    for (std::size_t k = range.begin; k < range.end;) {
+        k = gather_contacts(p, pairs, k, range.end, images, table, block);
+        apply_contact_law(block, model, dt);
+        scatter_contacts<Record>(p, pairs, block, force, torque, records);
     }
+}
+
+// The same for a model given at run time: the paper's model (every term on)
+// goes to the vectorised law, any other to the law with its switches.
+template <bool Record>
+void add_contact_forces(const ParticleStore& p, PairList& pairs, IndexRange range, const PeriodicImages& images,
+                        const PairTable& table, const ContactModel& model, double dt, Vec3* force, Vec3* torque,
+                        std::vector<ContactRecord>& records) {
+    const double v_reg = model.slip_velocity_regularisation;
+    if (model.all_terms_on() && model.shear == ShearModel::IntegratedSlip)
+        add_contact_forces<Record>(p, pairs, range, images, table, AllTermsOn<ShearModel::IntegratedSlip>{v_reg},
+                                   dt, force, torque, records);
+    else if (model.all_terms_on() && model.shear == ShearModel::TangentialSpring)
+        add_contact_forces<Record>(p, pairs, range, images, table, AllTermsOn<ShearModel::TangentialSpring>{v_reg},
+                                   dt, force, torque, records);
+    else
+        add_contact_forces<Record, ContactModel>(p, pairs, range, images, table, model, dt, force, torque, records);
 }
 
 }  // namespace tumble
