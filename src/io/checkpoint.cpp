@@ -151,7 +151,7 @@ void put_state(ByteWriter& w, const SimulationState& s) {
     w.put_array(s.neighbors.pairs.first);
     w.put_array(s.neighbors.pairs.second);
     w.put_array(s.neighbors.pairs.image);
-    w.put_array(s.neighbors.pairs.history);
+    w.put_array(s.neighbors.pairs.histories());
     w.put_array(s.neighbors.position_at_build);
     w.put(s.neighbors.builds);
     w.put_array(s.wall_history);
@@ -174,7 +174,7 @@ SimulationState get_state(ByteReader& r) {
     s.neighbors.pairs.first = r.get_array<std::uint32_t>("neighbour pairs");
     s.neighbors.pairs.second = r.get_array<std::uint32_t>("neighbour pairs");
     s.neighbors.pairs.image = r.get_array<std::uint8_t>("neighbour pair images");
-    s.neighbors.pairs.history = r.get_array<ContactHistory>("contact history");
+    s.neighbors.pairs.set_histories(r.get_array<ContactHistory>("contact history"));
     s.neighbors.position_at_build = r.get_array<Vec3>("positions at the last neighbour build");
     s.neighbors.builds = r.get<std::int64_t>("neighbour builds");
     s.wall_history = r.get_array<ContactHistory>("wall contact history");

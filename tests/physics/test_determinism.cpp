@@ -44,8 +44,8 @@ TEST(Determinism, TwoRunsOfOneScenarioAreBitwiseIdentical) {
     EXPECT_TRUE(p.torque == q.torque);
     EXPECT_EQ(oa.contact_energy, ob.contact_energy);
     // The contact histories too (the list holds them in the same order).
-    const auto& ha = a.neighbors().pairs().history;
-    const auto& hb = b.neighbors().pairs().history;
+    const auto ha = a.neighbors().pairs().histories();
+    const auto hb = b.neighbors().pairs().histories();
     ASSERT_EQ(ha.size(), hb.size());
     long differing = 0;
     for (std::size_t k = 0; k < ha.size(); ++k)

@@ -49,8 +49,8 @@ TEST(Threads, SameThreadCountIsBitwiseIdentical) {
     EXPECT_TRUE(p.angular_velocity == q.angular_velocity);
     EXPECT_TRUE(p.force == q.force);
     EXPECT_TRUE(p.torque == q.torque);
-    const auto& ha = a.neighbors().pairs().history;
-    const auto& hb = b.neighbors().pairs().history;
+    const auto ha = a.neighbors().pairs().histories();
+    const auto hb = b.neighbors().pairs().histories();
     ASSERT_EQ(ha.size(), hb.size());
     for (std::size_t k = 0; k < ha.size(); ++k) {
         EXPECT_EQ(ha[k].integrated_slip, hb[k].integrated_slip);

@@ -48,7 +48,7 @@ void expect_same_state(const SimulationState& a, const SimulationState& b) {
     EXPECT_EQ(bytes(p.reference_position), bytes(q.reference_position));
     EXPECT_EQ(bytes(a.neighbors.pairs.first), bytes(b.neighbors.pairs.first)) << "pair order";
     EXPECT_EQ(bytes(a.neighbors.pairs.second), bytes(b.neighbors.pairs.second));
-    EXPECT_EQ(bytes(a.neighbors.pairs.history), bytes(b.neighbors.pairs.history)) << "contact history";
+    EXPECT_EQ(bytes(a.neighbors.pairs.histories()), bytes(b.neighbors.pairs.histories())) << "contact history";
     EXPECT_EQ(bytes(a.wall_history), bytes(b.wall_history)) << "wall contact history";
     EXPECT_EQ(a.neighbors.builds, b.neighbors.builds);
     EXPECT_EQ(a.step, b.step);
@@ -57,7 +57,7 @@ void expect_same_state(const SimulationState& a, const SimulationState& b) {
 
 std::size_t live_contacts(const SimulationState& s) {
     std::size_t n = 0;
-    for (const ContactHistory& h : s.neighbors.pairs.history) n += !h.is_zero();
+    for (const ContactHistory& h : s.neighbors.pairs.histories()) n += !h.is_zero();
     for (const ContactHistory& h : s.wall_history) n += !h.is_zero();
     return n;
 }

@@ -80,7 +80,7 @@ TEST(ContactTerms, GeometryOfAHeadOnApproach) {
     // j at the origin, i on the +x axis moving toward it at 0.5 m/s.
     const double distance = R_i + R_j - h;
     const Vec3 d{distance, 0.0, 0.0};
-    const ContactGeometry g = make_contact_geometry(d, distance, R_i, R_j, {-0.5, 0, 0}, {}, {}, {});
+    const ContactGeometry g = make_contact_geometry(d, distance, R_i, R_j, {-0.5, 0, 0}, {}, {});
     expect_vec_near(g.n, {1.0, 0.0, 0.0}, 1e-15);  // from j to i
     // h = R_i + R_j - |d| loses the digits of R_i + R_j: 1e-18 m of 1e-4.
     EXPECT_NEAR(g.overlap, h, 1e-17);
@@ -99,7 +99,7 @@ TEST(ContactTerms, GeometryOfPureRotation) {
     const double distance = R_i + R_j - h;
     const Vec3 d{distance, 0.0, 0.0};
     const Vec3 omega_i{0, 0, 20.0}, omega_j{7.0, 0, -5.0};
-    const ContactGeometry g = make_contact_geometry(d, distance, R_i, R_j, {}, {}, omega_i, omega_j);
+    const ContactGeometry g = make_contact_geometry(d, distance, R_i, R_j, {}, omega_i, omega_j);
     // Contact point at -L_i x from i and +L_j x from j, L = R - h/2.
     // As part of i it moves at omega_i x (-L_i x) = (0, -20 L_i, 0);
     // as part of j at omega_j x (L_j x) = (0, -5 L_j, 0) (the spin about x
@@ -113,7 +113,7 @@ TEST(ContactTerms, GeometryOfPureRotation) {
     // Rolling without slip: the surfaces move together, v_t = 0, when
     // omega_i L_i = -omega_j L_j about the same axis.
     const ContactGeometry rolling =
-        make_contact_geometry(d, distance, R_i, R_j, {}, {}, {0, 0, 10.0}, {0, 0, -10.0 * L_i / L_j});
+        make_contact_geometry(d, distance, R_i, R_j, {}, {0, 0, 10.0}, {0, 0, -10.0 * L_i / L_j});
     expect_vec_near(rolling.v_t, {}, 1e-15);
 }
 
@@ -264,7 +264,7 @@ struct GenericContact {
         const Vec3 dir = (1.0 / std::sqrt(1.0 + 4.0 + 0.25)) * Vec3{1.0, -2.0, 0.5};
         X_j = X_i - (R_i + R_j - h) * dir;
         const Vec3 d = X_i - X_j;
-        g = make_contact_geometry(d, norm(d), R_i, R_j, {0.1, -0.2, 0.05}, {-0.03, 0.07, 0.02}, {30.0, -12.0, 8.0},
+        g = make_contact_geometry(d, norm(d), R_i, R_j, Vec3{0.1, -0.2, 0.05} - Vec3{-0.03, 0.07, 0.02}, {30.0, -12.0, 8.0},
                                   {-5.0, 17.0, 40.0});
     }
 };

@@ -119,7 +119,7 @@ void expect_same_pairs(const ParticleStore& p, const Domain& domain, double skin
     for (std::size_t k = 0; k < cells.size(); ++k) {
         EXPECT_LT(cells.first[k], cells.second[k]);
         EXPECT_FALSE(p.is_kinematic(cells.first[k]) && p.is_kinematic(cells.second[k]));
-        EXPECT_TRUE(cells.history[k].is_zero());
+        EXPECT_TRUE(cells.history(k).is_zero());
         if (k > 0) {
             EXPECT_LE(cells.first[k - 1], cells.first[k]) << "pairs not grouped by first index";
         }
@@ -214,7 +214,7 @@ std::map<std::pair<std::int64_t, std::int64_t>, bool> stamp_histories(const Part
     for (std::size_t k = 0; k < list.size(); ++k) {
         const std::int64_t a = p.id[list.first[k]], b = p.id[list.second[k]];
         const ContactHistory h = history_of(std::min(a, b), std::max(a, b));
-        list.history[k] = a < b ? h : h.swapped();
+        list.set_history(k, a < b ? h : h.swapped());
         lower_first[{std::min(a, b), std::max(a, b)}] = a < b;
     }
     return lower_first;
@@ -231,14 +231,14 @@ std::size_t check_histories(const ParticleStore& p, const PairList& list,
         const std::int64_t a = p.id[list.first[k]], b = p.id[list.second[k]];
         const auto found = before.find({std::min(a, b), std::max(a, b)});
         if (found == before.end()) {
-            EXPECT_TRUE(list.history[k].is_zero()) << "new pair " << a << "-" << b << " has history";
+            EXPECT_TRUE(list.history(k).is_zero()) << "new pair " << a << "-" << b << " has history";
             continue;
         }
         ++carried;
         if (found->second != (a < b)) ++flipped;
         const ContactHistory h = history_of(std::min(a, b), std::max(a, b));
         SCOPED_TRACE("pair of ids " + std::to_string(a) + ", " + std::to_string(b));
-        expect_history_equal(list.history[k], a < b ? h : h.swapped());
+        expect_history_equal(list.history(k), a < b ? h : h.swapped());
     }
     return flipped;
 }

@@ -29,10 +29,10 @@ struct ContactGeometry {
 // With lever = R - h/2 for both spheres the two points coincide, so the
 // shear torques on i and j conserve angular momentum exactly.
 //
-// d = X_i - X_j (periodic image already applied), distance = |d| > 0.
+// d = X_i - X_j (periodic image already applied), distance = |d| > 0,
+// v_ij = v_i - v_j the velocity of the centre of i relative to that of j.
 inline ContactGeometry make_contact_geometry(const Vec3& d, double distance, double R_i, double R_j,
-                                             const Vec3& v_i, const Vec3& v_j, const Vec3& omega_i,
-                                             const Vec3& omega_j) {
+                                             const Vec3& v_ij, const Vec3& omega_i, const Vec3& omega_j) {
     ContactGeometry c;
     c.n = (1.0 / distance) * d;
     c.overlap = R_i + R_j - distance;
@@ -42,7 +42,7 @@ inline ContactGeometry make_contact_geometry(const Vec3& d, double distance, dou
     c.lever_j = R_j - 0.5 * c.overlap;
     // Velocity of the contact point as part of i minus as part of j:
     // (v_i + omega_i x (-lever_i n)) - (v_j + omega_j x (lever_j n)).
-    const Vec3 v = v_i - v_j - cross(c.lever_i * omega_i + c.lever_j * omega_j, c.n);
+    const Vec3 v = v_ij - cross(c.lever_i * omega_i + c.lever_j * omega_j, c.n);
     c.v_n = dot(v, c.n);
     c.v_t = v - c.v_n * c.n;
     c.w_n = dot(omega_i - omega_j, c.n);

@@ -15,7 +15,7 @@ namespace tumble {
 // v += half_dt (F/m + g), omega += half_dt T/I, for free particles.
 void kick(ParticleStore& p, const Vec3& gravity, double half_dt, int chunks = 1);
 
-// x += dt v, for free particles.
-void drift(ParticleStore& p, double dt, int chunks = 1);
+// kick(), then x += dt v for free particles (the drift), in one pass.
+void kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, int chunks = 1);
 
 }  // namespace tumble

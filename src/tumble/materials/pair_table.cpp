@@ -67,8 +67,15 @@ PairTable::PairTable(const std::vector<Material>& materials,
             if (pij.mu != pji.mu || pij.W != pji.W)
                 throw Error("pair table: properties of " + materials[i].name + "-" + materials[j].name +
                             " are not symmetric");
-            table_[i * n_ + j] = make_pair_coefficients(materials[i], materials[j], pij);
+            table_[index(i, j)] = make_pair_coefficients(materials[i], materials[j], pij);
         }
+    }
+    for (const PairCoefficients& c : table_) {
+        columns_.E_star.push_back(c.E_star);
+        columns_.G_star.push_back(c.G_star);
+        columns_.B_star.push_back(c.B_star);
+        columns_.mu.push_back(c.mu);
+        columns_.attraction.push_back(c.attraction);
     }
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "tumble/materials/material.hpp"
@@ -22,6 +23,20 @@ struct PairCoefficients {
 
 PairCoefficients make_pair_coefficients(const Material& a, const Material& b, const PairProperties& p);
 
+// The coefficients the contact law uses, one array per coefficient, indexed
+// by PairTable::index(): for loops that fetch several pairs' coefficients
+// per instruction.
+struct PairColumns {
+    std::vector<double> E_star, G_star, B_star, mu, attraction;
+
+    PairCoefficients at(std::uint32_t index) const {
+        PairCoefficients c;
+        c.E_star = E_star[index], c.G_star = G_star[index], c.B_star = B_star[index], c.mu = mu[index];
+        c.attraction = attraction[index];
+        return c;  // W stays 0: the law uses the attraction prefactor
+    }
+};
+
 // Symmetric table indexed by two material ids.
 class PairTable {
 public:
@@ -30,12 +45,16 @@ public:
     PairTable(const std::vector<Material>& materials,
               const std::vector<std::vector<PairProperties>>& properties);
 
-    const PairCoefficients& operator()(int i, int j) const { return table_[i * n_ + j]; }
+    const PairCoefficients& operator()(int i, int j) const { return table_[index(i, j)]; }
     int size() const { return n_; }
+    // Where the pair (i, j) is in columns().
+    std::uint32_t index(int i, int j) const { return static_cast<std::uint32_t>(i * n_ + j); }
+    const PairColumns& columns() const { return columns_; }
 
 private:
     int n_ = 0;
     std::vector<PairCoefficients> table_;
+    PairColumns columns_;
 };
 
 }  // namespace tumble

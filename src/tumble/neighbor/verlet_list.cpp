@@ -61,7 +61,7 @@ void VerletList::rebuild(ParticleStore& p) {
     // oriented as (lower id, higher id).
     std::unordered_map<std::uint64_t, ContactHistory> live;
     for (std::size_t k = 0; k < pairs_.size(); ++k) {
-        const ContactHistory& h = pairs_.history[k];
+        const ContactHistory h = pairs_.history(k);
         if (h.is_zero()) continue;
         const std::int64_t a = p.id[pairs_.first[k]], b = p.id[pairs_.second[k]];
         live.emplace(pair_key(a, b), a < b ? h : h.swapped());
@@ -75,7 +75,7 @@ void VerletList::rebuild(ParticleStore& p) {
         for (std::size_t k = 0; k < pairs_.size(); ++k) {
             const std::int64_t a = p.id[pairs_.first[k]], b = p.id[pairs_.second[k]];
             const auto found = live.find(pair_key(a, b));
-            if (found != live.end()) pairs_.history[k] = a < b ? found->second : found->second.swapped();
+            if (found != live.end()) pairs_.set_history(k, a < b ? found->second : found->second.swapped());
         }
 
     position_at_build_ = p.position;

@@ -39,11 +39,11 @@ struct ContactRecord {
 };
 
 // The contacts of one block, structure of arrays: one entry per touching
-// pair, lane l of every array belongs to pair list entry pair[l]. Everything
-// the law reads or writes is copied in here, so that the law's loop reads
-// and writes contiguous arrays only.
+// pair, lane l of every array belongs to pair list entry pair[l]. What the
+// law needs of the two spheres is copied in here, so that the law's loop
+// reads contiguous arrays; the history stays in the pair list.
 struct ContactBlock {
-    static constexpr std::size_t capacity = 64;
+    static constexpr std::size_t capacity = 16;
     struct Vec3s {
         alignas(64) double x[capacity], y[capacity], z[capacity];
         Vec3 operator[](std::size_t l) const { return {x[l], y[l], z[l]}; }
@@ -51,37 +51,17 @@ struct ContactBlock {
     };
     std::size_t count = 0;
     alignas(64) std::uint32_t pair[capacity];
-    // Inputs: X_i - X_j (periodic image applied), its square, both spheres,
-    // the pair's coefficients (PairCoefficients; W is not used by the law).
-    Vec3s d, v_i, v_j, omega_i, omega_j;
+    alignas(64) std::uint32_t pair_type[capacity];  // PairTable::index() of the two materials
+    // Inputs: X_i - X_j (periodic image applied), its square, v_i - v_j, the
+    // two spheres' radii and angular velocities.
+    Vec3s d, v_ij, omega_i, omega_j;
     alignas(64) double distance2[capacity], R_i[capacity], R_j[capacity];
-    alignas(64) double E_star[capacity], G_star[capacity], B_star[capacity], mu[capacity], attraction[capacity];
-    // In and out: the contact history (ContactHistory).
-    alignas(64) double integrated_slip[capacity], integrated_angular_slip[capacity];
-    Vec3s tangential_spring;
     // Outputs of the law.
     Vec3s force_i, torque_i, torque_j;
     alignas(64) double normal_force[capacity], twisting_couple[capacity];
 
-    PairCoefficients coefficients(std::size_t l) const {
-        PairCoefficients c;
-        c.E_star = E_star[l], c.G_star = G_star[l], c.B_star = B_star[l], c.mu = mu[l], c.attraction = attraction[l];
-        return c;
-    }
-    void set_coefficients(std::size_t l, const PairCoefficients& c) {
-        E_star[l] = c.E_star, G_star[l] = c.G_star, B_star[l] = c.B_star, mu[l] = c.mu, attraction[l] = c.attraction;
-    }
-    ContactHistory history(std::size_t l) const {
-        ContactHistory h;
-        h.integrated_slip = integrated_slip[l];
-        h.integrated_angular_slip = integrated_angular_slip[l];
-        h.tangential_spring = tangential_spring[l];
-        return h;
-    }
-    void set_history(std::size_t l, const ContactHistory& h) {
-        integrated_slip[l] = h.integrated_slip;
-        integrated_angular_slip[l] = h.integrated_angular_slip;
-        tangential_spring.set(l, h.tangential_spring);
+    ContactGeometry geometry(std::size_t l) const {
+        return make_contact_geometry(d[l], std::sqrt(distance2[l]), R_i[l], R_j[l], v_ij[l], omega_i[l], omega_j[l]);
     }
 };
 
@@ -96,8 +76,7 @@ inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std:
         const double distance2 = norm2(d);
         const double reach = p.radius[i] + p.radius[j];
         if (distance2 >= reach * reach) {
-            ContactHistory& history = pairs.history[k];
-            if (!history.is_zero()) history = ContactHistory{};  // contact ended
+            if (!pairs.history(k).is_zero()) pairs.set_history(k, ContactHistory{});  // contact ended
             continue;
         }
         const std::size_t l = b.count++;
@@ -106,28 +85,38 @@ inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std:
         b.distance2[l] = distance2;
         b.R_i[l] = p.radius[i];
         b.R_j[l] = p.radius[j];
-        b.v_i.set(l, p.velocity[i]);
-        b.v_j.set(l, p.velocity[j]);
+        b.pair_type[l] = table.index(p.material[i], p.material[j]);
+        b.v_ij.set(l, p.velocity[i] - p.velocity[j]);
         b.omega_i.set(l, p.angular_velocity[i]);
         b.omega_j.set(l, p.angular_velocity[j]);
-        b.set_coefficients(l, table(p.material[i], p.material[j]));
-        b.set_history(l, pairs.history[k]);
     }
     return k;
 }
 
 // Pass 2: geometry and contact law of every contact in the block; the
-// history is updated in the block. With a Model whose terms are fixed when
-// compiling (AllTermsOn) the compiler runs this loop on several contacts per
-// instruction.
+// history is read and written in the pair list. With a Model whose terms are
+// fixed when compiling (AllTermsOn) the compiler runs this loop on several
+// contacts per instruction (`ivdep`: the contacts of a block are distinct
+// pairs, so no two lanes share a history record).
 template <class Model>
-inline void apply_contact_law(ContactBlock& b, const Model& model, double dt) {
+inline void apply_contact_law(ContactBlock& b, PairList& pairs, const PairColumns& coefficients, const Model& model,
+                              double dt) {
+    double* integrated_slip = pairs.integrated_slip.data();
+    double* integrated_angular_slip = pairs.integrated_angular_slip.data();
+    Vec3* tangential_spring = pairs.tangential_spring.data();
+#pragma GCC ivdep
     for (std::size_t l = 0; l < b.count; ++l) {
-        const ContactGeometry g = make_contact_geometry(b.d[l], std::sqrt(b.distance2[l]), b.R_i[l], b.R_j[l],
-                                                        b.v_i[l], b.v_j[l], b.omega_i[l], b.omega_j[l]);
-        ContactHistory history = b.history(l);
-        const ContactForces f = contact_law(b.coefficients(l), g, model, dt, history);
-        b.set_history(l, history);
+        const ContactGeometry g = b.geometry(l);
+        // pairs.history(k), field by field: the spring only for its model.
+        const std::uint32_t k = b.pair[l];
+        ContactHistory history;
+        history.integrated_slip = integrated_slip[k];
+        history.integrated_angular_slip = integrated_angular_slip[k];
+        if (model.shear == ShearModel::TangentialSpring) history.tangential_spring = tangential_spring[k];
+        const ContactForces f = contact_law(coefficients.at(b.pair_type[l]), g, model, dt, history);
+        integrated_slip[k] = history.integrated_slip;
+        integrated_angular_slip[k] = history.integrated_angular_slip;
+        if (model.shear == ShearModel::TangentialSpring) tangential_spring[k] = history.tangential_spring;
         b.force_i.set(l, f.force_i);
         b.torque_i.set(l, f.torque_i);
         b.torque_j.set(l, f.torque_j);
@@ -137,27 +126,38 @@ inline void apply_contact_law(ContactBlock& b, const Model& model, double dt) {
 }
 
 // Pass 3: the block's forces onto the spheres, in pair order (Newton's
-// third law: j gets -force_i), the history back into the pair list, and the
-// records when recording.
+// third law: j gets -force_i), and the records when recording. The list is
+// grouped by the first sphere i, so i's sums are kept in registers while it
+// stays the same; no pair has j = i, so every sphere receives the same
+// additions in the same order as with one contact at a time.
 template <bool Record>
-inline void scatter_contacts(const ParticleStore& p, PairList& pairs, const ContactBlock& b, Vec3* force,
+inline void scatter_contacts(const ParticleStore& p, const PairList& pairs, const ContactBlock& b, Vec3* force,
                              Vec3* torque, std::vector<ContactRecord>& records) {
+    if (b.count == 0) return;
+    std::uint32_t i = pairs.first[b.pair[0]];
+    Vec3 force_i = force[i], torque_i = torque[i];
     for (std::size_t l = 0; l < b.count; ++l) {
         const std::size_t k = b.pair[l];
-        const std::uint32_t i = pairs.first[k], j = pairs.second[k];
-        pairs.history[k] = b.history(l);
-        force[i] += b.force_i[l];
+        if (pairs.first[k] != i) {
+            force[i] = force_i;
+            torque[i] = torque_i;
+            i = pairs.first[k];
+            force_i = force[i];
+            torque_i = torque[i];
+        }
+        const std::uint32_t j = pairs.second[k];
+        force_i += b.force_i[l];
         force[j] -= b.force_i[l];
-        torque[i] += b.torque_i[l];
+        torque_i += b.torque_i[l];
         torque[j] += b.torque_j[l];
         if constexpr (Record) {
-            const ContactGeometry g = make_contact_geometry(b.d[l], std::sqrt(b.distance2[l]), b.R_i[l], b.R_j[l],
-                                                            b.v_i[l], b.v_j[l], b.omega_i[l], b.omega_j[l]);
             const ContactForces f{b.force_i[l], b.torque_i[l], b.torque_j[l], b.normal_force[l],
                                   b.twisting_couple[l]};
-            records.push_back({p.id[i], p.id[j], g, f, pairs.history[k]});
+            records.push_back({p.id[i], p.id[j], b.geometry(l), f, pairs.history(k)});
         }
     }
+    force[i] = force_i;
+    torque[i] = torque_i;
 }
 
 // The pair loop over pairs [range.begin, range.end) of the half list: for
@@ -173,7 +173,7 @@ void add_contact_forces(const ParticleStore& p, PairList& pairs, IndexRange rang
     ContactBlock block;
     for (std::size_t k = range.begin; k < range.end;) {
         k = gather_contacts(p, pairs, k, range.end, images, table, block);
-        apply_contact_law(block, model, dt);
+        apply_contact_law(block, pairs, table.columns(), model, dt);
         scatter_contacts<Record>(p, pairs, block, force, torque, records);
     }
 }

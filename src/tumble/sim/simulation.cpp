@@ -44,8 +44,7 @@ Simulation::Simulation(Scenario scenario, int threads) : scenario_(std::move(sce
 // One time step of velocity Verlet; see integrate/velocity_verlet.hpp.
 void Simulation::step() {
     const double half_dt = 0.5 * dt_;
-    kick(particles_, scenario_.gravity, half_dt, threads_);  // v(t) -> v(t + dt/2)
-    drift(particles_, dt_, threads_);                        // x(t) -> x(t + dt)
+    kick_drift(particles_, scenario_.gravity, half_dt, dt_, threads_);  // v(t) -> v(t + dt/2), x(t) -> x(t + dt)
     ++step_;
     time_ = static_cast<double>(step_) * dt_;
     move_kinematic();                                        // prescribed x, v, omega at t + dt
@@ -147,16 +146,17 @@ void Simulation::move_kinematic() {
         now.push_back({m.motion.axis_point + elapsed * m.motion.velocity, u, m.motion.velocity,
                        m.motion.angular_velocity * elapsed, m.motion.angular_velocity});
     }
+    if (now.empty()) return;  // no kinematic particles
     ParticleStore& p = particles_;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        if (!p.is_kinematic(i)) continue;
+    parallel_for(threads_, p.size(), [&](std::size_t i) {
+        if (!p.is_kinematic(i)) return;
         const Now& m = now[static_cast<std::size_t>(p.motion[i])];
         const Vec3 start_axis = motions_[static_cast<std::size_t>(p.motion[i])].motion.axis_point;
         const Vec3 arm = rotate(p.reference_position[i] - start_axis, m.u, m.angle);
         p.position[i] = m.axis_point + arm + p.image_shift[i];
         p.velocity[i] = m.velocity + m.angular_velocity * cross(m.u, arm);
         p.angular_velocity[i] = m.angular_velocity * m.u;
-    }
+    });
 }
 
 void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
@@ -195,11 +195,15 @@ std::string state_problem(const SimulationState& s, std::size_t n) {
     }
     const PairList& pairs = s.neighbors.pairs;
     const std::size_t n_pairs = pairs.size();
-    if (pairs.second.size() != n_pairs || pairs.image.size() != n_pairs || pairs.history.size() != n_pairs)
+    if (pairs.second.size() != n_pairs || pairs.image.size() != n_pairs ||
+        pairs.integrated_slip.size() != n_pairs || pairs.integrated_angular_slip.size() != n_pairs ||
+        pairs.tangential_spring.size() != n_pairs)
         return "the neighbour pairs have fields of unequal length";
     for (std::size_t k = 0; k < pairs.size(); ++k)
         if (pairs.first[k] >= n || pairs.second[k] >= n || pairs.image[k] >= 27)
             return "neighbour pair " + std::to_string(k) + " refers to a particle or image that does not exist";
+        else if (pairs.first[k] >= pairs.second[k])
+            return "neighbour pair " + std::to_string(k) + " does not have its lower index first";
     if (s.neighbors.position_at_build.size() != n) return "the positions at the last neighbour build do not match";
     if (s.step < 0 || s.time != static_cast<double>(s.step) * s.dt) return "its time is not its step times its dt";
     return "";
