@@ -62,43 +62,62 @@ void Simulation::advance(std::int64_t steps) {
     for (std::int64_t s = 0; s < steps; ++s) step();
 }
 
-// Forces and torques on every particle from its contacts. With several
-// threads, thread c takes the c-th part of the pair list and sums into its
-// own arrays (thread 0 into the particles' own); then every particle adds up
-// its parts in thread order. The sums are thus the same bitwise on every run
-// with the same thread count, and differ from one thread's only by the order
-// of the additions (round-off). Recording runs on one thread.
+// Forces and torques on every particle from its contacts. On one thread the
+// pair loop sums straight into the particles' arrays. With several, thread c
+// takes the c-th part of the pair list and sums into its own arrays; then
+// every particle adds up its parts in thread order. The sums are thus the
+// same bitwise on every run with the same thread count, and differ from one
+// thread's only by the order of the additions (round-off). Recording runs on
+// one thread.
+//
+// The threads' arrays are zero between calls: the adding up clears what it
+// has read. The list is sorted by first particle and j > i in every pair, so
+// thread c touches only particles from the first particle of its part on
+// (touched_from[c]); the adding up reads it from there only. The parts left
+// out are +0 (a sum begun at +0 is never -0), so adding them would change
+// nothing.
 void Simulation::compute_forces() {
     ParticleStore& p = particles_;
+    PairList& pairs = neighbors_.pairs();
     const std::size_t n = p.size();
-    const int chunks = recording_ ? 1 : threads_;
-    const auto extra = static_cast<std::size_t>(chunks - 1) * n;
-    if (chunk_force_.size() != extra) {
-        chunk_force_.assign(extra, Vec3{});
-        chunk_torque_.assign(extra, Vec3{});
-    }
     records_.clear();
-    for_each_chunk(chunks, [&](int c) {
-        const std::size_t offset = static_cast<std::size_t>(c - 1) * n;
-        Vec3* force = c == 0 ? p.force.data() : chunk_force_.data() + offset;
-        Vec3* torque = c == 0 ? p.torque.data() : chunk_torque_.data() + offset;
-        std::fill(force, force + n, Vec3{});
-        std::fill(torque, torque + n, Vec3{});
-        const IndexRange range = chunk_range(c, chunks, neighbors_.pairs().size());
+    const auto pair_loop = [&](IndexRange range, Vec3* force, Vec3* torque) {
         if (recording_)
-            add_contact_forces<true>(p, neighbors_.pairs(), range, neighbors_.images(), pair_table_,
-                                     scenario_.model, dt_, force, torque, records_);
+            add_contact_forces<true>(p, pairs, range, neighbors_.images(), pair_table_, scenario_.model, dt_, force,
+                                     torque, records_);
         else
-            add_contact_forces<false>(p, neighbors_.pairs(), range, neighbors_.images(), pair_table_,
-                                      scenario_.model, dt_, force, torque, records_);
-    });
-    if (chunks > 1)
-        parallel_for(chunks, n, [&](std::size_t i) {
-            for (std::size_t offset = 0; offset < extra; offset += n) {
-                p.force[i] += chunk_force_[offset + i];
-                p.torque[i] += chunk_torque_[offset + i];
-            }
+            add_contact_forces<false>(p, pairs, range, neighbors_.images(), pair_table_, scenario_.model, dt_, force,
+                                      torque, records_);
+    };
+    const int chunks = recording_ ? 1 : threads_;
+    if (chunks == 1) {
+        std::fill(p.force.begin(), p.force.end(), Vec3{});
+        std::fill(p.torque.begin(), p.torque.end(), Vec3{});
+        pair_loop({0, pairs.size()}, p.force.data(), p.torque.data());
+    } else {
+        const auto parts = static_cast<std::size_t>(chunks);
+        if (chunk_force_.size() != parts * n) {
+            chunk_force_.assign(parts * n, Vec3{});
+            chunk_torque_.assign(parts * n, Vec3{});
+        }
+        std::vector<std::size_t> touched_from(parts, n);
+        for_each_chunk(chunks, [&](int c) {
+            const IndexRange range = chunk_range(c, chunks, pairs.size());
+            const auto part = static_cast<std::size_t>(c);
+            if (range.begin < range.end) touched_from[part] = pairs.first[range.begin];
+            pair_loop(range, chunk_force_.data() + part * n, chunk_torque_.data() + part * n);
         });
+        parallel_for(chunks, n, [&](std::size_t i) {
+            Vec3 force, torque;
+            for (std::size_t part = 0; part < parts; ++part) {
+                if (i < touched_from[part]) continue;
+                force += std::exchange(chunk_force_[part * n + i], Vec3{});
+                torque += std::exchange(chunk_torque_[part * n + i], Vec3{});
+            }
+            p.force[i] = force;
+            p.torque[i] = torque;
+        });
+    }
     if (!wall_history_.empty()) add_wall_forces(chunks);
 }
 
@@ -202,8 +221,8 @@ std::string state_problem(const SimulationState& s, std::size_t n) {
     for (std::size_t k = 0; k < pairs.size(); ++k)
         if (pairs.first[k] >= n || pairs.second[k] >= n || pairs.image[k] >= 27)
             return "neighbour pair " + std::to_string(k) + " refers to a particle or image that does not exist";
-        else if (pairs.first[k] >= pairs.second[k])
-            return "neighbour pair " + std::to_string(k) + " does not have its lower index first";
+        else if (pairs.first[k] >= pairs.second[k] || (k > 0 && pairs.first[k] < pairs.first[k - 1]))
+            return "neighbour pair " + std::to_string(k) + " is out of order (lower index first, sorted by it)";
     if (s.neighbors.position_at_build.size() != n) return "the positions at the last neighbour build do not match";
     if (s.step < 0 || s.time != static_cast<double>(s.step) * s.dt) return "its time is not its step times its dt";
     return "";
