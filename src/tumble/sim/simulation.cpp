@@ -62,60 +62,70 @@ void Simulation::advance(std::int64_t steps) {
     for (std::int64_t s = 0; s < steps; ++s) step();
 }
 
-// Forces and torques on every particle from its contacts. On one thread the
-// pair loop sums straight into the particles' arrays. With several, thread c
-// takes the c-th part of the pair list and sums into its own arrays; then
-// every particle adds up its parts in thread order. The sums are thus the
-// same bitwise on every run with the same thread count, and differ from one
-// thread's only by the order of the additions (round-off). Recording runs on
-// one thread.
+namespace {
+
+// sum[k] += part[k], part[k] = 0 for k in [begin, end): the adding up of one
+// thread's forces, on the arrays as plain numbers that do not overlap
+// (`__restrict`, out of line), so that it runs several per instruction.
+[[gnu::noinline]] void add_and_clear(double* __restrict sum, double* __restrict part, std::size_t begin,
+                                     std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+        sum[k] += part[k];
+        part[k] = 0.0;
+    }
+}
+
+}  // namespace
+
+// Forces and torques on every particle from its contacts. Thread c takes
+// the c-th part of the pair list; thread 0 sums into the particles' arrays,
+// thread c >= 1 into its own, which the particles then add in thread order.
+// The sums are thus the same bitwise on every run with the same thread
+// count, and differ from one thread's only by the order of the additions
+// (round-off). Recording runs on one thread.
 //
-// The threads' arrays are zero between calls: the adding up clears what it
-// has read. The list is sorted by first particle and j > i in every pair, so
-// thread c touches only particles from the first particle of its part on
-// (touched_from[c]); the adding up reads it from there only. The parts left
-// out are +0 (a sum begun at +0 is never -0), so adding them would change
-// nothing.
+// The list is sorted by first particle and j > i in every pair, so thread
+// c >= 1 touches only particles from the first particle of its part on
+// (touched_from[c]); its arrays are added from there only, and cleared as
+// they are read, so they are zero between calls. The parts left out are +0
+// (a sum begun at +0 is never -0), so adding them would change nothing.
 void Simulation::compute_forces() {
     ParticleStore& p = particles_;
     PairList& pairs = neighbors_.pairs();
     const std::size_t n = p.size();
+    const int chunks = recording_ ? 1 : threads_;
+    const auto extra = static_cast<std::size_t>(chunks - 1) * n;
+    if (chunk_force_.size() != extra) {
+        chunk_force_.assign(extra, Vec3{});
+        chunk_torque_.assign(extra, Vec3{});
+    }
+    std::vector<std::size_t> touched_from(static_cast<std::size_t>(chunks), n);
     records_.clear();
-    const auto pair_loop = [&](IndexRange range, Vec3* force, Vec3* torque) {
+    for_each_chunk(chunks, [&](int c) {
+        const IndexRange range = chunk_range(c, chunks, pairs.size());
+        const auto part = static_cast<std::size_t>(c);
+        Vec3* force = c == 0 ? p.force.data() : chunk_force_.data() + (part - 1) * n;
+        Vec3* torque = c == 0 ? p.torque.data() : chunk_torque_.data() + (part - 1) * n;
+        if (c == 0) {
+            std::fill(force, force + n, Vec3{});
+            std::fill(torque, torque + n, Vec3{});
+        } else if (range.begin < range.end) {
+            touched_from[part] = pairs.first[range.begin];
+        }
         if (recording_)
             add_contact_forces<true>(p, pairs, range, neighbors_.images(), pair_table_, scenario_.model, dt_, force,
                                      torque, records_);
         else
             add_contact_forces<false>(p, pairs, range, neighbors_.images(), pair_table_, scenario_.model, dt_, force,
                                       torque, records_);
-    };
-    const int chunks = recording_ ? 1 : threads_;
-    if (chunks == 1) {
-        std::fill(p.force.begin(), p.force.end(), Vec3{});
-        std::fill(p.torque.begin(), p.torque.end(), Vec3{});
-        pair_loop({0, pairs.size()}, p.force.data(), p.torque.data());
-    } else {
-        const auto parts = static_cast<std::size_t>(chunks);
-        if (chunk_force_.size() != parts * n) {
-            chunk_force_.assign(parts * n, Vec3{});
-            chunk_torque_.assign(parts * n, Vec3{});
-        }
-        std::vector<std::size_t> touched_from(parts, n);
+    });
+    for (std::size_t part = 1; part < touched_from.size(); ++part) {
+        const std::size_t from = touched_from[part], offset = (part - 1) * n;
         for_each_chunk(chunks, [&](int c) {
-            const IndexRange range = chunk_range(c, chunks, pairs.size());
-            const auto part = static_cast<std::size_t>(c);
-            if (range.begin < range.end) touched_from[part] = pairs.first[range.begin];
-            pair_loop(range, chunk_force_.data() + part * n, chunk_torque_.data() + part * n);
-        });
-        parallel_for(chunks, n, [&](std::size_t i) {
-            Vec3 force, torque;
-            for (std::size_t part = 0; part < parts; ++part) {
-                if (i < touched_from[part]) continue;
-                force += std::exchange(chunk_force_[part * n + i], Vec3{});
-                torque += std::exchange(chunk_torque_[part * n + i], Vec3{});
-            }
-            p.force[i] = force;
-            p.torque[i] = torque;
+            const IndexRange r = chunk_range(c, chunks, n - from);
+            const std::size_t begin = 3 * (from + r.begin), end = 3 * (from + r.end);  // 3 numbers per vector
+            add_and_clear(&p.force.data()->x, &(chunk_force_.data() + offset)->x, begin, end);
+            add_and_clear(&p.torque.data()->x, &(chunk_torque_.data() + offset)->x, begin, end);
         });
     }
     if (!wall_history_.empty()) add_wall_forces(chunks);

@@ -101,8 +101,9 @@ private:
     bool recording_ = false;
     std::vector<ContactRecord> records_;
     int threads_ = 1;
-    // Contact forces and torques summed by each thread when there are
-    // several, threads x N each; zero between steps (compute_forces()).
+    // Contact forces and torques summed by threads 1, 2, ... (thread 0 sums
+    // into the particles' own arrays): (threads - 1) x N each, zero between
+    // steps (compute_forces()).
     std::vector<Vec3> chunk_force_, chunk_torque_;
     // History of the contacts with the six flat walls, at 6 id + face (ids are
     // dense, 0 .. N-1); empty when the domain has no walls.
