@@ -125,6 +125,7 @@ std::vector<std::uint32_t> cell_order(const ParticleStore& p, const Domain& doma
     const CellGrid grid(p, domain, 2.0 * largest_radius(p) + skin);
     std::vector<std::uint32_t> start, order;
     bin(p, grid, start, order);
+    std::stable_partition(order.begin(), order.end(), [&](std::uint32_t i) { return !p.is_kinematic(i); });
     return order;
 }
 

@@ -23,8 +23,11 @@ void brute_force_pairs(const ParticleStore& p, const Domain& domain, double skin
 // increasing order of it, and by increasing second index within a group.
 void cell_list_pairs(const ParticleStore& p, const Domain& domain, double skin, PairList& out);
 
-// The particle indices sorted by the cell they lie in: the order in which to
-// store them so that neighbours are near in memory.
+// The particle indices sorted by the cell they lie in, the free particles
+// first and then the kinematic ones: the order in which to store them so
+// that neighbours are near in memory, and loops that treat the two kinds
+// differently (the integrator, Simulation::move_kinematic) meet one kind,
+// then the other, instead of a random mix their branches cannot predict.
 std::vector<std::uint32_t> cell_order(const ParticleStore& p, const Domain& domain, double skin);
 
 }  // namespace tumble

@@ -8,10 +8,17 @@
 
 namespace tumble {
 
-// Rotate r by `angle` (rad, right-handed) about the unit axis u (Rodrigues).
-inline Vec3 rotate(const Vec3& r, const Vec3& u, double angle) {
-    const double c = std::cos(angle), s = std::sin(angle);
-    return c * r + s * cross(u, r) + ((1.0 - c) * dot(u, r)) * u;
+// A rotation by an angle (rad, right-handed) about the unit axis u, with the
+// angle's cosine and sine worked out once for all the points it turns.
+struct Rotation {
+    Vec3 u;
+    double c = 1.0, s = 0.0;
+    Rotation(const Vec3& axis, double angle) : u(axis), c(std::cos(angle)), s(std::sin(angle)) {}
+};
+
+// Rotate r (Rodrigues).
+inline Vec3 rotate(const Vec3& r, const Rotation& R) {
+    return R.c * r + R.s * cross(R.u, r) + ((1.0 - R.c) * dot(R.u, r)) * R.u;
 }
 
 }  // namespace tumble

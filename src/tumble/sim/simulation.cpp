@@ -165,26 +165,33 @@ void Simulation::add_wall_forces(int chunks) {
 void Simulation::move_kinematic() {
     // Per motion: where the axis is now and the rotation since the motion began.
     struct Now {
-        Vec3 axis_point, u, velocity;
-        double angle, angular_velocity;
+        Vec3 start_axis_point, axis_point, velocity;
+        Rotation turn;
+        double angular_velocity;
     };
     std::vector<Now> now;
     for (const MotionClock& m : motions_) {
         const double elapsed = time_ - m.start_time;
         const Vec3 u = (1.0 / norm(m.motion.axis_direction)) * m.motion.axis_direction;
-        now.push_back({m.motion.axis_point + elapsed * m.motion.velocity, u, m.motion.velocity,
-                       m.motion.angular_velocity * elapsed, m.motion.angular_velocity});
+        now.push_back({m.motion.axis_point, m.motion.axis_point + elapsed * m.motion.velocity, m.motion.velocity,
+                       Rotation(u, m.motion.angular_velocity * elapsed), m.motion.angular_velocity});
     }
     if (now.empty()) return;  // no kinematic particles
+    // The neighbour list stores them last (cell_order()): split their range
+    // between the threads, not all particles.
     ParticleStore& p = particles_;
-    parallel_for(threads_, p.size(), [&](std::size_t i) {
+    const auto is_kinematic = [&](std::int32_t motion) { return motion != free_motion; };
+    const auto first = std::find_if(p.motion.begin(), p.motion.end(), is_kinematic);
+    const auto last = std::find_if(p.motion.rbegin(), p.motion.rend(), is_kinematic).base();
+    const auto from = static_cast<std::size_t>(first - p.motion.begin());
+    parallel_for(threads_, first < last ? static_cast<std::size_t>(last - first) : 0, [&](std::size_t k) {
+        const std::size_t i = from + k;
         if (!p.is_kinematic(i)) return;
         const Now& m = now[static_cast<std::size_t>(p.motion[i])];
-        const Vec3 start_axis = motions_[static_cast<std::size_t>(p.motion[i])].motion.axis_point;
-        const Vec3 arm = rotate(p.reference_position[i] - start_axis, m.u, m.angle);
+        const Vec3 arm = rotate(p.reference_position[i] - m.start_axis_point, m.turn);
         p.position[i] = m.axis_point + arm + p.image_shift[i];
-        p.velocity[i] = m.velocity + m.angular_velocity * cross(m.u, arm);
-        p.angular_velocity[i] = m.angular_velocity * m.u;
+        p.velocity[i] = m.velocity + m.angular_velocity * cross(m.turn.u, arm);
+        p.angular_velocity[i] = m.angular_velocity * m.turn.u;
     });
 }
 
