@@ -8,7 +8,7 @@
 //   1. gather: find the pairs that touch and copy what the law needs of
 //      their two spheres into the block (structure of arrays);
 //   2. law: the contact law on every contact of the block, several
-//      contacts per instruction (SIMD; `#pragma omp simd`);
+//      contacts per instruction (SIMD, vectorised by the compiler);
 //   3. scatter: add each contact's force and torques to its two spheres,
 //      in the order of the pair list.
 // Every contact goes through exactly the operations of the scalar law and
@@ -40,8 +40,10 @@ struct ContactRecord {
 
 // The contacts of one block, structure of arrays: one entry per touching
 // pair, lane l of every array belongs to pair list entry pair[l]. What the
-// law needs of the two spheres is copied in here, so that the law's loop
-// reads contiguous arrays; the history stays in the pair list.
+// law needs of the two spheres and the contact's history are copied in here,
+// so that the law's loop reads and writes contiguous arrays only (vector
+// loads and stores, which every SIMD instruction set has; scattering the
+// history back by pair index would need AVX-512).
 struct ContactBlock {
     static constexpr std::size_t capacity = 16;
     struct Vec3s {
@@ -56,6 +58,10 @@ struct ContactBlock {
     // two spheres' radii and angular velocities.
     Vec3s d, v_ij, omega_i, omega_j;
     alignas(64) double distance2[capacity], R_i[capacity], R_j[capacity];
+    // In and out: the contact history (ContactHistory; the spring only with
+    // the spring shear model).
+    alignas(64) double integrated_slip[capacity], integrated_angular_slip[capacity];
+    Vec3s tangential_spring;
     // Outputs of the law.
     Vec3s force_i, torque_i, torque_j;
     alignas(64) double normal_force[capacity], twisting_couple[capacity];
@@ -63,12 +69,27 @@ struct ContactBlock {
     ContactGeometry geometry(std::size_t l) const {
         return make_contact_geometry(d[l], std::sqrt(distance2[l]), R_i[l], R_j[l], v_ij[l], omega_i[l], omega_j[l]);
     }
+    // The history of lane l from and to pair k of the list.
+    template <class Model>
+    void load_history(std::size_t l, const PairList& pairs, std::size_t k, const Model& model) {
+        integrated_slip[l] = pairs.integrated_slip[k];
+        integrated_angular_slip[l] = pairs.integrated_angular_slip[k];
+        if (model.shear == ShearModel::TangentialSpring) tangential_spring.set(l, pairs.tangential_spring[k]);
+    }
+    template <class Model>
+    void store_history(std::size_t l, PairList& pairs, std::size_t k, const Model& model) const {
+        pairs.integrated_slip[k] = integrated_slip[l];
+        pairs.integrated_angular_slip[k] = integrated_angular_slip[l];
+        if (model.shear == ShearModel::TangentialSpring) pairs.tangential_spring[k] = tangential_spring[l];
+    }
 };
 
 // Pass 1: pairs [k, end) of the list into the block until it is full; the
 // pairs found apart drop their history. Returns where it stopped.
+template <class Model>
 inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std::size_t k, std::size_t end,
-                                   const PeriodicImages& images, const PairTable& table, ContactBlock& b) {
+                                   const PeriodicImages& images, const PairTable& table, const Model& model,
+                                   ContactBlock& b) {
     b.count = 0;
     for (; k < end && b.count < ContactBlock::capacity; ++k) {
         const std::uint32_t i = pairs.first[k], j = pairs.second[k];
@@ -89,34 +110,30 @@ inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std:
         b.v_ij.set(l, p.velocity[i] - p.velocity[j]);
         b.omega_i.set(l, p.angular_velocity[i]);
         b.omega_j.set(l, p.angular_velocity[j]);
+        b.load_history(l, pairs, k, model);
     }
     return k;
 }
 
-// Pass 2: geometry and contact law of every contact in the block; the
-// history is read and written in the pair list. With a Model whose terms are
-// fixed when compiling (AllTermsOn) the compiler runs this loop on several
-// contacts per instruction (`ivdep`: the contacts of a block are distinct
-// pairs, so no two lanes share a history record).
+// Pass 2: geometry and contact law of every contact in the block. With a
+// Model whose terms are fixed when compiling (AllTermsOn) the compiler runs
+// this loop on several contacts per instruction (`ivdep`: the coefficient
+// columns it gathers by pair type are not among what it writes).
 template <class Model>
-inline void apply_contact_law(ContactBlock& b, PairList& pairs, const PairColumns& coefficients, const Model& model,
-                              double dt) {
-    double* integrated_slip = pairs.integrated_slip.data();
-    double* integrated_angular_slip = pairs.integrated_angular_slip.data();
-    Vec3* tangential_spring = pairs.tangential_spring.data();
+inline void apply_contact_law(ContactBlock& b, const PairColumns& coefficients, const Model& model, double dt) {
 #pragma GCC ivdep
     for (std::size_t l = 0; l < b.count; ++l) {
         const ContactGeometry g = b.geometry(l);
-        // pairs.history(k), field by field: the spring only for its model.
-        const std::uint32_t k = b.pair[l];
+        // The history, field by field (a copy of the whole record does not
+        // vectorise); the spring only for its model.
         ContactHistory history;
-        history.integrated_slip = integrated_slip[k];
-        history.integrated_angular_slip = integrated_angular_slip[k];
-        if (model.shear == ShearModel::TangentialSpring) history.tangential_spring = tangential_spring[k];
+        history.integrated_slip = b.integrated_slip[l];
+        history.integrated_angular_slip = b.integrated_angular_slip[l];
+        if (model.shear == ShearModel::TangentialSpring) history.tangential_spring = b.tangential_spring[l];
         const ContactForces f = contact_law(coefficients.at(b.pair_type[l]), g, model, dt, history);
-        integrated_slip[k] = history.integrated_slip;
-        integrated_angular_slip[k] = history.integrated_angular_slip;
-        if (model.shear == ShearModel::TangentialSpring) tangential_spring[k] = history.tangential_spring;
+        b.integrated_slip[l] = history.integrated_slip;
+        b.integrated_angular_slip[l] = history.integrated_angular_slip;
+        if (model.shear == ShearModel::TangentialSpring) b.tangential_spring.set(l, history.tangential_spring);
         b.force_i.set(l, f.force_i);
         b.torque_i.set(l, f.torque_i);
         b.torque_j.set(l, f.torque_j);
@@ -126,13 +143,14 @@ inline void apply_contact_law(ContactBlock& b, PairList& pairs, const PairColumn
 }
 
 // Pass 3: the block's forces onto the spheres, in pair order (Newton's
-// third law: j gets -force_i), and the records when recording. The list is
-// grouped by the first sphere i, so i's sums are kept in registers while it
-// stays the same; no pair has j = i, so every sphere receives the same
-// additions in the same order as with one contact at a time.
-template <bool Record>
-inline void scatter_contacts(const ParticleStore& p, const PairList& pairs, const ContactBlock& b, Vec3* force,
-                             Vec3* torque, std::vector<ContactRecord>& records) {
+// third law: j gets -force_i), the history back into the pair list, and the
+// records when recording. The list is grouped by the first sphere i, so i's
+// sums are kept in registers while it stays the same; no pair has j = i, so
+// every sphere receives the same additions in the same order as with one
+// contact at a time.
+template <bool Record, class Model>
+inline void scatter_contacts(const ParticleStore& p, PairList& pairs, const ContactBlock& b, const Model& model,
+                             Vec3* force, Vec3* torque, std::vector<ContactRecord>& records) {
     if (b.count == 0) return;
     std::uint32_t i = pairs.first[b.pair[0]];
     Vec3 force_i = force[i], torque_i = torque[i];
@@ -146,6 +164,7 @@ inline void scatter_contacts(const ParticleStore& p, const PairList& pairs, cons
             torque_i = torque[i];
         }
         const std::uint32_t j = pairs.second[k];
+        b.store_history(l, pairs, k, model);
         force_i += b.force_i[l];
         force[j] -= b.force_i[l];
         torque_i += b.torque_i[l];
@@ -172,9 +191,9 @@ void add_contact_forces(const ParticleStore& p, PairList& pairs, IndexRange rang
                         std::vector<ContactRecord>& records) {
     ContactBlock block;
     for (std::size_t k = range.begin; k < range.end;) {
-        k = gather_contacts(p, pairs, k, range.end, images, table, block);
-        apply_contact_law(block, pairs, table.columns(), model, dt);
-        scatter_contacts<Record>(p, pairs, block, force, torque, records);
+        k = gather_contacts(p, pairs, k, range.end, images, table, model, block);
+        apply_contact_law(block, table.columns(), model, dt);
+        scatter_contacts<Record>(p, pairs, block, model, force, torque, records);
     }
 }
 
