@@ -180,7 +180,7 @@ void Simulation::move_kinematic() {
     // The neighbour list stores them last (cell_order()): split their range
     // between the threads, not all particles.
     ParticleStore& p = particles_;
-    const auto is_kinematic = [&](std::int32_t motion) { return motion != free_motion; };
+    const auto is_kinematic = [](std::int32_t motion) { return motion != free_motion; };
     const auto first = std::find_if(p.motion.begin(), p.motion.end(), is_kinematic);
     const auto last = std::find_if(p.motion.rbegin(), p.motion.rend(), is_kinematic).base();
     const auto from = static_cast<std::size_t>(first - p.motion.begin());
