@@ -6,11 +6,12 @@
 // The loop works through the range in blocks of ContactBlock::capacity
 // contacts, in three passes per block:
 //   1. gather: find the pairs that touch and copy what the law needs of
-//      their two spheres into the block (structure of arrays);
+//      their two spheres, and their history, into the block (structure of
+//      arrays);
 //   2. law: the contact law on every contact of the block, several
 //      contacts per instruction (SIMD, vectorised by the compiler);
 //   3. scatter: add each contact's force and torques to its two spheres,
-//      in the order of the pair list.
+//      in the order of the pair list, and write the history back.
 // Every contact goes through exactly the operations of the scalar law and
 // the sums are made in pair order, so the results are bitwise those of one
 // contact at a time.
