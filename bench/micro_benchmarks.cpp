@@ -36,7 +36,8 @@ void ContactLaw(benchmark::State& state) {
     const PairTable table(s.materials, s.pair_properties);
     const double R = s.materials[0].radius;
     const ContactGeometry g = make_contact_geometry({1.98 * R, 0.0, 0.0}, 1.98 * R, R, R,
-                                                    Vec3{1e-3, 2e-4, -3e-4} - Vec3{-1e-3, 1e-4, 2e-4}, {0.1, -0.2, 0.3}, {-0.1, 0.05, 0.2});
+                                                    Vec3{1e-3, 2e-4, -3e-4} - Vec3{-1e-3, 1e-4, 2e-4}, {1e-6, 0.0, 0.0},
+                                                    {0.1, -0.2, 0.3}, {-0.1, 0.05, 0.2});
     ContactHistory history;
     for (auto _ : state) {
         benchmark::DoNotOptimize(g);

@@ -18,7 +18,7 @@ namespace {
 
 // Stored as they lie in memory (binary.hpp): no padding inside.
 static_assert(sizeof(Vec3) == 3 * sizeof(double));
-static_assert(sizeof(ContactHistory) == 2 * sizeof(double) + sizeof(Vec3));
+static_assert(sizeof(ContactHistory) == sizeof(double) + sizeof(Vec3));
 static_assert(sizeof(PairProperties) == 2 * sizeof(double));
 static_assert(sizeof(RigidMotion) == 3 * sizeof(Vec3) + sizeof(double));
 static_assert(sizeof(MotionClock) == sizeof(RigidMotion) + sizeof(double));
@@ -71,6 +71,7 @@ void put_scenario(ByteWriter& w, const Scenario& s) {
     w.put(s.model.attraction);
     w.put(static_cast<std::uint8_t>(s.model.shear));
     w.put(s.model.twisting);
+    w.put(static_cast<std::uint8_t>(s.model.friction_normal));
     w.put(s.model.slip_velocity_regularisation);
     w.put(s.domain.lo);
     w.put(s.domain.hi);
@@ -109,9 +110,13 @@ Scenario get_scenario(ByteReader& r) {
     s.model.viscous = r.get_bool("model");
     s.model.attraction = r.get_bool("model");
     const auto shear = r.get<std::uint8_t>("model shear");
-    if (shear > static_cast<std::uint8_t>(ShearModel::TangentialSpring)) r.fail("model shear: unknown shear model");
+    if (shear > static_cast<std::uint8_t>(ShearModel::Spring)) r.fail("model shear: unknown shear model");
     s.model.shear = static_cast<ShearModel>(shear);
     s.model.twisting = r.get_bool("model");
+    const auto friction_normal = r.get<std::uint8_t>("model friction normal");
+    if (friction_normal > static_cast<std::uint8_t>(FrictionNormal::Jkr))
+        r.fail("model friction normal: unknown choice");
+    s.model.friction_normal = static_cast<FrictionNormal>(friction_normal);
     s.model.slip_velocity_regularisation = r.get<double>("model");
     s.domain.lo = r.get<Vec3>("domain");
     s.domain.hi = r.get<Vec3>("domain");

@@ -29,7 +29,7 @@
 
 namespace tumble::io {
 
-inline constexpr std::uint32_t checkpoint_format_version = 1;
+inline constexpr std::uint32_t checkpoint_format_version = 2;  // 2: slip vector history, friction normal
 
 // Named values; reading a missing key, or one of another kind, throws
 // tumble::Error naming the source (the checkpoint file) and the key.

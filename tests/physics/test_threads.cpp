@@ -53,8 +53,8 @@ TEST(Threads, SameThreadCountIsBitwiseIdentical) {
     const auto hb = b.neighbors().pairs().histories();
     ASSERT_EQ(ha.size(), hb.size());
     for (std::size_t k = 0; k < ha.size(); ++k) {
-        EXPECT_EQ(ha[k].integrated_slip, hb[k].integrated_slip);
-        EXPECT_EQ(ha[k].integrated_angular_slip, hb[k].integrated_angular_slip);
+        EXPECT_EQ(ha[k].slip, hb[k].slip);
+        EXPECT_EQ(ha[k].angular_slip, hb[k].angular_slip);
     }
 }
 

@@ -228,7 +228,7 @@ TEST(ConfigErrors, UnknownNames) {
     expect_error(replace(base, "kind = \"list\"", "kind = \"lists\""), "particles[0].kind",
                  "unknown kind \"lists\" (did you mean \"list\"?)");
     expect_error(base + "[model]\nshear = \"spring-dashpot\"\n", "model.shear",
-                 "unknown shear model \"spring-dashpot\"; known: \"slip\", \"spring\", \"off\"");
+                 "unknown choice \"spring-dashpot\"; known: \"paper\", \"coulomb\", \"spring\", \"off\"");
     expect_error(base + material_2 + material_2, "material[2].name",
                  "duplicate material name \"material-2\" (also material[1])");
     expect_error(base + "[[motion]]\nname = \"m\"\n[[motion]]\nname = \"m\"\n", "motion[1].name",
@@ -336,7 +336,7 @@ TEST(ConfigValues, DefaultsOfAMinimalScenario) {
     EXPECT_EQ(c.scenario.neighbor.sort_every, 1);
     EXPECT_TRUE(c.scenario.model.elastic && c.scenario.model.viscous && c.scenario.model.attraction &&
                 c.scenario.model.twisting);
-    EXPECT_EQ(c.scenario.model.shear, tumble::ShearModel::IntegratedSlip);
+    EXPECT_EQ(c.scenario.model.shear, tumble::ShearModel::Paper);
     EXPECT_EQ(c.scenario.model.slip_velocity_regularisation, 1e-4);
     EXPECT_EQ(c.scenario.domain.periodic, (std::array<bool, 3>{false, false, false}));
     EXPECT_EQ(c.scenario.domain.walls, (std::array<bool, 3>{false, false, false}));
@@ -358,7 +358,7 @@ TEST(ConfigValues, SectionsAreRead) {
                                       "lo = [-0.02, -0.02, -0.02]\nperiodic = [true, false, false]\n"
                                       "walls = [false, false, true]\nwall_material = \"material-1\"") +
                               "[model]\nelastic = true\nviscous = false\nattraction = false\ntwisting = false\n"
-                              "shear = \"spring\"\nslip_velocity_regularisation = 1e-3\n"
+                              "shear = \"spring\"\nfriction_normal = \"jkr\"\nslip_velocity_regularisation = 1e-3\n"
                               "[neighbor]\nskin = 0.0005\nsort_every = 0\n"
                               "[output]\ndirectory = \"out\"\ntime_series_interval = 0.001\nsnapshot_interval = 0\n"
                               "[[motion]]\nname = \"drum\"\naxis_point = [0, 0.01, 0]\naxis_direction = [1, 0, 0]\n"
@@ -368,7 +368,8 @@ TEST(ConfigValues, SectionsAreRead) {
     EXPECT_EQ(s.domain.walls, (std::array<bool, 3>{false, false, true}));
     EXPECT_EQ(s.domain.wall_material, 0);
     EXPECT_FALSE(s.model.viscous || s.model.attraction || s.model.twisting);
-    EXPECT_EQ(s.model.shear, tumble::ShearModel::TangentialSpring);
+    EXPECT_EQ(s.model.shear, tumble::ShearModel::Spring);
+    EXPECT_EQ(s.model.friction_normal, tumble::FrictionNormal::Jkr);
     EXPECT_EQ(s.model.slip_velocity_regularisation, 1e-3);
     EXPECT_EQ(s.neighbor.skin, 0.0005);
     EXPECT_EQ(s.neighbor.sort_every, 0);

@@ -77,10 +77,11 @@ TEST(ContactTerms, AttractionUsesRStarToTheThreeQuarters) {
 }
 
 TEST(ContactTerms, GeometryOfAHeadOnApproach) {
-    // j at the origin, i on the +x axis moving toward it at 0.5 m/s.
+    // j at the origin, i on the +x axis moving toward it at 0.5 m/s at the
+    // half step, predicted to slow by 0.1 m/s by t + dt, and sideways.
     const double distance = R_i + R_j - h;
     const Vec3 d{distance, 0.0, 0.0};
-    const ContactGeometry g = make_contact_geometry(d, distance, R_i, R_j, {-0.5, 0, 0}, {}, {});
+    const ContactGeometry g = make_contact_geometry(d, distance, R_i, R_j, {-0.5, 0, 0}, {0.1, 0.2, 0}, {}, {});
     expect_vec_near(g.n, {1.0, 0.0, 0.0}, 1e-15);  // from j to i
     // h = R_i + R_j - |d| loses the digits of R_i + R_j: 1e-18 m of 1e-4.
     EXPECT_NEAR(g.overlap, h, 1e-17);
@@ -88,8 +89,8 @@ TEST(ContactTerms, GeometryOfAHeadOnApproach) {
     EXPECT_NEAR(g.contact_radius, std::sqrt(R_star * h), 1e-12 * std::sqrt(R_star * h));
     EXPECT_NEAR(g.lever_i, R_i - h / 2, 1e-17);
     EXPECT_NEAR(g.lever_j, R_j - h / 2, 1e-17);
-    EXPECT_NEAR(g.v_n, -0.5, 1e-15);  // negative while approaching
-    expect_vec_near(g.v_t, {}, 1e-15);
+    EXPECT_NEAR(g.v_n, -0.4, 1e-15);  // at t + dt; negative while approaching
+    expect_vec_near(g.v_t, {}, 1e-15);  // at the half step
     EXPECT_EQ(g.w_n, 0.0);
 }
 
@@ -99,7 +100,7 @@ TEST(ContactTerms, GeometryOfPureRotation) {
     const double distance = R_i + R_j - h;
     const Vec3 d{distance, 0.0, 0.0};
     const Vec3 omega_i{0, 0, 20.0}, omega_j{7.0, 0, -5.0};
-    const ContactGeometry g = make_contact_geometry(d, distance, R_i, R_j, {}, omega_i, omega_j);
+    const ContactGeometry g = make_contact_geometry(d, distance, R_i, R_j, {}, {}, omega_i, omega_j);
     // Contact point at -L_i x from i and +L_j x from j, L = R - h/2.
     // As part of i it moves at omega_i x (-L_i x) = (0, -20 L_i, 0);
     // as part of j at omega_j x (L_j x) = (0, -5 L_j, 0) (the spin about x
@@ -113,147 +114,140 @@ TEST(ContactTerms, GeometryOfPureRotation) {
     // Rolling without slip: the surfaces move together, v_t = 0, when
     // omega_i L_i = -omega_j L_j about the same axis.
     const ContactGeometry rolling =
-        make_contact_geometry(d, distance, R_i, R_j, {}, {0, 0, 10.0}, {0, 0, -10.0 * L_i / L_j});
+        make_contact_geometry(d, distance, R_i, R_j, {}, {}, {0, 0, 10.0}, {0, 0, -10.0 * L_i / L_j});
     expect_vec_near(rolling.v_t, {}, 1e-15);
 }
 
-TEST(ContactTerms, MindlinSlipBelowTheStaticLimit) {
+constexpr ShearModel all_shear_models[] = {ShearModel::Paper, ShearModel::Coulomb, ShearModel::Spring};
+
+TEST(ContactTerms, MindlinShearBelowTheStaticLimitIsTheSameSpringInEveryModel) {
     const PairCoefficients c = material_one_pair();
     const double a = std::sqrt(R_star * h);
-    const double F_n = 1.0;            // N, so the limit mu F_n = 0.1 N is far
+    const double limit = 0.1;           // N: mu |F_n| with F_n = 1 N, far above the force here
+    const Vec3 n{1.0, 0.0, 0.0};
     const Vec3 v_t{0.0, 0.03, -0.04};  // |v_t| = 0.05 m/s, well above v_reg
     const double dt = 1e-5, v_reg = 1e-4;
-    double ds = 2e-7;  // slip so far, m
-    const Vec3 F = mindlin_slip_force(c.G_star, c.mu, a, F_n, v_t, dt, v_reg, ds);
-    // The slip grows by |v_t| dt = 5e-7 m.
-    EXPECT_NEAR(ds, 7e-7, 1e-20);  // 1e-14 relative: one addition's round-off
-    // Magnitude 16/3 G* ds sqrt(R* h), direction -v_t / |v_t|.
-    const double magnitude = 16.0 / 3.0 * c.G_star * 7e-7 * std::sqrt(R_star) * std::pow(h, 0.5);
-    ASSERT_LT(magnitude, c.mu * F_n);  // the state really is below the limit
-    expect_vec_near(F, (-magnitude / 0.05) * v_t, magnitude * round_off);
-    EXPECT_NEAR(norm(F), magnitude, magnitude * round_off);
-    EXPECT_LT(dot(F, v_t), 0.0);  // against the sliding
+    for (ShearModel model : all_shear_models) {
+        Vec3 slip{0.0, 2e-7, 1e-7};  // slip so far, m, in the contact plane
+        const Vec3 F = mindlin_shear_force(model, c.G_star, a, limit, n, v_t, dt, v_reg, slip);
+        // The slip grows by v_t dt; the force is -16/3 G* sqrt(R* h) slip.
+        const Vec3 expected_slip{0.0, 2e-7 + 3e-7, 1e-7 - 4e-7};
+        expect_vec_near(slip, expected_slip, 1e-20);  // 1e-14 relative: one addition's round-off
+        const double k = 16.0 / 3.0 * c.G_star * std::sqrt(R_star) * std::pow(h, 0.5);
+        ASSERT_LT(k * norm(expected_slip), limit);  // the state really is below the limit
+        expect_vec_near(F, -k * expected_slip, k * norm(expected_slip) * round_off);
+    }
 }
 
-TEST(ContactTerms, MindlinSlipCapsAtTheStaticLimitAndResets) {
+TEST(ContactTerms, MindlinShearRotatesTheSlipIntoTheContactPlaneKeepingItsLength) {
     const PairCoefficients c = material_one_pair();
     const double a = std::sqrt(R_star * h);
-    const double F_n = 1e-3;  // N: limit mu F_n = 1e-4 N
-    const Vec3 v_t{0.02, 0.0, 0.0};  // slip grows 2e-7 m per step
-    const double dt = 1e-5, v_reg = 1e-4;
-    // 16/3 G* a ds reaches 1e-4 N at ds = 1e-4 / (16/3 G* a) = 5.8e-7 m;
-    // start 1e-7 m below it so this step crosses the limit.
-    double ds = 1e-4 / (16.0 / 3.0 * c.G_star * a) - 1e-7;
-    const Vec3 F = mindlin_slip_force(c.G_star, c.mu, a, F_n, v_t, dt, v_reg, ds);
-    expect_vec_near(F, {-c.mu * F_n, 0.0, 0.0}, c.mu * F_n * round_off);  // |F| = mu |F_n|, against v_t
-    EXPECT_EQ(ds, 0.0);  // the contact slipped: the slip starts again
-
-    // Next step the force starts again from the bottom of the sawtooth.
-    const Vec3 F2 = mindlin_slip_force(c.G_star, c.mu, a, F_n, v_t, dt, v_reg, ds);
-    EXPECT_NEAR(ds, 2e-7, 1e-20);  // 1e-13 relative: round-off of |v_t| dt
-    const double expected = 16.0 / 3.0 * c.G_star * 2e-7 * a;
-    ASSERT_LT(expected, c.mu * F_n);
-    expect_vec_near(F2, {-expected, 0.0, 0.0}, expected * round_off);
-}
-
-TEST(ContactTerms, MindlinSlipIsRegularisedBelowTheSlipSpeed) {
-    const PairCoefficients c = material_one_pair();
-    const double a = std::sqrt(R_star * h);
-    const double v_reg = 1e-4;
-    const Vec3 v_t{0.0, 0.0, 2.5e-5};  // a quarter of the slip speed
-    double ds = 1e-7;
-    const Vec3 F = mindlin_slip_force(c.G_star, c.mu, a, 1.0, v_t, 1e-5, v_reg, ds);
-    // Below v_reg the direction -v_t/|v_t| is scaled by |v_t|/v_reg = 1/4.
-    const double magnitude = 16.0 / 3.0 * c.G_star * ds * a;
-    expect_vec_near(F, {0.0, 0.0, -0.25 * magnitude}, magnitude * round_off);
-    // At v_t = 0 there is no force and no NaN.
-    double ds0 = 1e-7;
-    const Vec3 F0 = mindlin_slip_force(c.G_star, c.mu, a, 1.0, {}, 1e-5, v_reg, ds0);
-    EXPECT_EQ(F0, Vec3{});
-    EXPECT_EQ(ds0, 1e-7);
-}
-
-TEST(ContactTerms, MindlinSpringRotatesIntoTheContactPlaneKeepingItsLength) {
-    const PairCoefficients c = material_one_pair();
-    const double a = std::sqrt(R_star * h);
-    // The normal has turned: the old spring has a component along the new n.
+    // The normal has turned: the old slip has a component along the new n.
     const Vec3 n = (1.0 / std::sqrt(3.0)) * Vec3{1.0, 1.0, 1.0};
-    Vec3 spring{1e-7, -2e-7, 0.5e-7};
-    const double length = norm(spring);
-    const Vec3 F = mindlin_spring_force(c.G_star, c.mu, a, 1.0, n, {}, 1e-5, spring);
-    EXPECT_NEAR(dot(spring, n), 0.0, 1e-22);  // in the plane, to round-off of 1e-7 m
-    EXPECT_NEAR(norm(spring), length, length * 1e-14);
-    // F = -16/3 G* a spring (far below the limit 0.1 N).
-    const double k = 16.0 / 3.0 * c.G_star * a;
-    expect_vec_near(F, -k * spring, k * length * round_off);
+    for (ShearModel model : all_shear_models) {
+        Vec3 slip{1e-7, -2e-7, 0.5e-7};
+        const double length = norm(slip);
+        const Vec3 F = mindlin_shear_force(model, c.G_star, a, 0.1, n, {}, 1e-5, 1e-4, slip);
+        EXPECT_NEAR(dot(slip, n), 0.0, 1e-22);  // in the plane, to round-off of 1e-7 m
+        EXPECT_NEAR(norm(slip), length, length * 1e-14);
+        const double k = 16.0 / 3.0 * c.G_star * a;  // far below the limit 0.1 N
+        expect_vec_near(F, -k * slip, k * length * round_off);
+    }
 }
 
-TEST(ContactTerms, MindlinSpringTruncatesAtTheCoulombLimit) {
+// At the static limit the three models part: the slip restarts from its
+// excess (Paper), or is held at the limit along the sliding velocity
+// (Coulomb) or along itself (Spring). Here the slip lies along x and the
+// contact now slides along y, fast.
+TEST(ContactTerms, MindlinShearAtTheStaticLimitRestartsOrHolds) {
     const PairCoefficients c = material_one_pair();
     const double a = std::sqrt(R_star * h);
     const Vec3 n{0.0, 0.0, 1.0};
-    const double F_n = 2e-3;  // limit mu F_n = 2e-4 N
-    const double k = 16.0 / 3.0 * c.G_star * a;
-    Vec3 spring{3e-4 / k, 0.0, 0.0};  // already carries 3e-4 N > the limit
+    const double limit = 2e-4;  // N
+    const double k = 16.0 / 3.0 * c.G_star * a, held = limit / k;
     const Vec3 v_t{0.0, 0.1, 0.0};
-    const Vec3 F = mindlin_spring_force(c.G_star, c.mu, a, F_n, n, v_t, 1e-5, spring);
-    const double limit = c.mu * F_n;
-    EXPECT_NEAR(norm(F), limit, limit * round_off);
-    // The spring is shortened to what carries the limit, same direction.
-    expect_vec_near(F, -k * spring, limit * round_off);
-    const Vec3 stretched = Vec3{3e-4 / k, 1e-6, 0.0};
-    expect_vec_near(F, (-limit / norm(stretched)) * stretched, limit * round_off);
-    // Sustained sliding holds |F| at mu |F_n| (no sawtooth).
+    const double dt = 1e-5, v_reg = 1e-4;
+    const Vec3 start{1.2 * held, 0.0, 0.0};
+    const Vec3 trial = start + dt * v_t;
+    const double length = norm(trial);
+    ASSERT_LT(length, 2.0 * held);  // one tooth past the limit
+
+    Vec3 paper = start;
+    const Vec3 F_paper = mindlin_shear_force(ShearModel::Paper, c.G_star, a, limit, n, v_t, dt, v_reg, paper);
+    expect_vec_near(paper, {0.0, length - held, 0.0}, held * 1e-12);  // the excess, along v_t
+    expect_vec_near(F_paper, -k * paper, limit * round_off);
+
+    Vec3 coulomb = start;
+    const Vec3 F_coulomb = mindlin_shear_force(ShearModel::Coulomb, c.G_star, a, limit, n, v_t, dt, v_reg, coulomb);
+    expect_vec_near(F_coulomb, {0.0, -limit, 0.0}, limit * round_off);  // mu |F_n| against v_t
+
+    Vec3 spring = start;
+    const Vec3 F_spring = mindlin_shear_force(ShearModel::Spring, c.G_star, a, limit, n, v_t, dt, v_reg, spring);
+    expect_vec_near(F_spring, (-limit / length) * trial, limit * round_off);  // mu |F_n| against the slip
+
+    // Sustained sliding: Coulomb and Spring stay at the limit.
     for (int step = 0; step < 5; ++step) {
-        const Vec3 Fs = mindlin_spring_force(c.G_star, c.mu, a, F_n, n, v_t, 1e-5, spring);
-        EXPECT_NEAR(norm(Fs), limit, limit * round_off);
+        EXPECT_NEAR(norm(mindlin_shear_force(ShearModel::Coulomb, c.G_star, a, limit, n, v_t, dt, v_reg, coulomb)),
+                    limit, limit * round_off);
+        EXPECT_NEAR(norm(mindlin_shear_force(ShearModel::Spring, c.G_star, a, limit, n, v_t, dt, v_reg, spring)),
+                    limit, limit * round_off);
     }
 }
 
-TEST(ContactTerms, SpringAndSlipModelsAgreeBeforeTheFirstSlip) {
-    // Same stiffness; for a fixed sliding direction from a fresh contact the
-    // two shear models give the same force until the static limit.
+TEST(ContactTerms, MindlinShearSlowSlipKeepsItsOwnDirectionAndNoLimitLeavesNoSlip) {
     const PairCoefficients c = material_one_pair();
     const double a = std::sqrt(R_star * h);
-    const Vec3 n{1.0, 0.0, 0.0}, v_t{0.0, 0.01, 0.02};
-    double ds = 0.0;
-    Vec3 spring;
-    for (int step = 0; step < 10; ++step) {
-        const Vec3 slip = mindlin_slip_force(c.G_star, c.mu, a, 1.0, v_t, 1e-5, 1e-4, ds);
-        const Vec3 spr = mindlin_spring_force(c.G_star, c.mu, a, 1.0, n, v_t, 1e-5, spring);
-        ASSERT_LT(norm(slip), 0.1);
-        expect_vec_near(slip, spr, norm(slip) * round_off);
+    const Vec3 n{0.0, 0.0, 1.0};
+    const double limit = 2e-4, k = 16.0 / 3.0 * c.G_star * a, held = limit / k;
+    // Slower than v_reg: the paper's readings keep the slip's direction too,
+    // so a contact that creeps does not flip its force with round-off.
+    const Vec3 v_slow{0.0, 2e-5, 0.0};
+    for (ShearModel model : {ShearModel::Coulomb, ShearModel::Spring}) {
+        Vec3 slip{1.5 * held, 0.0, 0.0};
+        const Vec3 trial = slip + 1e-5 * v_slow;
+        const Vec3 F = mindlin_shear_force(model, c.G_star, a, limit, n, v_slow, 1e-5, 1e-4, slip);
+        expect_vec_near(F, (-limit / norm(trial)) * trial, limit * round_off);
+    }
+    // No normal force: no friction, no slip kept, no NaN.
+    for (ShearModel model : all_shear_models) {
+        Vec3 slip{1e-7, 0.0, 0.0};
+        const Vec3 F = mindlin_shear_force(model, c.G_star, a, 0.0, n, {0.0, 0.1, 0.0}, 1e-5, 1e-4, slip);
+        EXPECT_EQ(F, Vec3{});
+        EXPECT_EQ(norm(slip), 0.0);
     }
 }
 
-TEST(ContactTerms, TwistingCoupleFormulaCapAndSign) {
+TEST(ContactTerms, TwistingCoupleSpringLimitAndSign) {
     const PairCoefficients c = material_one_pair();
     const double a = std::sqrt(R_star * h);
     const double v_reg = 1e-4, dt = 1e-5;
-    // Below the limit: 8/3 G* da (R* h)^(3/2), sign -sign(w_n).
-    double da = 1e-3;
+    const double k = 8.0 / 3.0 * c.G_star * std::pow(R_star * h, 1.5);
     const double w_n = 4.0;  // rad/s; the rim slides at w_n a = 1.5 mm/s >> v_reg
-    const double M = twisting_couple(c.G_star, c.mu, a, 1.0, w_n, dt, v_reg, da);
-    EXPECT_NEAR(da, 1e-3 + 4e-5, 1e-18);
-    const double elastic = 8.0 / 3.0 * c.G_star * da * std::pow(R_star * h, 1.5);
-    ASSERT_LT(elastic, 3.0 * pi / 16.0 * a * c.mu * 1.0);
-    EXPECT_NEAR(M, -elastic, elastic * round_off);
-    double da_neg = 1e-3;
-    EXPECT_NEAR(twisting_couple(c.G_star, c.mu, a, 1.0, -w_n, dt, v_reg, da_neg), elastic, elastic * round_off);
-
-    // At the limit: 3 pi/16 sqrt(R* h) mu |F_n|, and da resets.
-    const double F_n = 1e-4;
-    double big = 10.0;  // rad, far past the limit
-    const double cap = 3.0 * pi / 16.0 * std::sqrt(R_star * h) * c.mu * F_n;
-    EXPECT_NEAR(twisting_couple(c.G_star, c.mu, a, F_n, -w_n, dt, v_reg, big), cap, cap * round_off);
-    EXPECT_EQ(big, 0.0);
-
-    // Regularised: the rim speed |w_n| a below v_reg scales the couple by it.
-    double slow = 1e-3;
-    const double w_slow = 0.25 * v_reg / a;
-    const double M_slow = twisting_couple(c.G_star, c.mu, a, 1.0, w_slow, dt, v_reg, slow);
-    const double elastic_slow = 8.0 / 3.0 * c.G_star * slow * a * a * a;
-    EXPECT_NEAR(M_slow, -0.25 * elastic_slow, elastic_slow * round_off);
+    // Below the limit: -8/3 G* (R* h)^(3/2) da, da integrated with its sign.
+    for (ShearModel model : all_shear_models) {
+        double da = 1e-3;
+        const double M = twisting_couple(model, c.G_star, a, 0.1, w_n, dt, v_reg, da);
+        EXPECT_NEAR(da, 1e-3 + 4e-5, 1e-18);
+        ASSERT_LT(k * da, 3.0 * pi / 16.0 * a * 0.1);
+        EXPECT_NEAR(M, -k * da, k * da * round_off);
+        double back = 1e-3;
+        twisting_couple(model, c.G_star, a, 0.1, -w_n, dt, v_reg, back);
+        EXPECT_NEAR(back, 1e-3 - 4e-5, 1e-18);  // turning back unloads it
+    }
+    // At the limit 3 pi/16 sqrt(R* h) mu |F_n|, spinning against the slip
+    // so far: Coulomb follows the spin, Spring keeps its own sign, Paper
+    // restarts from the excess along the spin.
+    const double limit = 1e-5;  // N, mu |F_n|
+    const double cap = 3.0 * pi / 16.0 * a * limit, held = cap / k;
+    double coulomb = 1.5 * held, spring = 1.5 * held, paper = 1.5 * held;
+    EXPECT_NEAR(twisting_couple(ShearModel::Coulomb, c.G_star, a, limit, -w_n, dt, v_reg, coulomb), cap,
+                cap * round_off);
+    EXPECT_NEAR(twisting_couple(ShearModel::Spring, c.G_star, a, limit, -w_n, dt, v_reg, spring), -cap,
+                cap * round_off);
+    const double excess = 1.5 * held - w_n * dt - held;
+    ASSERT_GT(excess, 0.0);
+    EXPECT_NEAR(twisting_couple(ShearModel::Paper, c.G_star, a, limit, -w_n, dt, v_reg, paper), k * excess,
+                cap * 1e-9);  // the excess is a difference of two nearly equal numbers
 }
 
 // A generic contact: unequal radii, oblique normal, every velocity nonzero.
@@ -264,21 +258,20 @@ struct GenericContact {
         const Vec3 dir = (1.0 / std::sqrt(1.0 + 4.0 + 0.25)) * Vec3{1.0, -2.0, 0.5};
         X_j = X_i - (R_i + R_j - h) * dir;
         const Vec3 d = X_i - X_j;
-        g = make_contact_geometry(d, norm(d), R_i, R_j, Vec3{0.1, -0.2, 0.05} - Vec3{-0.03, 0.07, 0.02}, {30.0, -12.0, 8.0},
-                                  {-5.0, 17.0, 40.0});
+        g = make_contact_geometry(d, norm(d), R_i, R_j, Vec3{0.1, -0.2, 0.05} - Vec3{-0.03, 0.07, 0.02},
+                                  {1e-4, 2e-4, -1e-4}, {30.0, -12.0, 8.0}, {-5.0, 17.0, 40.0});
     }
 };
 
 TEST(ContactTerms, ContactLawConservesAngularMomentum) {
     const PairCoefficients c = material_one_pair();
     const GenericContact contact;
-    for (ShearModel shear : {ShearModel::IntegratedSlip, ShearModel::TangentialSpring}) {
+    for (ShearModel shear : all_shear_models) {
         ContactModel model;
         model.shear = shear;
         ContactHistory history;
-        history.integrated_slip = 3e-7;
-        history.integrated_angular_slip = 2e-3;
-        history.tangential_spring = Vec3{1e-7, 2e-7, 0.0};
+        history.angular_slip = 2e-3;
+        history.slip = Vec3{1e-7, 2e-7, 0.0};
         for (int step = 0; step < 3; ++step) {
             const ContactForces f = contact_law(c, contact.g, model, 1e-5, history);
             ASSERT_GT(norm(f.force_i - dot(f.force_i, contact.g.n) * contact.g.n), 0.0);  // shear present
@@ -299,14 +292,14 @@ TEST(ContactTerms, ContactLawTorquesFromTheContactPoint) {
     const GenericContact contact;
     const ContactGeometry& g = contact.g;
     ContactHistory history;
-    history.integrated_slip = 3e-7;
-    history.integrated_angular_slip = 2e-3;
+    history.slip = Vec3{1e-7, 2e-7, 0.0};
+    history.angular_slip = 2e-3;
     const ContactForces f = contact_law(c, g, ContactModel{}, 1e-5, history);
     const Vec3 F_t = f.force_i - f.normal_force * g.n;
     const double scale = norm(F_t) * R_i + std::abs(f.twisting_couple);
     expect_vec_near(f.torque_i, cross(-g.lever_i * g.n, F_t) + f.twisting_couple * g.n, 1e-13 * scale);
     expect_vec_near(f.torque_j, cross(g.lever_j * g.n, -F_t) - f.twisting_couple * g.n, 1e-13 * scale);
-    // The twisting couple on i opposes w_n.
+    // The twisting couple on i opposes the angular slip (and here w_n).
     EXPECT_LT(f.twisting_couple * g.w_n, 0.0);
 }
 
@@ -316,8 +309,8 @@ TEST(ContactTerms, ContactLawSwitchingATermOffRemovesExactlyIt) {
     const ContactGeometry& g = contact.g;
     const double dt = 1e-5;
     ContactHistory start;  // small slips so that no cap is reached
-    start.integrated_slip = 1e-8;
-    start.integrated_angular_slip = 1e-5;
+    start.slip = Vec3{1e-8, 0.0, 0.0};
+    start.angular_slip = 1e-5;
     auto run = [&](const ContactModel& model) {
         ContactHistory history = start;
         return contact_law(c, g, model, dt, history);
@@ -383,31 +376,53 @@ TEST(ContactTerms, ContactLawSwitchingATermOffRemovesExactlyIt) {
     EXPECT_EQ(off.torque_j, Vec3{});
 }
 
-TEST(ContactTerms, ContactLawFrictionLimitUsesTheNetNormalForce) {
-    // F_n is the sum of elements 1-3 (SPEC-NOTES item 4): with a large
-    // integrated slip the shear force is mu |F_n| of that sum.
+TEST(ContactTerms, ContactLawFrictionLimitUsesTheChosenNormalForce) {
+    // Net (the paper): mu |F_n|, F_n the sum of elements 1-3. Jkr: mu |F_elastic
+    // + F_attraction + 2 F_pull-off|, with F_pull-off = 2 pi W R*. With the
+    // slip far past the limit, the Coulomb reading shows the limit itself,
+    // against v_t.
     const PairCoefficients c = material_one_pair();
     const GenericContact contact;
-    ContactHistory history;
-    history.integrated_slip = 1.0;  // far past the limit
-    const ContactForces f = contact_law(c, contact.g, ContactModel{}, 1e-5, history);
-    const Vec3 F_t = f.force_i - f.normal_force * contact.g.n;
-    const double limit = c.mu * std::abs(f.normal_force);
-    EXPECT_NEAR(norm(F_t), limit, limit * round_off);
-    EXPECT_EQ(history.integrated_slip, 0.0);
-    // Direction against v_t.
-    EXPECT_NEAR(dot(F_t, contact.g.v_t), -limit * norm(contact.g.v_t), limit * norm(contact.g.v_t) * round_off);
+    const ContactGeometry& g = contact.g;
+    const double a = g.contact_radius;
+    const double conservative = hertz_force(c.E_star, a, g.overlap) + attraction_force(c.attraction, a);
+    const double pull_off = 2.0 * pi * 0.2 * g.R_star;  // the paper's W = 0.2 J/m^2
+    for (FrictionNormal normal : {FrictionNormal::Net, FrictionNormal::Jkr}) {
+        ContactModel model;
+        model.shear = ShearModel::Coulomb;
+        model.friction_normal = normal;
+        ContactHistory history;
+        history.slip = Vec3{0.0, 0.0, 1.0};  // far past the limit
+        const ContactForces f = contact_law(c, g, model, 1e-5, history);
+        const Vec3 F_t = f.force_i - f.normal_force * g.n;
+        const double limit = c.mu * (normal == FrictionNormal::Net ? std::abs(f.normal_force)
+                                                                     : std::abs(conservative + 2.0 * pull_off));
+        EXPECT_NEAR(norm(F_t), limit, limit * round_off);
+        expect_vec_near(F_t, (-limit / norm(g.v_t)) * g.v_t, limit * round_off);
+    }
 }
 
-TEST(ContactTerms, SwappedHistoryFlipsOnlyTheSpring) {
+// The pull-off force of eqs. 1 + 7, the deepest pull of 4/3 E* a^3/R* -
+// P a^(3/2) over a, is 3 P^2 R* / (16 E*) = 2 pi W R*: the column the Jkr
+// limit uses.
+TEST(ContactTerms, PullOffIsTheDeepestPullOfTheNormalLaw) {
+    const PairCoefficients c = material_one_pair();
+    double deepest = 0.0;
+    for (int k = 1; k < 200000; ++k) {
+        const double a = 1e-8 * k;  // contact radius up to 2 mm
+        deepest = std::min(deepest, hertz_force(c.E_star, a, a * a / R_star) + attraction_force(c.attraction, a));
+    }
+    EXPECT_NEAR(-deepest, c.pull_off * R_star, 1e-6 * c.pull_off * R_star);  // grid of 1e-8 m: 1e-6 relative
+    EXPECT_NEAR(c.pull_off, 2.0 * pi * 0.2, 1e-12);
+}
+
+TEST(ContactTerms, SwappedHistoryFlipsOnlyTheSlipVector) {
     ContactHistory h;
-    h.integrated_slip = 1.5e-7;
-    h.integrated_angular_slip = 3e-3;
-    h.tangential_spring = {1e-7, -2e-7, 3e-7};
+    h.angular_slip = 3e-3;
+    h.slip = {1e-7, -2e-7, 3e-7};
     const ContactHistory s = h.swapped();
-    EXPECT_EQ(s.integrated_slip, h.integrated_slip);
-    EXPECT_EQ(s.integrated_angular_slip, h.integrated_angular_slip);
-    EXPECT_EQ(s.tangential_spring, (Vec3{-1e-7, 2e-7, -3e-7}));
+    EXPECT_EQ(s.angular_slip, h.angular_slip);
+    EXPECT_EQ(s.slip, (Vec3{-1e-7, 2e-7, -3e-7}));
     EXPECT_TRUE(ContactHistory{}.is_zero());
     EXPECT_FALSE(h.is_zero());
 }

@@ -194,16 +194,14 @@ TEST(Neighbor, VerletListRebuildsOnlyAfterHalfTheSkin) {
 // Distinctive history of the pair of ids (lo, hi), as seen from lo.
 ContactHistory history_of(std::int64_t lo, std::int64_t hi) {
     ContactHistory h;
-    h.integrated_slip = 1e-9 * static_cast<double>(lo * 4096 + hi + 1);
-    h.integrated_angular_slip = 1e-6 * static_cast<double>(hi * 4096 + lo + 1);
-    h.tangential_spring = 1e-9 * Vec3{static_cast<double>(lo + 1), static_cast<double>(hi + 1), 0.5};
+    h.angular_slip = 1e-6 * static_cast<double>(hi * 4096 + lo + 1);
+    h.slip = 1e-9 * Vec3{static_cast<double>(lo + 1), static_cast<double>(hi + 1), 0.5};
     return h;
 }
 
 void expect_history_equal(const ContactHistory& a, const ContactHistory& b) {
-    EXPECT_EQ(a.integrated_slip, b.integrated_slip);
-    EXPECT_EQ(a.integrated_angular_slip, b.integrated_angular_slip);
-    EXPECT_EQ(a.tangential_spring, b.tangential_spring);
+    EXPECT_EQ(a.angular_slip, b.angular_slip);
+    EXPECT_EQ(a.slip, b.slip);
 }
 
 // Give every pair of the list its distinctive history (oriented from the

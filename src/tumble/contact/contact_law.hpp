@@ -13,37 +13,61 @@
 #include "tumble/contact/hertz.hpp"
 #include "tumble/contact/history.hpp"
 #include "tumble/contact/kuwabara_kono.hpp"
-#include "tumble/contact/mindlin_slip.hpp"
-#include "tumble/contact/mindlin_spring.hpp"
+#include "tumble/contact/mindlin_shear.hpp"
 #include "tumble/contact/twisting.hpp"
 #include "tumble/materials/pair_table.hpp"
 
 namespace tumble {
 
-enum class ShearModel { Off, IntegratedSlip, TangentialSpring };
-
-// The shear models a scenario can name. To add one: a kernel header in this
-// folder, an entry here, a branch in contact_law() below.
+// The shear models a scenario can name (mindlin_shear.hpp). To add one: an
+// entry in ShearModel and here, its rule in mindlin_shear.hpp.
 struct ShearModelEntry {
     std::string_view keyword;
     ShearModel model;
     std::string_view description;
 };
-inline constexpr std::array<ShearModelEntry, 3> shear_models{{
-    {"slip", ShearModel::IntegratedSlip, "paper eq. 8: integrated scalar slip, reset at the static limit"},
-    {"spring", ShearModel::TangentialSpring, "tangential spring vector truncated at the Coulomb limit"},
+inline constexpr std::array<ShearModelEntry, 4> shear_models{{
+    {"paper", ShearModel::Paper, "paper eq. 8: the slip restarts at the static limit (saw-tooth, mean mu |F_n| / 2)"},
+    {"coulomb", ShearModel::Coulomb, "paper eq. 8 held at the static limit while sliding (mean mu |F_n|)"},
+    {"spring", ShearModel::Spring, "tangential spring truncated at the Coulomb limit, as in LAMMPS/LIGGGHTS"},
     {"off", ShearModel::Off, "no shear force"},
 }};
+
+// The normal force that limits friction (shear and twisting):
+//   Net: |F_n|, the sum of elements 1-3 (the paper's text: an adhesive
+//        contact at its equilibrium overlap then has no friction);
+//   Jkr: |F_elastic + F_attraction + 2 F_pull-off|, as JKR-based codes do,
+//        with F_pull-off = 2 pi W R* the pull-off force of this law.
+enum class FrictionNormal { Net, Jkr };
+struct FrictionNormalEntry {
+    std::string_view keyword;
+    FrictionNormal choice;
+    std::string_view description;
+};
+inline constexpr std::array<FrictionNormalEntry, 2> friction_normals{{
+    {"net", FrictionNormal::Net, "|F_n|: elastic - attraction + viscous (the paper)"},
+    {"jkr", FrictionNormal::Jkr, "|elastic - attraction + 2 pull-off| (JKR-based codes)"},
+}};
+
+// The entry of `table` (shear_models, friction_normals) named `keyword`, or
+// nullptr.
+template <class Entry, std::size_t N>
+const Entry* find_keyword(const std::array<Entry, N>& table, std::string_view keyword) {
+    for (const Entry& e : table)
+        if (e.keyword == keyword) return &e;
+    return nullptr;
+}
 
 // Which terms are on. Every term can be switched off for tests and users.
 struct ContactModel {
     bool elastic = true;     // element 1, eq. 1
     bool viscous = true;     // element 2, eq. 4
     bool attraction = true;  // element 3, eq. 7
-    ShearModel shear = ShearModel::IntegratedSlip;  // element 4, eq. 8
+    ShearModel shear = ShearModel::Paper;  // element 4, eq. 8
     bool twisting = true;    // element 5, eq. 9
-    // Slip speed (m/s) below which the shear direction and the twist sign
-    // fade linearly to zero (see against_slip()).
+    FrictionNormal friction_normal = FrictionNormal::Net;
+    // Slip speed (m/s) above which a sliding contact slips along its
+    // velocity (Paper, Coulomb; mindlin_shear.hpp); slower, along its slip.
     double slip_velocity_regularisation = 1e-4;
 
     bool all_terms_on() const { return elastic && viscous && attraction && twisting; }
@@ -60,12 +84,14 @@ struct ContactForces {
 
 // The model with every term on and the shear model fixed when compiling:
 // the paper's model. It reads like a ContactModel, so contact_law() takes
-// either; with this one the law has no run-time switches, which lets the
-// pair loop run it on several contacts per instruction (sim/pair_loop.hpp).
+// either; with this one the law has no run-time switches (but the friction
+// normal, a choice between two values), which lets the pair loop run it on
+// several contacts per instruction (sim/pair_loop.hpp).
 template <ShearModel Shear>
 struct AllTermsOn {
     static constexpr bool elastic = true, viscous = true, attraction = true, twisting = true;
     static constexpr ShearModel shear = Shear;
+    FrictionNormal friction_normal = FrictionNormal::Net;
     double slip_velocity_regularisation = 1e-4;
 };
 
@@ -77,24 +103,28 @@ inline ContactForces contact_law(const PairCoefficients& c, const ContactGeometr
     ContactForces out;
 
     // Normal force along n: elasticity, internal friction, surface attraction.
-    double F_n = 0.0;
-    if (model.elastic) F_n += hertz_force(c.E_star, a, g.overlap);
-    if (model.viscous) F_n += kuwabara_kono_force(c.B_star, a, g.v_n);
-    if (model.attraction) F_n += attraction_force(c.attraction, a);
-    const double F_n_abs = std::abs(F_n);
+    const double F_elastic = model.elastic ? hertz_force(c.E_star, a, g.overlap) : 0.0;
+    const double F_viscous = model.viscous ? kuwabara_kono_force(c.B_star, a, g.v_n) : 0.0;
+    const double F_attraction = model.attraction ? attraction_force(c.attraction, a) : 0.0;
+    const double F_n = F_elastic + F_viscous + F_attraction;
 
-    // Shear force at the contact point, limited by static friction mu |F_n|.
-    Vec3 F_t;
-    if (model.shear == ShearModel::IntegratedSlip)
-        F_t = mindlin_slip_force(c.G_star, c.mu, a, F_n_abs, g.v_t, dt, model.slip_velocity_regularisation,
-                                 history.integrated_slip);
-    else if (model.shear == ShearModel::TangentialSpring)
-        F_t = mindlin_spring_force(c.G_star, c.mu, a, F_n_abs, g.n, g.v_t, dt, history.tangential_spring);
+    // The static limit of friction, mu times the normal force chosen.
+    const double pull_off = model.attraction ? c.pull_off * g.R_star : 0.0;
+    const double friction_limit =
+        c.mu * (model.friction_normal == FrictionNormal::Jkr ? std::abs(F_elastic + F_attraction + 2.0 * pull_off)
+                                                             : std::abs(F_n));
 
-    // Twisting couple about n.
-    const double M = model.twisting ? twisting_couple(c.G_star, c.mu, a, F_n_abs, g.w_n, dt,
-                                                      model.slip_velocity_regularisation,
-                                                      history.integrated_angular_slip)
+    // Shear force at the contact point and twisting couple about n; the
+    // couple follows the shear model's reading of the limit (the paper's
+    // when the shear is off).
+    const double v_reg = model.slip_velocity_regularisation;
+    const Vec3 F_t = model.shear != ShearModel::Off
+                         ? mindlin_shear_force(model.shear, c.G_star, a, friction_limit, g.n, g.v_t, dt, v_reg,
+                                               history.slip)
+                         : Vec3{};
+    const ShearModel twist_reading = model.shear == ShearModel::Off ? ShearModel::Paper : model.shear;
+    const double M = model.twisting ? twisting_couple(twist_reading, c.G_star, a, friction_limit, g.w_n, dt, v_reg,
+                                                      history.angular_slip)
                                     : 0.0;
 
     // Torques: F_t acts on i at -lever_i n from its centre, -F_t on j at

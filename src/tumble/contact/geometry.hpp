@@ -5,6 +5,15 @@
 // Convention (SPEC-NOTES "Notation"): n is the unit vector from the centre of
 // j to the centre of i; overlap h = R_i + R_j - |X_i - X_j| > 0 while in
 // contact; v is the velocity of i relative to j at the contact point.
+//
+// Velocities: the forces at t + dt are computed while the spheres' velocities
+// are at the half step, v(t + dt/2) (integrate/velocity_verlet.hpp). The
+// slips integrate the tangential and spin velocities over the step, so they
+// take the half-step values (the midpoint rule, as the positions do). The
+// internal friction needs the normal velocity at t + dt itself: it is
+// predicted as v(t + dt/2) + dt/2 a(t), which makes the damping second order
+// in dt (a half-step velocity there makes restitution 1.4 to 4 % low at the
+// automatic step; docs/MODEL.md, "Time step").
 #pragma once
 
 #include <cmath>
@@ -20,9 +29,9 @@ struct ContactGeometry {
     double contact_radius = 0.0;  // a = sqrt(R* h), m; every term of the model is a power of a and h
     double lever_i = 0.0;  // distance from centre of i to the contact point, R_i - h/2, m
     double lever_j = 0.0;  // distance from centre of j to the contact point, R_j - h/2, m
-    double v_n = 0.0;      // v . n, m/s (negative while approaching)
-    Vec3 v_t;              // v - (v . n) n, m/s
-    double w_n = 0.0;      // (omega_i - omega_j) . n, rad/s
+    double v_n = 0.0;      // v . n at t + dt (predicted), m/s (negative while approaching)
+    Vec3 v_t;              // v - (v . n) n at the half step, m/s
+    double w_n = 0.0;      // (omega_i - omega_j) . n at the half step, rad/s
 };
 
 // Contact point: the shear force acts at X_i - lever_i n = X_j + lever_j n.
@@ -30,9 +39,11 @@ struct ContactGeometry {
 // shear torques on i and j conserve angular momentum exactly.
 //
 // d = X_i - X_j (periodic image already applied), distance = |d| > 0,
-// v_ij = v_i - v_j the velocity of the centre of i relative to that of j.
+// v_ij = v_i - v_j the velocity of the centre of i relative to that of j at
+// the half step, kick_ij = its predicted change to t + dt.
 inline ContactGeometry make_contact_geometry(const Vec3& d, double distance, double R_i, double R_j,
-                                             const Vec3& v_ij, const Vec3& omega_i, const Vec3& omega_j) {
+                                             const Vec3& v_ij, const Vec3& kick_ij, const Vec3& omega_i,
+                                             const Vec3& omega_j) {
     ContactGeometry c;
     c.n = (1.0 / distance) * d;
     c.overlap = R_i + R_j - distance;
@@ -42,18 +53,21 @@ inline ContactGeometry make_contact_geometry(const Vec3& d, double distance, dou
     c.lever_j = R_j - 0.5 * c.overlap;
     // Velocity of the contact point as part of i minus as part of j:
     // (v_i + omega_i x (-lever_i n)) - (v_j + omega_j x (lever_j n)).
+    // The spins add nothing along n, so v_n at t + dt needs only kick_ij.
     const Vec3 v = v_ij - cross(c.lever_i * omega_i + c.lever_j * omega_j, c.n);
-    c.v_n = dot(v, c.n);
-    c.v_t = v - c.v_n * c.n;
+    const double v_n_half = dot(v, c.n);
+    c.v_t = v - v_n_half * c.n;
+    c.v_n = v_n_half + dot(kick_ij, c.n);
     c.w_n = dot(omega_i - omega_j, c.n);
     return c;
 }
 
 // Contact of sphere i with a flat wall at rest, seen as a sphere of infinite
 // radius: n is the wall's unit normal pointing into the space of i, distance
-// the distance of the centre of i from the wall plane.
+// the distance of the centre of i from the wall plane; v_i and kick_i as
+// v_ij and kick_ij above.
 inline ContactGeometry make_wall_geometry(const Vec3& n, double distance, double R_i, const Vec3& v_i,
-                                          const Vec3& omega_i) {
+                                          const Vec3& kick_i, const Vec3& omega_i) {
     ContactGeometry c;
     c.n = n;
     c.overlap = R_i - distance;
@@ -62,8 +76,9 @@ inline ContactGeometry make_wall_geometry(const Vec3& n, double distance, double
     c.lever_i = R_i - 0.5 * c.overlap;
     c.lever_j = 0.0;
     const Vec3 v = v_i - c.lever_i * cross(omega_i, c.n);
-    c.v_n = dot(v, c.n);
-    c.v_t = v - c.v_n * c.n;
+    const double v_n_half = dot(v, c.n);
+    c.v_t = v - v_n_half * c.n;
+    c.v_n = v_n_half + dot(kick_i, c.n);
     c.w_n = dot(omega_i, c.n);
     return c;
 }

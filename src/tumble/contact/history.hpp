@@ -10,19 +10,18 @@
 namespace tumble {
 
 struct ContactHistory {
-    double integrated_slip = 0.0;          // delta s of eq. 8, m (paper's shear model)
-    double integrated_angular_slip = 0.0;  // delta alpha of eq. 9, rad
-    Vec3 tangential_spring;                // displacement of i relative to j in the contact
-                                           // plane, m (spring shear model only)
+    Vec3 slip;                 // delta s of eq. 8: the tangential displacement of i relative to j
+                               // integrated since the contact began, kept in the contact plane, m
+    double angular_slip = 0.0; // delta alpha of eq. 9: the relative rotation of i about +n
+                               // integrated since the contact began, rad
 
-    bool is_zero() const {
-        return integrated_slip == 0.0 && integrated_angular_slip == 0.0 && tangential_spring == Vec3{};
-    }
-    // The record seen from the other particle of the pair: the spring vector
-    // is the displacement of the first relative to the second, so it flips.
+    bool is_zero() const { return slip == Vec3{} && angular_slip == 0.0; }
+    // The record seen from the other particle of the pair: both slips are
+    // those of the first particle relative to the second, and n flips with
+    // the pair, so the slip vector flips and the rotation about n does not.
     ContactHistory swapped() const {
         ContactHistory h = *this;
-        h.tangential_spring = -tangential_spring;
+        h.slip = -slip;
         return h;
     }
 };

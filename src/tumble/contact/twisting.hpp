@@ -1,35 +1,36 @@
 // SPDX-License-Identifier: MIT
 // Element 5: the twisting couple about the normal (Mindlin, no partial slip;
-// paper eq. 9).
+// paper eq. 9), with the same readings of the static limit as the shear
+// force (mindlin_shear.hpp).
 #pragma once
 
-#include <algorithm>
 #include <cmath>
 
+#include "tumble/contact/mindlin_shear.hpp"
 #include "tumble/core/constants.hpp"
 
 namespace tumble {
 
 // Couple on i about +n, N m (the couple on j is its negative):
-//   min(8/3 G* da (R* h)^(3/2), 3 pi/16 sqrt(R* h) mu |F_n|) (-sign w_n),
-// where da (rad) is the angular slip integrated since the contact began,
-// reset to zero when the static limit is reached, as for the shear force.
-// w_n = (omega_i - omega_j) . n. The sign is regularised like the shear
-// direction: the rim of the contact slides at |w_n| a, and below the slip
-// speed v_reg the couple fades linearly.
-inline double twisting_couple(double G_star, double mu, double contact_radius, double normal_force_abs,
-                              double w_n, double dt, double v_reg, double& integrated_angular_slip) {
-    integrated_angular_slip += std::abs(w_n) * dt;
+//   -8/3 G* (R* h)^(3/2) da,   |.| <= 3 pi/16 sqrt(R* h) mu |F_n|,
+// where da (rad, `angular_slip`) is the rotation of i relative to j about n
+// integrated since the contact began (w_n dt each step, w_n = (omega_i -
+// omega_j) . n at the half step). At the limit it restarts from its excess
+// (Paper) or is held there (Coulomb, Spring), with the sign of w_n while the
+// rim of the contact slides faster than v_reg (Paper, Coulomb), else its own.
+// With da of one sign this is the paper's min(...) (-sign w_n).
+inline double twisting_couple(ShearModel model, double G_star, double contact_radius, double friction_limit,
+                              double w_n, double dt, double v_reg, double& angular_slip) {
+    angular_slip += w_n * dt;
     const double a = contact_radius;
-    const double elastic = 8.0 / 3.0 * G_star * integrated_angular_slip * a * a * a;
-    const double limit = 3.0 * pi / 16.0 * a * mu * normal_force_abs;
-    double magnitude = elastic;
-    if (elastic >= limit) {
-        magnitude = limit;
-        integrated_angular_slip = 0.0;
-    }
-    const double w_reg = a > 0.0 ? v_reg / a : v_reg;
-    return -magnitude * w_n / std::max(std::abs(w_n), w_reg);
+    const double stiffness = 8.0 / 3.0 * G_star * a * a * a;           // N m/rad
+    const double held = 3.0 * pi / 16.0 * a * friction_limit / stiffness;  // rad
+    const double length = std::abs(angular_slip);
+    const bool along_spin = model != ShearModel::Spring && std::abs(w_n) * a > v_reg;
+    const double sign = (along_spin ? w_n : angular_slip) < 0.0 ? -1.0 : 1.0;
+    const double after = sign * slip_length_after_slipping(model, length, held);
+    angular_slip = length > held ? after : angular_slip;  // a choice, not a branch (as in mindlin_shear.hpp)
+    return -stiffness * angular_slip;
 }
 
 }  // namespace tumble

@@ -87,8 +87,8 @@ TimeStepReport assess_time_step(const Scenario& s) {
     };
     limit(collision / 10.0, "a tenth of the Hertz collision time at " + format(v, "m/s") + " (" +
                                 format_seconds(collision) + ", pair " + collision_pair + ")");
-    limit(viscous, "the viscous time m*/c (" + format_seconds(viscous) + ", pair " + viscous_pair +
-                       "), above which the damping is unstable");
+    limit(0.5 * viscous, "half the viscous time m*/c (" + format_seconds(viscous) + ", pair " + viscous_pair +
+                             "), above which the damping is unstable");
     limit(0.5 * rayleigh, "half the Rayleigh time (" + format_seconds(rayleigh) + ", material " +
                               rayleigh_material + ")");
     if (r.recommended == inf) throw Error("time step: no free particles to derive a time step from");

@@ -13,19 +13,24 @@ namespace {
 // as a choice between the new and the old value rather than a skipped
 // update. Both let the compiler run the loops on several particles per
 // instruction (kept out of line, where the compiler sees the `__restrict`).
+// The velocity change of the kick is also written to half_kick: after the
+// first half kick it is the change predicted for the second (0 for kinematic
+// particles); after the second, 0.
+template <bool Predict>
 [[gnu::noinline]] void kick_range(IndexRange r, const std::int32_t* __restrict motion, const double* __restrict inv_mass,
                 const double* __restrict inv_inertia, const double* __restrict force,
                 const double* __restrict torque, double* __restrict velocity, double* __restrict angular_velocity,
-                Vec3 gravity, double half_dt) {
+                double* __restrict half_kick, Vec3 gravity, double half_dt) {
     for (std::size_t i = r.begin; i < r.end; ++i) {
         const bool free = motion[i] == free_motion;
         const double spin_factor = half_dt * inv_inertia[i];
         for (std::size_t c = 0; c < 3; ++c) {
             const double v = velocity[3 * i + c], omega = angular_velocity[3 * i + c];
-            const double v_kicked = v + half_dt * (inv_mass[i] * force[3 * i + c] + gravity[static_cast<int>(c)]);
+            const double dv = half_dt * (inv_mass[i] * force[3 * i + c] + gravity[static_cast<int>(c)]);
             const double omega_kicked = omega + spin_factor * torque[3 * i + c];
-            velocity[3 * i + c] = free ? v_kicked : v;
+            velocity[3 * i + c] = free ? v + dv : v;
             angular_velocity[3 * i + c] = free ? omega_kicked : omega;
+            half_kick[3 * i + c] = free && Predict ? dv : 0.0;
         }
     }
 }
@@ -43,9 +48,11 @@ namespace {
     }
 }
 
+template <bool Predict>
 void kick_range(ParticleStore& p, IndexRange r, const Vec3& gravity, double half_dt) {
-    kick_range(r, p.motion.data(), p.inv_mass.data(), p.inv_inertia.data(), &p.force.data()->x,
-               &p.torque.data()->x, &p.velocity.data()->x, &p.angular_velocity.data()->x, gravity, half_dt);
+    kick_range<Predict>(r, p.motion.data(), p.inv_mass.data(), p.inv_inertia.data(), &p.force.data()->x,
+                        &p.torque.data()->x, &p.velocity.data()->x, &p.angular_velocity.data()->x,
+                        &p.half_kick.data()->x, gravity, half_dt);
 }
 
 void drift_range(ParticleStore& p, IndexRange r, double dt) {
@@ -55,13 +62,13 @@ void drift_range(ParticleStore& p, IndexRange r, double dt) {
 }  // namespace
 
 void kick(ParticleStore& p, const Vec3& gravity, double half_dt, int chunks) {
-    for_each_chunk(chunks, [&](int c) { kick_range(p, chunk_range(c, chunks, p.size()), gravity, half_dt); });
+    for_each_chunk(chunks, [&](int c) { kick_range<false>(p, chunk_range(c, chunks, p.size()), gravity, half_dt); });
 }
 
 void kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, int chunks) {
     for_each_chunk(chunks, [&](int c) {
         const IndexRange r = chunk_range(c, chunks, p.size());
-        kick_range(p, r, gravity, half_dt);
+        kick_range<true>(p, r, gravity, half_dt);
         drift_range(p, r, dt);
     });
 }

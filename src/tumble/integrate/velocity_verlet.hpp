@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: MIT
 // Velocity Verlet (kick-drift-kick) for the translation and rotation of
 // spheres. Second order in dt for position-dependent forces. The forces are
-// evaluated with the half-step velocities v(t + dt/2), so velocity-dependent
-// terms (internal friction, shear, twisting) are first order in dt; with
-// those terms off the scheme is symplectic. Spheres need no orientation.
+// evaluated while the velocities are at the half step v(t + dt/2); the
+// slips of the shear and twisting terms integrate those (midpoint rule), and
+// the internal friction, which needs v(t + dt), sees it predicted as
+// v(t + dt/2) + dt/2 a(t) (ParticleStore::half_kick): second order too. The
+// prediction halves the stability bound of the explicit damping, to
+// dt < m*/c (integrate/time_step.hpp). With the velocity-dependent terms off
+// the scheme is symplectic. Spheres need no orientation.
 // Each particle is updated on its own, so `chunks` threads give the same
 // numbers as one.
 #pragma once
@@ -12,10 +16,12 @@
 
 namespace tumble {
 
-// v += half_dt (F/m + g), omega += half_dt T/I, for free particles.
+// v += half_dt (F/m + g), omega += half_dt T/I, for free particles;
+// half_kick = 0.
 void kick(ParticleStore& p, const Vec3& gravity, double half_dt, int chunks = 1);
 
-// kick(), then x += dt v for free particles (the drift), in one pass.
+// kick() with half_kick = the velocity change of the kick, then x += dt v
+// for free particles (the drift), in one pass.
 void kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, int chunks = 1);
 
 }  // namespace tumble

@@ -50,6 +50,7 @@ PairCoefficients make_pair_coefficients(const Material& a, const Material& b, co
     c.mu = p.mu;
     c.W = p.W;
     c.attraction = std::sqrt(4.0 / 3.0 * 8.0 * pi * p.W * c.E_star);  // eq. 7
+    c.pull_off = 2.0 * pi * p.W;  // = 3 attraction^2 / (16 E*), the deepest pull of eqs. 1 + 7 per R*
     return c;
 }
 
@@ -76,6 +77,7 @@ PairTable::PairTable(const std::vector<Material>& materials,
         columns_.B_star.push_back(c.B_star);
         columns_.mu.push_back(c.mu);
         columns_.attraction.push_back(c.attraction);
+        columns_.pull_off.push_back(c.pull_off);
     }
 }
 

@@ -19,6 +19,7 @@ struct PairCoefficients {
     double mu = 0.0;          // static friction coefficient
     double W = 0.0;           // surface energy, J/m^2
     double attraction = 0.0;  // sqrt(4/3 * 8 pi W E*), prefactor of eq. 7, N m^-3/2
+    double pull_off = 0.0;    // 2 pi W: the pull-off force of eqs. 1 + 7 is pull_off R* (docs/MODEL.md), N/m
 };
 
 PairCoefficients make_pair_coefficients(const Material& a, const Material& b, const PairProperties& p);
@@ -27,13 +28,13 @@ PairCoefficients make_pair_coefficients(const Material& a, const Material& b, co
 // by PairTable::index(): for loops that fetch several pairs' coefficients
 // per instruction.
 struct PairColumns {
-    std::vector<double> E_star, G_star, B_star, mu, attraction;
+    std::vector<double> E_star, G_star, B_star, mu, attraction, pull_off;
 
     PairCoefficients at(std::uint32_t index) const {
         PairCoefficients c;
         c.E_star = E_star[index], c.G_star = G_star[index], c.B_star = B_star[index], c.mu = mu[index];
-        c.attraction = attraction[index];
-        return c;  // W stays 0: the law uses the attraction prefactor
+        c.attraction = attraction[index], c.pull_off = pull_off[index];
+        return c;  // W stays 0: the law uses the attraction prefactor and the pull-off
     }
 };
 

@@ -19,6 +19,7 @@ void ParticleStore::permute(const std::vector<std::uint32_t>& order) {
     apply(angular_velocity, order);
     apply(force, order);
     apply(torque, order);
+    apply(half_kick, order);
     apply(radius, order);
     apply(inv_mass, order);
     apply(inv_inertia, order);

@@ -22,6 +22,9 @@ struct ParticleStore {
     std::vector<Vec3> angular_velocity;     // rad/s
     std::vector<Vec3> force;                // N
     std::vector<Vec3> torque;               // N m
+    std::vector<Vec3> half_kick;            // dt/2 (F/m + g) of the last forces while the velocities are at the
+                                            // half step (0 otherwise, and for kinematic particles): the
+                                            // velocity predicted for t + dt is velocity + half_kick, m/s
     std::vector<double> radius;             // m
     std::vector<double> inv_mass;           // 1/kg (0 for kinematic)
     std::vector<double> inv_inertia;        // 1/(kg m^2), solid sphere I = 2/5 m R^2 (0 for kinematic)

@@ -37,7 +37,7 @@ std::vector<ContactLink> contact_network(const Simulation& sim) {
         }
         const ContactGeometry g =
             make_contact_geometry(d, std::sqrt(distance2), p.radius[i], p.radius[j], p.velocity[i] - p.velocity[j],
-                                  p.angular_velocity[i], p.angular_velocity[j]);
+                                  p.half_kick[i] - p.half_kick[j], p.angular_velocity[i], p.angular_velocity[j]);
         const std::size_t a = static_cast<std::size_t>(p.material[i]), b = static_cast<std::size_t>(p.material[j]);
         const PairCoefficients c = make_pair_coefficients(s.materials[a], s.materials[b], s.pair_properties[a][b]);
 

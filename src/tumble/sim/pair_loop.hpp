@@ -55,42 +55,37 @@ struct ContactBlock {
     std::size_t count = 0;
     alignas(64) std::uint32_t pair[capacity];
     alignas(64) std::uint32_t pair_type[capacity];  // PairTable::index() of the two materials
-    // Inputs: X_i - X_j (periodic image applied), its square, v_i - v_j, the
-    // two spheres' radii and angular velocities.
-    Vec3s d, v_ij, omega_i, omega_j;
+    // Inputs: X_i - X_j (periodic image applied), its square, v_i - v_j and
+    // its predicted change (contact/geometry.hpp), the two spheres' radii
+    // and angular velocities.
+    Vec3s d, v_ij, kick_ij, omega_i, omega_j;
     alignas(64) double distance2[capacity], R_i[capacity], R_j[capacity];
-    // In and out: the contact history (ContactHistory; the spring only with
-    // the spring shear model).
-    alignas(64) double integrated_slip[capacity], integrated_angular_slip[capacity];
-    Vec3s tangential_spring;
+    // In and out: the contact history (ContactHistory).
+    Vec3s slip;
+    alignas(64) double angular_slip[capacity];
     // Outputs of the law.
     Vec3s force_i, torque_i, torque_j;
     alignas(64) double normal_force[capacity], twisting_couple[capacity];
 
     ContactGeometry geometry(std::size_t l) const {
-        return make_contact_geometry(d[l], std::sqrt(distance2[l]), R_i[l], R_j[l], v_ij[l], omega_i[l], omega_j[l]);
+        return make_contact_geometry(d[l], std::sqrt(distance2[l]), R_i[l], R_j[l], v_ij[l], kick_ij[l], omega_i[l],
+                                     omega_j[l]);
     }
     // The history of lane l from and to pair k of the list.
-    template <class Model>
-    void load_history(std::size_t l, const PairList& pairs, std::size_t k, const Model& model) {
-        integrated_slip[l] = pairs.integrated_slip[k];
-        integrated_angular_slip[l] = pairs.integrated_angular_slip[k];
-        if (model.shear == ShearModel::TangentialSpring) tangential_spring.set(l, pairs.tangential_spring[k]);
+    void load_history(std::size_t l, const PairList& pairs, std::size_t k) {
+        slip.set(l, pairs.slip[k]);
+        angular_slip[l] = pairs.angular_slip[k];
     }
-    template <class Model>
-    void store_history(std::size_t l, PairList& pairs, std::size_t k, const Model& model) const {
-        pairs.integrated_slip[k] = integrated_slip[l];
-        pairs.integrated_angular_slip[k] = integrated_angular_slip[l];
-        if (model.shear == ShearModel::TangentialSpring) pairs.tangential_spring[k] = tangential_spring[l];
+    void store_history(std::size_t l, PairList& pairs, std::size_t k) const {
+        pairs.slip[k] = slip[l];
+        pairs.angular_slip[k] = angular_slip[l];
     }
 };
 
 // Pass 1: pairs [k, end) of the list into the block until it is full; the
 // pairs found apart drop their history. Returns where it stopped.
-template <class Model>
 inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std::size_t k, std::size_t end,
-                                   const PeriodicImages& images, const PairTable& table, const Model& model,
-                                   ContactBlock& b) {
+                                   const PeriodicImages& images, const PairTable& table, ContactBlock& b) {
     b.count = 0;
     for (; k < end && b.count < ContactBlock::capacity; ++k) {
         const std::uint32_t i = pairs.first[k], j = pairs.second[k];
@@ -109,9 +104,10 @@ inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std:
         b.R_j[l] = p.radius[j];
         b.pair_type[l] = table.index(p.material[i], p.material[j]);
         b.v_ij.set(l, p.velocity[i] - p.velocity[j]);
+        b.kick_ij.set(l, p.half_kick[i] - p.half_kick[j]);
         b.omega_i.set(l, p.angular_velocity[i]);
         b.omega_j.set(l, p.angular_velocity[j]);
-        b.load_history(l, pairs, k, model);
+        b.load_history(l, pairs, k);
     }
     return k;
 }
@@ -126,15 +122,13 @@ inline void apply_contact_law(ContactBlock& b, const PairColumns& coefficients, 
     for (std::size_t l = 0; l < b.count; ++l) {
         const ContactGeometry g = b.geometry(l);
         // The history, field by field (a copy of the whole record does not
-        // vectorise); the spring only for its model.
+        // vectorise).
         ContactHistory history;
-        history.integrated_slip = b.integrated_slip[l];
-        history.integrated_angular_slip = b.integrated_angular_slip[l];
-        if (model.shear == ShearModel::TangentialSpring) history.tangential_spring = b.tangential_spring[l];
+        history.slip = b.slip[l];
+        history.angular_slip = b.angular_slip[l];
         const ContactForces f = contact_law(coefficients.at(b.pair_type[l]), g, model, dt, history);
-        b.integrated_slip[l] = history.integrated_slip;
-        b.integrated_angular_slip[l] = history.integrated_angular_slip;
-        if (model.shear == ShearModel::TangentialSpring) b.tangential_spring.set(l, history.tangential_spring);
+        b.slip.set(l, history.slip);
+        b.angular_slip[l] = history.angular_slip;
         b.force_i.set(l, f.force_i);
         b.torque_i.set(l, f.torque_i);
         b.torque_j.set(l, f.torque_j);
@@ -149,9 +143,9 @@ inline void apply_contact_law(ContactBlock& b, const PairColumns& coefficients, 
 // sums are kept in registers while it stays the same; no pair has j = i, so
 // every sphere receives the same additions in the same order as with one
 // contact at a time.
-template <bool Record, class Model>
-inline void scatter_contacts(const ParticleStore& p, PairList& pairs, const ContactBlock& b, const Model& model,
-                             Vec3* force, Vec3* torque, std::vector<ContactRecord>& records) {
+template <bool Record>
+inline void scatter_contacts(const ParticleStore& p, PairList& pairs, const ContactBlock& b, Vec3* force,
+                             Vec3* torque, std::vector<ContactRecord>& records) {
     if (b.count == 0) return;
     std::uint32_t i = pairs.first[b.pair[0]];
     Vec3 force_i = force[i], torque_i = torque[i];
@@ -165,7 +159,7 @@ inline void scatter_contacts(const ParticleStore& p, PairList& pairs, const Cont
             torque_i = torque[i];
         }
         const std::uint32_t j = pairs.second[k];
-        b.store_history(l, pairs, k, model);
+        b.store_history(l, pairs, k);
         force_i += b.force_i[l];
         force[j] -= b.force_i[l];
         torque_i += b.torque_i[l];
@@ -192,9 +186,9 @@ void add_contact_forces(const ParticleStore& p, PairList& pairs, IndexRange rang
                         std::vector<ContactRecord>& records) {
     ContactBlock block;
     for (std::size_t k = range.begin; k < range.end;) {
-        k = gather_contacts(p, pairs, k, range.end, images, table, model, block);
+        k = gather_contacts(p, pairs, k, range.end, images, table, block);
         apply_contact_law(block, table.columns(), model, dt);
-        scatter_contacts<Record>(p, pairs, block, model, force, torque, records);
+        scatter_contacts<Record>(p, pairs, block, force, torque, records);
     }
 }
 
@@ -204,13 +198,17 @@ template <bool Record>
 void add_contact_forces(const ParticleStore& p, PairList& pairs, IndexRange range, const PeriodicImages& images,
                         const PairTable& table, const ContactModel& model, double dt, Vec3* force, Vec3* torque,
                         std::vector<ContactRecord>& records) {
-    const double v_reg = model.slip_velocity_regularisation;
-    if (model.all_terms_on() && model.shear == ShearModel::IntegratedSlip)
-        add_contact_forces<Record>(p, pairs, range, images, table, AllTermsOn<ShearModel::IntegratedSlip>{v_reg},
-                                   dt, force, torque, records);
-    else if (model.all_terms_on() && model.shear == ShearModel::TangentialSpring)
-        add_contact_forces<Record>(p, pairs, range, images, table, AllTermsOn<ShearModel::TangentialSpring>{v_reg},
-                                   dt, force, torque, records);
+    auto run = [&](auto all_terms_on) {
+        all_terms_on.friction_normal = model.friction_normal;
+        all_terms_on.slip_velocity_regularisation = model.slip_velocity_regularisation;
+        add_contact_forces<Record>(p, pairs, range, images, table, all_terms_on, dt, force, torque, records);
+    };
+    if (model.all_terms_on() && model.shear == ShearModel::Paper)
+        run(AllTermsOn<ShearModel::Paper>{});
+    else if (model.all_terms_on() && model.shear == ShearModel::Coulomb)
+        run(AllTermsOn<ShearModel::Coulomb>{});
+    else if (model.all_terms_on() && model.shear == ShearModel::Spring)
+        run(AllTermsOn<ShearModel::Spring>{});
     else
         add_contact_forces<Record, ContactModel>(p, pairs, range, images, table, model, dt, force, torque, records);
 }

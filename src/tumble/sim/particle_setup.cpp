@@ -18,6 +18,7 @@ ParticleStore make_particle_store(const Scenario& s) {
         p.angular_velocity.push_back(spec.angular_velocity);
         p.force.emplace_back();
         p.torque.emplace_back();
+        p.half_kick.emplace_back();
         p.radius.push_back(R);
         p.mass.push_back(mass);
         p.inv_mass.push_back(kinematic ? 0.0 : 1.0 / mass);

@@ -49,7 +49,7 @@ void Simulation::step() {
     time_ = static_cast<double>(step_) * dt_;
     move_kinematic();                                        // prescribed x, v, omega at t + dt
     if (neighbors_.needs_rebuild(particles_, threads_)) neighbors_.rebuild(particles_);
-    compute_forces();                                        // F(t + dt), with v(t + dt/2)
+    compute_forces();                                        // F(t + dt), with v(t + dt/2) and v(t + dt) predicted
     kick(particles_, scenario_.gravity, half_dt, threads_);  // v(t + dt/2) -> v(t + dt)
 }
 
@@ -152,7 +152,8 @@ void Simulation::add_wall_forces(int chunks) {
                 }
                 Vec3 n;
                 n[axis] = side == 0 ? 1.0 : -1.0;  // from the wall into the box
-                const ContactGeometry g = make_wall_geometry(n, distance, p.radius[i], p.velocity[i], p.angular_velocity[i]);
+                const ContactGeometry g = make_wall_geometry(n, distance, p.radius[i], p.velocity[i], p.half_kick[i],
+                                                             p.angular_velocity[i]);
                 const ContactForces f = contact_law(pair_table_(p.material[i], box.wall_material), g, scenario_.model, dt_, history);
                 p.force[i] += f.force_i;
                 p.torque[i] += f.torque_i;
@@ -232,8 +233,7 @@ std::string state_problem(const SimulationState& s, std::size_t n) {
     const PairList& pairs = s.neighbors.pairs;
     const std::size_t n_pairs = pairs.size();
     if (pairs.second.size() != n_pairs || pairs.image.size() != n_pairs ||
-        pairs.integrated_slip.size() != n_pairs || pairs.integrated_angular_slip.size() != n_pairs ||
-        pairs.tangential_spring.size() != n_pairs)
+        pairs.slip.size() != n_pairs || pairs.angular_slip.size() != n_pairs)
         return "the neighbour pairs have fields of unequal length";
     for (std::size_t k = 0; k < pairs.size(); ++k)
         if (pairs.first[k] >= n || pairs.second[k] >= n || pairs.image[k] >= 27)
@@ -260,6 +260,7 @@ void Simulation::restore(SimulationState state) {
     if (why.empty() && state.motions.size() != motions_.size()) why = "its number of prescribed motions differs";
     if (!why.empty()) throw Error("restoring a simulation state: " + why);
     particles_ = std::move(state.particles);
+    particles_.half_kick.assign(particles_.size(), Vec3{});  // 0 between steps
     neighbors_.restore(std::move(state.neighbors));
     wall_history_ = std::move(state.wall_history);
     motions_ = std::move(state.motions);

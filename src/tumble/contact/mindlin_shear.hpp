@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// Element 4: the shear force, Mindlin without partial slip, limited by
+// static friction (paper eq. 8), in three readings of what happens when the
+// limit is reached (docs/MODEL.md, "Shear models").
+#pragma once
+
+#include <cmath>
+
+#include "tumble/core/vec3.hpp"
+
+namespace tumble {
+
+// What a contact does at the static limit mu |F_n|:
+//   Paper:   the contact slips and the slip restarts, from its excess over
+//            the limit (the step's overshoot is carried, so the force
+//            saw-tooths from 0 to the limit whatever dt: mean mu |F_n| / 2
+//            in sustained sliding);
+//   Coulomb: the slip is held at the limit while the contact slides, along
+//            the sliding velocity (the paper's direction): mean mu |F_n|;
+//   Spring:  the slip is held at the limit along its own direction (the
+//            tangential spring of LAMMPS and LIGGGHTS): mean mu |F_n|;
+//   Off:     no shear force.
+// Below the limit all three are the same elastic contact: the force
+// opposes the slip vector, so a contact holds a load below the limit
+// without creeping.
+enum class ShearModel { Off, Paper, Coulomb, Spring };
+
+// Length of the slip after the contact has slipped: `length` (> `held`, the
+// length at the limit) wrapped back by whole teeth for Paper, `held`
+// otherwise. held = 0 (no normal force) leaves no slip.
+inline double slip_length_after_slipping(ShearModel model, double length, double held) {
+    const double excess = held > 0.0 ? length - std::floor(length / held) * held : 0.0;
+    return model == ShearModel::Paper ? excess : held;
+}
+
+// Tangential force on i, N:
+//   -16/3 G* sqrt(R* h) ds,   |.| <= mu |F_n| = friction_limit,
+// where ds (m, `slip`) is the displacement of i relative to j at the contact
+// point integrated since the contact began (v_t dt each step, v_t the
+// half-step velocity: a position, integrated like one), kept in the current
+// contact plane with its length as the pair rolls and n turns. With the
+// slip in one direction this is the paper's min(16/3 G* ds sqrt(R* h),
+// mu |F_n|) (-v_t/|v_t|); taking the direction from the slip rather than
+// from v_t lets a contact at rest hold its load (SPEC-NOTES, shear
+// direction). n points from j to i.
+inline Vec3 mindlin_shear_force(ShearModel model, double G_star, double contact_radius, double friction_limit,
+                                const Vec3& n, const Vec3& v_t, double dt, double v_reg, Vec3& slip) {
+    // Into the contact plane, keeping the length.
+    const double old_length = norm(slip);
+    Vec3 in_plane = slip - dot(slip, n) * n;
+    const double plane_length = norm(in_plane);
+    in_plane *= plane_length > 0.0 ? old_length / plane_length : 0.0;
+    slip = in_plane + dt * v_t;
+
+    const double stiffness = 16.0 / 3.0 * G_star * contact_radius;  // N/m
+    const double held = friction_limit / stiffness;                // slip at the limit, m
+    // After slipping the slip is `after` long, along the sliding velocity for
+    // the paper's readings while the contact slides faster than v_reg (the
+    // paper's direction -v_t/|v_t| then), else along itself. Written as
+    // choices between values rather than branches, so that the pair loop
+    // still runs several contacts per instruction.
+    const double length = norm(slip), speed = norm(v_t);
+    const bool slides = length > held;
+    const bool along_velocity = model != ShearModel::Spring && speed > v_reg;
+    const double after = slip_length_after_slipping(model, length, held);
+    const double keep = slides ? (along_velocity ? 0.0 : after / length) : 1.0;
+    const double turn = slides && along_velocity ? after / speed : 0.0;
+    slip = keep * slip + turn * v_t;
+    return -stiffness * slip;
+}
+
+}  // namespace tumble
