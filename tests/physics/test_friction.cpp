@@ -140,8 +140,10 @@ TEST_P(SlidingToRolling, EndsRollingAtFiveSeventhsWithinTheCoulombLimit) {
     // Coulomb limit: by construction |F_t| <= mu |F_n|; only the round-off
     // of F_t = force_i - F_n n (a few ulp of |F_n|) may show.
     EXPECT_LE(worst_ratio, 1.0 + 1e-12);
-    // And the limit was reached: the grain really slid.
-    EXPECT_GT(worst_ratio, 0.999);
+    // And the limit was reached: the grain really slid. (The paper's
+    // saw-tooth, seen over a step's window, peaks up to half a step's slip
+    // below the limit: 0.5 % here.)
+    EXPECT_GT(worst_ratio, 0.99);
 
     // The engine's J at the end against the one integrated here. The
     // friction torque -L n x F_t with the lever of the force's point of

@@ -4,6 +4,7 @@
 // limit is reached (docs/MODEL.md, "Shear models").
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "tumble/core/vec3.hpp"
@@ -31,6 +32,28 @@ enum class ShearModel { Off, Paper, Coulomb, Spring };
 inline double slip_length_after_slipping(ShearModel model, double length, double held) {
     const double excess = held > 0.0 ? length - std::floor(length / held) * held : 0.0;
     return model == ShearModel::Paper ? excess : held;
+}
+
+// The paper's saw-tooth as the force law sees it: the slip length x (the
+// force is k (x mod held)) averaged over the step's window [x - step/2,
+// x + step/2], step = the slip of one step. Where the window holds no
+// tooth's edge that is x mod held itself, the value at the step; where it
+// holds one, the window's mean. The windows of consecutive steps tile the
+// slip, so the sum of the steps' forces is the saw-tooth's integral exactly
+// and sustained sliding feels its mean, held / 2, whatever the step, even
+// with a tooth shorter than a step (sampling it at the steps alone aliases:
+// 8 % off at the automatic step at 0.1 m/s). held > 0.
+inline double sawtooth_in_window(double x, double step, double held) {
+    // The integral of (y mod held) from 0 to y.
+    auto integral = [held](double y) {
+        const double teeth = std::floor(y / held), rest = y - teeth * held;
+        return 0.5 * (teeth * held * held + rest * rest);
+    };
+    const double lo = std::max(x - 0.5 * step, 0.0), hi = x + 0.5 * step;
+    const double at_step = x - std::floor(x / held) * held;
+    const double width = hi - lo;
+    const double mean = (integral(hi) - integral(lo)) / (width > 0.0 ? width : 1.0);
+    return hi > held && width > 0.0 ? mean : at_step;
 }
 
 // Tangential force on i, N:
@@ -66,7 +89,12 @@ inline Vec3 mindlin_shear_force(ShearModel model, double G_star, double contact_
     const double keep = slides ? (along_velocity ? 0.0 : after / length) : 1.0;
     const double turn = slides && along_velocity ? after / speed : 0.0;
     slip = keep * slip + turn * v_t;
-    return -stiffness * slip;
+    // The paper's reading feels its saw-tooth over the step's window.
+    const double window = model == ShearModel::Paper && held > 0.0 ? sawtooth_in_window(length, speed * dt, held)
+                                                                    : after;
+    const bool windowed = model == ShearModel::Paper && length + 0.5 * speed * dt > held;
+    const double scale = windowed && after > 0.0 ? window / after : 1.0;
+    return (-stiffness * scale) * slip;
 }
 
 }  // namespace tumble

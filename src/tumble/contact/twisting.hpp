@@ -16,8 +16,9 @@ namespace tumble {
 // where da (rad, `angular_slip`) is the rotation of i relative to j about n
 // integrated since the contact began (w_n dt each step, w_n = (omega_i -
 // omega_j) . n at the half step). At the limit it restarts from its excess
-// (Paper) or is held there (Coulomb, Spring), with the sign of w_n while the
-// rim of the contact slides faster than v_reg (Paper, Coulomb), else its own.
+// (Paper; its saw-tooth seen over the step's window, sawtooth_in_window()) or
+// is held there (Coulomb, Spring), with the sign of w_n while the rim of the
+// contact slides faster than v_reg (Paper, Coulomb), else its own.
 // With da of one sign this is the paper's min(...) (-sign w_n).
 inline double twisting_couple(ShearModel model, double G_star, double contact_radius, double friction_limit,
                               double w_n, double dt, double v_reg, double& angular_slip) {
@@ -28,9 +29,13 @@ inline double twisting_couple(ShearModel model, double G_star, double contact_ra
     const double length = std::abs(angular_slip);
     const bool along_spin = model != ShearModel::Spring && std::abs(w_n) * a > v_reg;
     const double sign = (along_spin ? w_n : angular_slip) < 0.0 ? -1.0 : 1.0;
-    const double after = sign * slip_length_after_slipping(model, length, held);
-    angular_slip = length > held ? after : angular_slip;  // a choice, not a branch (as in mindlin_shear.hpp)
-    return -stiffness * angular_slip;
+    const double after = slip_length_after_slipping(model, length, held);
+    angular_slip = length > held ? sign * after : angular_slip;  // a choice, not a branch (as in mindlin_shear.hpp)
+    // The paper's reading feels its saw-tooth over the step's window.
+    const double step = std::abs(w_n) * dt;
+    const double window = model == ShearModel::Paper && held > 0.0 ? sawtooth_in_window(length, step, held) : after;
+    const bool windowed = model == ShearModel::Paper && length + 0.5 * step > held && after > 0.0;
+    return -stiffness * (windowed ? window / after : 1.0) * angular_slip;
 }
 
 }  // namespace tumble
