@@ -276,6 +276,8 @@ int drum_command(const DrumOptions& options) {
 
     DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed);
     if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
+    setup.scenario.model.shear = s.shear;
+    setup.scenario.model.friction_normal = s.friction_normal;
     setup.scenario.time_step.allow_unsafe = options.allow_unsafe_dt;
     Simulation sim(std::move(setup.scenario), resolve_threads(options.threads));
 
@@ -291,6 +293,10 @@ int drum_command(const DrumOptions& options) {
     info.inner_length = setup.wall.inner_length;
     info.dt = sim.dt();
     info.threads = sim.threads();
+    for (const ShearModelEntry& e : shear_models)
+        if (e.model == s.shear) info.shear_model = e.keyword;
+    for (const FrictionNormalEntry& e : friction_normals)
+        if (e.choice == s.friction_normal) info.friction_normal = e.keyword;
     info.samples_per_revolution = s.samples_per_revolution;
     info.profile_bins = s.profile_bins;
     info.components = components_of(sim, s.mode);

@@ -2,12 +2,15 @@
 // The tumble command line: run, bench, drum, analyze, plot, sweep, render, resume.
 #include <cstdio>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
 #include "cli/sweep_command.hpp"
+#include "tumble/contact/contact_law.hpp"
 #include "tumble/core/error.hpp"
 
 namespace {
@@ -20,6 +23,14 @@ void add_checkpoint_options(CLI::App* command, tumble::cli::CheckpointPolicy& po
     command->add_option("--stop-at-step", policy.stop_at_step,
                         "Write a checkpoint and stop at this step (exit code 4; for batch time limits and tests)")
         ->check(CLI::PositiveNumber);
+}
+
+// The keywords of a choice table of the engine (shear_models, friction_normals).
+template <class Table>
+std::vector<std::string> keywords(const Table& table) {
+    std::vector<std::string> words;
+    for (const auto& e : table) words.emplace_back(e.keyword);
+    return words;
 }
 
 }  // namespace
@@ -60,7 +71,7 @@ int main(int argc, char** argv) {
     std::optional<std::size_t> grains;
     std::optional<std::uint64_t> seed;
     std::optional<int> samples, bins, snapshots;
-    std::optional<std::string> mode, out;
+    std::optional<std::string> mode, out, shear, friction_normal;
     CLI::App* drum_cmd = app.add_subcommand(
         "drum", "The paper's rotating-drum diffusion experiment (defaults: the paper's set-up, two components, "
                 "5 rad/s, 5 revolutions; see docs/DRUM.md)");
@@ -81,6 +92,11 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("--diameter", diameter, "Inner diameter of the drum, m (default 0.08)");
     drum_cmd->add_option("--wall-radius", wall_radius, "Radius of the wall particles, m (default 0.003)");
     drum_cmd->add_option("--dt", dt, "Time step, s (default: chosen from the materials)");
+    drum_cmd->add_option("--shear", shear, "Reading of the friction limit: paper (default), coulomb or spring (docs/MODEL.md)")
+        ->check(CLI::IsMember(keywords(tumble::shear_models)));
+    drum_cmd->add_option("--friction-normal", friction_normal,
+                         "Normal force that limits friction: net (the paper's, default) or jkr")
+        ->check(CLI::IsMember(keywords(tumble::friction_normals)));
     drum_cmd->add_flag("--allow-unsafe-dt", drum.allow_unsafe_dt,
                        "Accept a --dt above the safe maximum (experts and tests; the blow-up check still stops the run)");
     drum_cmd->add_option("--seed", seed, "Seed of the random filling");
@@ -175,6 +191,8 @@ int main(int argc, char** argv) {
             if (diameter) d.geometry.diameter = *diameter;
             if (wall_radius) d.geometry.wall_radius = *wall_radius;
             if (dt) d.dt = *dt;
+            if (shear) d.shear = tumble::find_keyword(tumble::shear_models, *shear)->model;
+            if (friction_normal) d.friction_normal = tumble::find_keyword(tumble::friction_normals, *friction_normal)->choice;
             if (seed) d.seed = *seed;
             if (out) d.output = *out;
             tumble::io::check_drum_settings(d, "command line");

@@ -243,24 +243,11 @@ private:
         m.viscous = r_.boolean(*t, p, "viscous", true);
         m.attraction = r_.boolean(*t, p, "attraction", true);
         m.twisting = r_.boolean(*t, p, "twisting", true);
-        if (const toml::node* n = t->get("shear")) m.shear = keyword(*n, join(p, "shear"), shear_models)->model;
+        if (const toml::node* n = t->get("shear")) m.shear = r_.keyword(*n, join(p, "shear"), shear_models)->model;
         if (const toml::node* n = t->get("friction_normal"))
-            m.friction_normal = keyword(*n, join(p, "friction_normal"), friction_normals)->choice;
+            m.friction_normal = r_.keyword(*n, join(p, "friction_normal"), friction_normals)->choice;
         m.slip_velocity_regularisation =
             r_.number(*t, p, "slip_velocity_regularisation", Bound::positive, m.slip_velocity_regularisation);
-    }
-
-    // The entry of `table` that the string at `key` names, or a failure
-    // with the known keywords.
-    template <class Entry, std::size_t N>
-    const Entry* keyword(const toml::node& n, const std::string& key, const std::array<Entry, N>& table) {
-        const std::string word = r_.string(n, key);
-        if (const Entry* e = find_keyword(table, word)) return e;
-        std::vector<std::string> known;
-        for (const Entry& e : table) known.emplace_back(e.keyword);
-        r_.fail(key, "unknown choice \"" + word + "\"" + detail::did_you_mean(word, known) +
-                         "; known: " + detail::quoted_list(known),
-                &n);
     }
 
     void read_time_step(const toml::table* t) {

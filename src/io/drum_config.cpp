@@ -62,7 +62,7 @@ DrumSettings load_drum_settings(const std::filesystem::path& file) {
     const toml::table root = parse_toml(read_text_file(file), file);
     const Reader r(file);
     DrumSettings s;
-    r.only_keys(root, "", {"drum", "fill", "rotation", "measure", "settle", "time_step", "output"});
+    r.only_keys(root, "", {"drum", "fill", "rotation", "measure", "settle", "time_step", "model", "output"});
     if (const toml::table* t = r.table(root, "drum", false)) {
         r.only_keys(*t, "drum", {"length", "diameter", "wall_radius"});
         s.geometry.length = r.number(*t, "drum", "length", Bound::positive, s.geometry.length);
@@ -113,6 +113,12 @@ DrumSettings load_drum_settings(const std::filesystem::path& file) {
     if (const toml::table* t = r.table(root, "time_step", false)) {
         r.only_keys(*t, "time_step", {"dt"});
         s.dt = r.number(*t, "time_step", "dt", Bound::positive, 0.0);
+    }
+    if (const toml::table* t = r.table(root, "model", false)) {
+        r.only_keys(*t, "model", {"shear", "friction_normal"});
+        if (const toml::node* n = t->get("shear")) s.shear = r.keyword(*n, "model.shear", shear_models)->model;
+        if (const toml::node* n = t->get("friction_normal"))
+            s.friction_normal = r.keyword(*n, "model.friction_normal", friction_normals)->choice;
     }
     if (const toml::table* t = r.table(root, "output", false)) {
         r.only_keys(*t, "output", {"directory"});

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <string>
 
+#include "tumble/contact/contact_law.hpp"
 #include "tumble/setup/drum.hpp"
 
 namespace tumble::io {
@@ -33,6 +34,8 @@ struct DrumSettings {
     double settle_speed = 0.01;        // m/s: settled when the rms grain speed is below this
     double settle_max_time = 3.0;      // s: give up settling (with a warning) after this
     double dt = 0.0;                   // s; 0: chosen from the materials
+    ShearModel shear = ShearModel::Paper;              // the reading of the friction limit (docs/MODEL.md)
+    FrictionNormal friction_normal = FrictionNormal::Net;  // which normal force limits friction
     std::filesystem::path output = "drum-out";
 
     // Angular velocity in rad/s: from rpm (2 pi / 60) or from the Froude

@@ -48,6 +48,8 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                         {"wall_seconds", info.wall_seconds},
                         {"grain_updates_per_second", info.grain_updates_per_second},
                         {"threads", info.threads},
+                        {"shear_model", info.shear_model},
+                        {"friction_normal", info.friction_normal},
                         {"component", components}};
     std::ostringstream text;
     text << "# tumble drum run: what was run (read by `tumble analyze`)\n" << t << '\n';
@@ -83,6 +85,10 @@ DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
     info.wall_seconds = num("wall_seconds");
     info.grain_updates_per_second = num("grain_updates_per_second");
     info.threads = t["threads"].value_or(1);  // absent in runs of tumble before threads
+    // Absent in runs before the shear models (2026-11-30): the paper's rule,
+    // then with the slip reset to zero at the limit.
+    info.shear_model = t["shear_model"].value_or(std::string("paper"));
+    info.friction_normal = t["friction_normal"].value_or(std::string("net"));
     const auto entries = r.tables(t, "", "component");
     for (std::size_t i = 0; i < entries.size(); ++i) {
         const std::string p = at("component", i);
@@ -273,6 +279,8 @@ std::string analyze_drum_run(const fs::path& dir) {
     text << fmt::format("  mode {}, omega {:.4g} rad/s ({:.3g} rpm, Froude {:.3g}), {:.4g} revolutions\n", info.mode,
                         info.omega, info.omega * 60.0 / (2.0 * tumble::pi), info.froude,
                         series.revolutions.empty() ? 0.0 : series.revolutions.back());
+    text << fmt::format("  shear model {}, friction limited by the {} normal force\n", info.shear_model,
+                        info.friction_normal);
     text << fmt::format("  {} wall particles; inner radius {:.4g} m, bed length L = {:.4g} m\n", info.wall_particles,
                         info.inner_radius, L);
     text << fmt::format("  solid fraction {:.3f} of the drum volume; fill fraction {:.3f} (bed cross-section after "
@@ -333,6 +341,8 @@ std::string analyze_drum_run(const fs::path& dir) {
                         angle_of_repose, std::min(1.0, 0.5 * last_N));
 
     toml::table summary{{"mode", info.mode},
+                        {"shear_model", info.shear_model},
+                        {"friction_normal", info.friction_normal},
                         {"omega", info.omega},
                         {"froude", info.froude},
                         {"revolutions", series.revolutions.empty() ? 0.0 : series.revolutions.back()},

@@ -46,6 +46,8 @@ struct DrumRunInfo {
     double wall_seconds = 0.0;     // of the rotating phase
     double grain_updates_per_second = 0.0;
     int threads = 1;               // of the time step (tumble drum --threads)
+    std::string shear_model = "paper";    // keyword of the shear model (contact_law.hpp)
+    std::string friction_normal = "net";  // keyword of the normal force that limits friction
     std::vector<DrumComponent> components;
 };
 

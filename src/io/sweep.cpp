@@ -56,7 +56,7 @@ SweepSettings load_sweep_settings(const fs::path& file) {
     const toml::table& t = *r.table(root, "sweep", true);
     r.only_keys(t, "sweep",
                 {"omega", "rpm", "froude", "modes", "seeds", "revolutions", "grains_two_component", "grains_self",
-                 "samples_per_revolution", "snapshots_per_revolution", "diameter"});
+                 "samples_per_revolution", "snapshots_per_revolution", "diameter", "shear", "friction_normal"});
     int given = 0;
     for (auto [key, unit] : {std::pair{"omega", SpeedUnit::rad_per_s}, std::pair{"rpm", SpeedUnit::rpm},
                              std::pair{"froude", SpeedUnit::froude}})
@@ -104,6 +104,9 @@ SweepSettings load_sweep_settings(const fs::path& file) {
         s.samples_per_revolution = static_cast<int>(r.integer(*n, "sweep.samples_per_revolution", 1, 100000));
     if (const toml::node* n = t.get("snapshots_per_revolution"))
         s.snapshots_per_revolution = static_cast<int>(r.integer(*n, "sweep.snapshots_per_revolution", 0, 100000));
+    if (const toml::node* n = t.get("shear")) s.shear = r.keyword(*n, "sweep.shear", shear_models)->keyword;
+    if (const toml::node* n = t.get("friction_normal"))
+        s.friction_normal = r.keyword(*n, "sweep.friction_normal", friction_normals)->keyword;
     s.diameter = r.number(t, "sweep", "diameter", Bound::positive, s.diameter);
     if (t.get("diameter") && s.speed_unit != SpeedUnit::froude)
         r.fail("sweep.diameter", "only used to turn froude into omega; give it with froude only", t.get("diameter"));
@@ -140,6 +143,8 @@ std::vector<SweepPoint> expand_sweep(const SweepSettings& s, const fs::path& dir
                 p.grains = mode == "self" ? s.grains_self : s.grains_two_component;
                 p.samples_per_revolution = s.samples_per_revolution;
                 p.snapshots_per_revolution = s.snapshots_per_revolution;
+                p.shear = s.shear;
+                p.friction_normal = s.friction_normal;
                 p.name = sweep_point_name(mode, p.omega, seed);
                 p.directory = directory / "points" / p.name;
                 if (!names.insert(p.name).second)
@@ -167,6 +172,10 @@ std::vector<std::string> drum_arguments(const SweepPoint& p) {
             std::to_string(p.samples_per_revolution),
             "--snapshots",
             std::to_string(p.snapshots_per_revolution),
+            "--shear",
+            p.shear,
+            "--friction-normal",
+            p.friction_normal,
             "--out",
             p.directory.string(),
             "--force",
@@ -631,7 +640,7 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
     std::size_t missing = 0;
     {
         std::ostringstream out;
-        out << "mode,omega,froude,seed,revolutions,grains";
+        out << "mode,shear_model,friction_normal,omega,froude,seed,revolutions,grains";
         for (const std::string& c : components)
             out << fmt::format(",D_{0},D_stderr_{0},D_one_term_{0},determined_{0},surface_share_{0}", c);
         out << ",ke_ratio_total,ke_ratio_total_ref,ke_ratio_per_grain,ke_ratio_per_grain_ref,angle_of_repose,"
@@ -640,7 +649,8 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
             const SweepPoint& p = r.point;
             const bool ok = has_numbers(r);
             if (!ok) ++missing;
-            out << fmt::format("{},{},{},{},{},{}", p.mode, p.omega, p.froude, p.seed, p.revolutions, p.grains);
+            out << fmt::format("{},{},{},{},{},{},{},{}", p.mode, p.shear, p.friction_normal, p.omega, p.froude, p.seed,
+                               p.revolutions, p.grains);
             for (const std::string& c : components) {
                 const PointResult::Component* k = ok ? component(r, c) : nullptr;
                 if (k)

@@ -36,6 +36,8 @@ struct SweepSettings {
     int samples_per_revolution = 20;
     int snapshots_per_revolution = 0;  // per point; 0: none (a sweep keeps its directories small)
     double diameter = 0.08;            // m: only to turn froude into omega (the drum's default diameter)
+    std::string shear = "paper";            // shear model of every point (tumble drum --shear)
+    std::string friction_normal = "net";    // tumble drum --friction-normal
     std::filesystem::path output = "sweep-out";
 };
 
@@ -54,6 +56,7 @@ struct SweepPoint {
     std::size_t grains = 0;
     int samples_per_revolution = 20;
     int snapshots_per_revolution = 0;
+    std::string shear = "paper", friction_normal = "net";
     std::string name;          // e.g. "two-component_omega5.000_seed1"
     std::filesystem::path directory;  // DIR/points/NAME
 };
@@ -67,7 +70,7 @@ std::vector<SweepPoint> expand_sweep(const SweepSettings& s, const std::filesyst
 
 // The arguments after the program name of the child run:
 // drum -q --mode M --omega W --seed S --revolutions R --grains G --samples K
-//      --snapshots P --out DIR --force
+//      --snapshots P --shear H --friction-normal F --out DIR --force --threads 1
 std::vector<std::string> drum_arguments(const SweepPoint& p);
 // The arguments that continue an interrupted point from its checkpoint:
 // resume -q DIR

@@ -98,6 +98,21 @@ public:
 
     // --- single values ---
 
+    // The entry of `table` (an array of entries with a `keyword`, as the
+    // engine's shear_models) that the string at `key` names; else a failure
+    // with the known keywords.
+    template <class Table>
+    const auto* keyword(const toml::node& n, const std::string& key, const Table& table) const {
+        const std::string word = string(n, key);
+        for (const auto& e : table)
+            if (e.keyword == word) return &e;
+        std::vector<std::string> known;
+        for (const auto& e : table) known.emplace_back(e.keyword);
+        fail(key, "unknown choice \"" + word + "\"" + detail::did_you_mean(word, known) +
+                      "; known: " + detail::quoted_list(known),
+             &n);
+    }
+
     double number(const toml::node& n, const std::string& key, Bound bound = Bound::any) const {
         double v = 0.0;
         if (const auto* i = n.as_integer())

@@ -180,7 +180,8 @@ TEST(SweepPoints, NamesAndOrder) {
     const auto args = drum_arguments(points[1]);
     const std::vector<std::string> expected{"drum",  "-q",         "--mode",    "two-component", "--omega", "5",
                                             "--seed", "1",         "--revolutions", "5",         "--grains", "200",
-                                            "--samples", "20",     "--snapshots", "0",           "--out",
+                                            "--samples", "20",     "--snapshots", "0",           "--shear",
+                                            "paper", "--friction-normal", "net",              "--out",
                                             (fs::path("out") / "points" / "two-component_omega5.000_seed1").string(),
                                             "--force", "--threads", "1"};
     EXPECT_EQ(args, expected);
@@ -413,7 +414,7 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     const auto rows = read_csv(dir_ / "sweep.csv");
     ASSERT_EQ(rows.size(), 13u);
     const std::string header =
-        "mode,omega,froude,seed,revolutions,grains,"
+        "mode,shear_model,friction_normal,omega,froude,seed,revolutions,grains,"
         "D_material-1,D_stderr_material-1,D_one_term_material-1,determined_material-1,surface_share_material-1,"
         "D_material-2,D_stderr_material-2,D_one_term_material-2,determined_material-2,surface_share_material-2,"
         "D_left,D_stderr_left,D_one_term_left,determined_left,surface_share_left,"
