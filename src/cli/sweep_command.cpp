@@ -6,16 +6,19 @@
 // sweep_summary.csv.
 #include "cli/sweep_command.hpp"
 #include "cli/commands.hpp"
+#include "cli/limits.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <thread>
 
 #include <fmt/format.h>
 
 #include "io/checkpoint.hpp"
+#include "io/run_lock.hpp"
 #include "io/sweep.hpp"
 #include "io/toml_reader.hpp"
 #include "tumble/core/error.hpp"
@@ -69,6 +72,9 @@ int sweep_command(const SweepOptions& o) {
     std::error_code ec;
     fs::create_directories(dir / "points", ec);
     if (ec) throw Error(dir.string() + ": cannot create the sweep directory: " + ec.message());
+    // Under MPI, rank 0 holds the sweep directory's lock; each point's run holds its own.
+    std::optional<io::RunLock> lock;
+    if (rank.rank == 0) lock.emplace(dir);
     if (rank.rank == 0) {
         std::ofstream copy(dir / "sweep.toml", std::ios::trunc);  // what was asked, for the record
         copy << "# copy of " << o.sweep_file << " as last run by tumble sweep\n"
@@ -87,7 +93,7 @@ int sweep_command(const SweepOptions& o) {
             ++skipped;
             continue;
         }
-        const bool resume = s != io::PointState::pending && io::resumable(p.directory);
+        const bool resume = s != io::PointState::pending && io::resumable(p.directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0)));
         if (s != io::PointState::pending && !o.quiet)
             fmt::print("{}{}: {} before; {}\n", who, p.name, io::to_string(s),
                        resume ? "resuming it from its newest checkpoint" : "running it again from the start");
