@@ -297,7 +297,7 @@ int drum_command(const DrumOptions& options) {
 
     const int threads = resolve_threads(options.threads);
     check_memory(drum_memory(s.geometry, static_cast<double>(s.grain_count()), threads),
-                 memory_limit_bytes(options.max_memory_gib));
+                 memory_limit_bytes(options.max_memory_gib), "command line");
     DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed);
     if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
     setup.scenario.time_step.allow_unsafe = options.allow_unsafe_dt;

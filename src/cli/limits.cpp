@@ -75,11 +75,11 @@ double memory_limit_bytes(double gib_limit) {
     return limit;
 }
 
-void check_memory(const MemoryNeed& need, double limit_bytes) {
+void check_memory(const MemoryNeed& need, double limit_bytes, const std::string& source) {
     if (!(need.bytes <= limit_bytes))
-        throw Error(fmt::format("the run would need about {} of memory for {}, more than the limit of {} "
+        throw Error(fmt::format("{}: the run would need about {} of memory for {}, more than the limit of {} "
                                 "(--max-memory GIB; default half the machine's memory)",
-                                gib(need.bytes), need.driver, gib(limit_bytes)));
+                                source, gib(need.bytes), need.driver, gib(limit_bytes)));
 }
 
 }  // namespace tumble::cli

@@ -32,7 +32,8 @@ MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads);
 // The limit: `gib` GiB if > 0, else half the machine's memory (or the
 // process's address-space limit, ulimit -v, if lower).
 double memory_limit_bytes(double gib);
-// tumble::Error with the estimate, its driver and the limit if need > limit.
-void check_memory(const MemoryNeed& need, double limit_bytes);
+// tumble::Error "SOURCE: ..." with the estimate, its driver and the limit if
+// need > limit; `source` is the input file or "command line".
+void check_memory(const MemoryNeed& need, double limit_bytes, const std::string& source);
 
 }  // namespace tumble::cli

@@ -140,7 +140,8 @@ int run_command(const RunOptions& options) {
     io::RunConfig config = io::load_run_config(options.scenario_file);
     if (!options.output_directory.empty()) config.output.directory = options.output_directory;
     const int threads = resolve_threads(options.threads);
-    check_memory(scenario_memory(config.scenario, threads), memory_limit_bytes(options.max_memory_gib));
+    check_memory(scenario_memory(config.scenario, threads), memory_limit_bytes(options.max_memory_gib),
+                 options.scenario_file);
     Simulation sim(std::move(config.scenario), threads);
     const double dt = sim.dt();
     RunPlan plan{options.scenario_file,

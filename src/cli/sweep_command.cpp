@@ -70,11 +70,13 @@ int sweep_command(const SweepOptions& o) {
     }
 
     std::error_code ec;
-    fs::create_directories(dir / "points", ec);
+    fs::create_directories(dir, ec);
     if (ec) throw Error(dir.string() + ": cannot create the sweep directory: " + ec.message());
     // Under MPI, rank 0 holds the sweep directory's lock; each point's run holds its own.
     std::optional<io::RunLock> lock;
     if (rank.rank == 0) lock.emplace(dir);
+    fs::create_directories(dir / "points", ec);
+    if (ec) throw Error((dir / "points").string() + ": cannot create the folder: " + ec.message());
     if (rank.rank == 0) {
         std::ofstream copy(dir / "sweep.toml", std::ios::trunc);  // what was asked, for the record
         copy << "# copy of " << o.sweep_file << " as last run by tumble sweep\n"

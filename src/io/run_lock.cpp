@@ -6,10 +6,8 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
 #include <cstring>
 #include <string>
-#include <thread>
 #include <utility>
 
 #include "tumble/core/error.hpp"
@@ -22,13 +20,7 @@ RunLock::RunLock(const std::filesystem::path& directory) {
     // O_CLOEXEC: the sweep's child processes do not inherit the sweep's lock.
     fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd_ < 0) throw Error(file.string() + ": cannot open the lock file: " + std::strerror(errno));
-    // A holder just killed may take a moment to end: wait up to a second.
-    bool locked = false;
-    for (int tries = 0; tries < 50 && !locked; ++tries) {
-        if (tries > 0) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-        locked = ::flock(fd_, LOCK_EX | LOCK_NB) == 0;
-        if (!locked && errno != EWOULDBLOCK) break;
-    }
+    const bool locked = ::flock(fd_, LOCK_EX | LOCK_NB) == 0;
     if (!locked) {
         const int why = errno;
         char pid[32] = {};

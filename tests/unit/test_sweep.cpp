@@ -706,6 +706,8 @@ TEST_F(Sweep, KilledHalfWayAndRestartedGivesTheUninterruptedTable) {
     std::this_thread::sleep_for(std::chrono::seconds(1));
     const pid_t group = std::stoi(slurp(pid_file));
     ASSERT_EQ(::kill(-group, SIGKILL), 0) << "the sweep ended before it could be killed";
+    for (int k = 0; k < 1000 && ::kill(-group, 0) == 0; ++k)  // gone, and its locks with it
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
     ASSERT_TRUE(fs::exists(first_point));
     EXPECT_FALSE(fs::exists(killed / "points" / "self_omega5.000_seed2" / "summary.json"));
 
