@@ -105,22 +105,6 @@ HealthLimits drum_limits(const Scenario& s) {
     return limits;
 }
 
-// The settling and the rotation in steps of dt: each a count a run can
-// finish, and the rotation long enough for a sample after its start (the
-// analysis needs two). For a new run and for a checkpoint's plan alike.
-void check_durations(double revolutions, double omega, int samples_per_revolution, double settle_max_time,
-                     double dt) {
-    step_count(settle_max_time, dt, "settle.max_time");
-    const double rotation = revolutions * 2.0 * pi / omega;
-    const char* what = "the rotation (--revolutions, and --omega, --rpm or --froude)";
-    const std::int64_t steps = step_count(rotation, dt, what);
-    const double sample = rotation / (revolutions * samples_per_revolution);  // s between samples
-    if (steps < 1 || !(revolutions * samples_per_revolution >= 1.0) || !(sample >= dt))
-        throw Error(fmt::format("{}: {:g} revolutions of {:g} s in steps of {:g} s (--dt) give {} steps, too few for "
-                                "a sample after the start ({} samples per revolution, --samples)",
-                                what, revolutions, rotation / revolutions, dt, steps, samples_per_revolution));
-}
-
 // Settling and rotation from wherever `sim` stands, then the analysis.
 class DrumLoop {
 public:
@@ -302,7 +286,7 @@ int drum_command(const DrumOptions& options) {
     if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
     setup.scenario.time_step.allow_unsafe = options.allow_unsafe_dt;
     Simulation sim(std::move(setup.scenario), threads);
-    check_durations(s.revolutions, omega, s.samples_per_revolution, s.settle_max_time, sim.dt());
+    check_drum_durations(s.revolutions, omega, s.samples_per_revolution, s.settle_max_time, sim.dt());
 
     DrumPlan plan;
     io::DrumRunInfo& info = plan.info;
@@ -348,7 +332,7 @@ int resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
     DrumPlan plan = load_plan(checkpoint.record);
     plan.quiet = quiet;
     try {
-        check_durations(plan.info.revolutions, plan.info.omega, plan.info.samples_per_revolution,
+        check_drum_durations(plan.info.revolutions, plan.info.omega, plan.info.samples_per_revolution,
                         plan.settle_max_time, checkpoint.state.dt);
         if (plan.rotation_start_step < 0 || plan.rotation_start_step > checkpoint.state.step ||
             plan.snapshots_per_revolution < 0 || plan.info.profile_bins < 2)

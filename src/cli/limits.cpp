@@ -39,6 +39,19 @@ std::int64_t step_count(double seconds, double dt, const std::string& what) {
     return std::max<std::int64_t>(0, static_cast<std::int64_t>(steps));
 }
 
+void check_drum_durations(double revolutions, double omega, int samples_per_revolution, double settle_max_time,
+                          double dt) {
+    step_count(settle_max_time, dt, "settle.max_time");
+    const double rotation = revolutions * 2.0 * pi / omega;
+    const char* what = "the rotation (--revolutions, and --omega, --rpm or --froude)";
+    const std::int64_t steps = step_count(rotation, dt, what);
+    const double sample = rotation / (revolutions * samples_per_revolution);  // s between samples
+    if (steps < 1 || !(revolutions * samples_per_revolution >= 1.0) || !(sample >= dt))
+        throw Error(fmt::format("{}: {:g} revolutions of {:g} s in steps of {:g} s (--dt) give {} steps, too few for "
+                                "a sample after the start ({} samples per revolution, --samples)",
+                                what, revolutions, rotation / revolutions, dt, steps, samples_per_revolution));
+}
+
 MemoryNeed scenario_memory(const Scenario& s, int threads) {
     double r_min = INFINITY, r_max = 0.0;
     for (const ParticleSpec& p : s.particles) r_min = std::min(r_min, p.radius), r_max = std::max(r_max, p.radius);

@@ -20,6 +20,13 @@ inline constexpr double max_steps = 1e12;
 // (the option or key) if it is not a finite count of at most max_steps.
 std::int64_t step_count(double seconds, double dt, const std::string& what);
 
+// A drum's settling and rotation in steps of dt: each a count a run can
+// finish, and the rotation long enough for a sample after its start (the
+// analysis needs two). For a new run, a checkpoint's plan and a sweep's
+// points alike; tumble::Error naming the options otherwise.
+void check_drum_durations(double revolutions, double omega, int samples_per_revolution, double settle_max_time,
+                          double dt);
+
 // The memory a run will need, estimated from its inputs
 // (docs/BENCHMARKS.md, "Memory per sphere"), and what drives it.
 struct MemoryNeed {

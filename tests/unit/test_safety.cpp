@@ -6,6 +6,7 @@
 // clear error or the uninterrupted result. tests/data/bad/run and
 // tests/data/bad/cli hold the refused inputs, one case per class.
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -320,6 +321,26 @@ TEST_F(Safety, AnalyzeRefusesAnUnfinishedRun) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(contains(r.output, "the run is unfinished")) << r.output;
     EXPECT_FALSE(fs::exists(out / "summary.json"));
+}
+
+// ---- 9. a sweep stopped by a signal (the messages are in the corpora, and
+// the particle files in test_bad_input.cpp)
+
+TEST_F(Safety, ASweepStoppedBySigtermStopsItsRunningPointWithACheckpoint) {
+    const fs::path sweep = dir_ / "sweep";
+    const pid_t pid = start("sweep " + std::string(TUMBLE_SOURCE_DIR) + "/examples/sweep_tiny.toml -j 1 -o " +
+                                sweep.string(),
+                            "sweep.log");
+    const fs::path point = sweep / "points" / "self_omega3.000_seed1";
+    for (int k = 0; k < 6000 && !fs::exists(point / "time_series.csv"); ++k)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    ::kill(pid, SIGTERM);
+    EXPECT_EQ(exit_code(pid), 4);
+    const std::string log = read_file(dir_ / "sweep.log");
+    EXPECT_TRUE(contains(log, "stopped self_omega3.000_seed1 with a checkpoint")) << log;
+    EXPECT_NO_THROW(io::RunLock{point}) << "the point's run has ended";
+    EXPECT_TRUE(io::resumable(point));
 }
 
 // ---- 2, 3, 4, 5, 9: the corpus of refused runs and command lines

@@ -63,6 +63,8 @@ std::string scenario_problem(const Scenario& s) {
             const bool inside = p.position[k] >= s.domain.lo[k] && p.position[k] < s.domain.hi[k];
             if (s.domain.periodic[k] && !inside) return who + "lies outside the periodic axis " + "xyz"[k];
             if (s.domain.walls[k] && !inside) return who + "lies outside the walls along " + "xyz"[k];
+            if ((s.domain.walls[k] || s.domain.periodic[k]) && 2.0 * p.radius > s.domain.hi[k] - s.domain.lo[k])
+                return who + "its diameter exceeds the domain along " + "xyz"[k];
         }
     }
     return {};
