@@ -333,7 +333,7 @@ int resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
     plan.quiet = quiet;
     try {
         check_drum_durations(plan.info.revolutions, plan.info.omega, plan.info.samples_per_revolution,
-                        plan.settle_max_time, checkpoint.state.dt);
+                             plan.settle_max_time, checkpoint.state.dt);
         if (plan.rotation_start_step < 0 || plan.rotation_start_step > checkpoint.state.step ||
             plan.snapshots_per_revolution < 0 || plan.info.profile_bins < 2)
             throw Error("drum.rotation_start_step, drum.snapshots_per_revolution or profile_bins out of range");

@@ -36,7 +36,7 @@ std::int64_t step_count(double seconds, double dt, const std::string& what) {
         throw Error(fmt::format("{}: {:g} s in steps of {:g} s is {:g} steps, more than any run can take (at most "
                                 "{:g}); check the duration, the time step and the materials that set it",
                                 what, seconds, dt, steps, max_steps));
-    return std::max<std::int64_t>(0, static_cast<std::int64_t>(steps));
+    return steps > 0.0 ? static_cast<std::int64_t>(steps) : 0;
 }
 
 void check_drum_durations(double revolutions, double omega, int samples_per_revolution, double settle_max_time,
