@@ -16,10 +16,14 @@ namespace tumble::cli {
 
 namespace {
 
-// docs/BENCHMARKS.md, "Memory per sphere": about 700 bytes per sphere with
-// its 3 list pairs, 50 per further pair, 48 per extra thread, 240 for the
-// flat walls' contact history.
-constexpr double bytes_per_sphere = 700.0, bytes_per_pair = 50.0, bytes_per_thread = 48.0, bytes_for_walls = 240.0;
+// The peak comes with a checkpoint: the simulation (about 700 bytes per
+// sphere with its 3 list pairs, docs/BENCHMARKS.md "Memory per sphere"),
+// its captured copy and the encoded file, each with the neighbour list (50
+// bytes per further pair) and the flat walls' contact history (240); 48 per
+// extra thread. Measured: 1.85 kB per sphere for lattices of 97336 and
+// 343000 spheres (maximum resident size of tumble run, 2026-11-30).
+constexpr double bytes_per_sphere = 1900.0, bytes_per_pair = 3 * 50.0, bytes_per_thread = 48.0,
+                 bytes_for_walls = 3 * 240.0;
 
 double estimate(double spheres, double pairs_per_sphere, bool walls, int threads) {
     return spheres * (bytes_per_sphere + bytes_per_pair * std::max(0.0, pairs_per_sphere - 3.0) +

@@ -212,19 +212,22 @@ template const std::int64_t& CheckpointRecord::get<std::int64_t>(const std::stri
 template const std::string& CheckpointRecord::get<std::string>(const std::string&, const char*) const;
 template const std::vector<double>& CheckpointRecord::get<std::vector<double>>(const std::string&, const char*) const;
 
+// Written in one piece (no copy of the payload: a checkpoint of 10^7 spheres
+// is gigabytes), the payload length filled in afterwards.
 std::string encode_checkpoint(const Checkpoint& c) {
-    ByteWriter payload;
-    put_record(payload, c.record);
-    put_scenario(payload, c.scenario);
-    put_state(payload, c.state);
-    ByteWriter file;
-    for (char ch : magic) file.put(ch);
-    file.put(checkpoint_format_version);
-    file.put(static_cast<std::uint64_t>(payload.bytes().size()));
-    std::string bytes = file.bytes() + payload.bytes();
-    ByteWriter checksum;
-    checksum.put(crc32(bytes));
-    return bytes + checksum.bytes();
+    ByteWriter w;
+    for (char ch : magic) w.put(ch);
+    w.put(checkpoint_format_version);
+    w.put(std::uint64_t{0});  // the payload length, below
+    put_record(w, c.record);
+    put_scenario(w, c.scenario);
+    put_state(w, c.state);
+    std::string bytes = w.take();
+    const auto length = static_cast<std::uint64_t>(bytes.size() - header_size);
+    std::memcpy(bytes.data() + header_size - sizeof length, &length, sizeof length);
+    const std::uint32_t checksum = crc32(bytes);
+    bytes.append(reinterpret_cast<const char*>(&checksum), sizeof checksum);
+    return bytes;
 }
 
 namespace {
