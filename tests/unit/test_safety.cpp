@@ -173,6 +173,20 @@ particles = [{ position = [0.05, 0.05, 0.05], velocity = [1000.0, 0.0, 0.0] }]
     EXPECT_TRUE(io::checkpoint_files(out).empty());
 }
 
+TEST_F(Safety, ARunThatTurnsNonFiniteBetweenChecksStopsWithAClearErrorInBoundedMemory) {
+    // E = 1e308: the first contact's force overflows; the neighbour list is
+    // rebuilt with NaN positions before the next health check, which made a
+    // grid of 10^18 cells (std::bad_alloc).
+    std::string text = tumble::test_support::walled_box_scenario("0.3", "gravity = [0.0, 0.0, -9.81]\n");
+    text.replace(text.find("E = 1.0e6"), 9, "E = 1e308");
+    const fs::path out = dir_ / "run";
+    const auto r = tumble("run -q " + write("stiff.toml", text).string() + " --out " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_TRUE(contains(r.output, "a particle position is not finite: the simulation blew up")) << r.output;
+    EXPECT_FALSE(fs::exists(out / "run.json"));
+    EXPECT_TRUE(io::checkpoint_files(out).empty()) << "no checkpoint, finished or not, of a broken state";
+}
+
 // ---- 3. a run is finished only when its results are written
 
 // Copies the run stopped at its last step, resumes it with a kill before the
