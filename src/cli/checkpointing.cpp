@@ -43,9 +43,8 @@ Checkpointer::Checkpointer(std::filesystem::path run_directory, CheckpointPolicy
 
 Checkpointer::Due Checkpointer::after_steps(const Simulation& sim, std::int64_t steps_done) {
     constexpr std::int64_t health_every = 100;  // steps; the check costs about one force evaluation
-    const Due d = due(sim.step_count(), steps_done);
-    if (d != Due::no || sim.step_count() - checked_at_step_ >= health_every) check_health(sim);
-    return d;
+    if (sim.step_count() - checked_at_step_ >= health_every) check_health(sim);
+    return due(sim.step_count(), steps_done);
 }
 
 void Checkpointer::check_health(const Simulation& sim) {
@@ -66,7 +65,8 @@ Checkpointer::Due Checkpointer::due(std::int64_t step, std::int64_t steps_done) 
     return policy_.every_minutes > 0.0 && minutes >= policy_.every_minutes ? Due::yes : Due::no;
 }
 
-void Checkpointer::write(const io::Checkpoint& checkpoint) {
+void Checkpointer::write(const Simulation& sim, const io::Checkpoint& checkpoint) {
+    check_health(sim);
     io::write_checkpoint(directory_, checkpoint);
     last_ = std::chrono::steady_clock::now();
 }

@@ -3,8 +3,9 @@
 // make it stop cleanly, and the blow-up check: SIGINT or SIGTERM ask the run
 // to write a checkpoint at the next step it can and exit with exit_stopped;
 // a second SIGINT exits at once. Every 100 steps, and before each
-// checkpoint, the run is checked (tumble/sim/health.hpp); an unphysical one
-// stops with BlewUp, and its last checkpoint, written before, stays good.
+// checkpoint (so at the end of every run), the run is checked
+// (tumble/sim/health.hpp); an unphysical one stops with BlewUp, and its last
+// checkpoint, written before, stays good.
 #pragma once
 
 #include <chrono>
@@ -43,11 +44,14 @@ public:
     Checkpointer(std::filesystem::path run_directory, CheckpointPolicy policy, HealthLimits limits);
 
     enum class Due { no, yes, and_stop };
-    // After some steps: checks the run's health when due (throws BlewUp) and
-    // says whether a checkpoint is due. `steps_done` counts the steps for
-    // every_steps (e.g. since rotation began).
+    // After some steps: checks the run's health every 100 steps (throws
+    // BlewUp) and says whether a checkpoint is due. `steps_done` counts the
+    // steps for every_steps (e.g. since rotation began).
     Due after_steps(const Simulation& sim, std::int64_t steps_done);
-    void write(const io::Checkpoint& checkpoint);
+    // Checks the run's health (throws BlewUp, writing nothing), then writes
+    // the checkpoint of `sim`: every checkpoint, the final one included,
+    // holds a state that passed the check.
+    void write(const Simulation& sim, const io::Checkpoint& checkpoint);
     // Prints why the run stops and how to go on; returns exit_stopped.
     int stopped(std::int64_t step) const;
     const CheckpointPolicy& policy() const { return policy_; }

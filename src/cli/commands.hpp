@@ -19,6 +19,7 @@ struct RunOptions {
     bool quiet = false;
     CheckpointPolicy checkpoints;
     int threads = 1;               // 0: every core of the machine (resolve_threads)
+    double max_memory_gib = 0.0;   // refuse a run estimated to need more; 0: half the machine's (cli/limits.hpp)
 };
 int run_command(const RunOptions& options);
 
@@ -49,6 +50,7 @@ struct DrumOptions {
     double checkpoint_revolutions = 1.0;  // revolutions between checkpoints while turning; 0: not by revolutions
     bool allow_unsafe_dt = false;  // accept a --dt above the safe maximum (then only the blow-up check guards the run)
     int threads = 1;   // 0: every core of the machine (resolve_threads)
+    double max_memory_gib = 0.0;  // refuse a run estimated to need more; 0: half the machine's (cli/limits.hpp)
 };
 int drum_command(const DrumOptions& options);
 

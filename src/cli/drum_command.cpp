@@ -12,6 +12,7 @@
 
 #include "cli/checkpointing.hpp"
 #include "cli/commands.hpp"
+#include "cli/limits.hpp"
 #include "cli/progress.hpp"
 #include "io/drum_output.hpp"
 #include "io/output.hpp"
@@ -208,7 +209,6 @@ private:
                 return due;
             }
         }
-        if (steps_ % sample_every_ != 0) sample();  // always end with the final state
         progress.finish();
         plan_.info.wall_seconds += progress.elapsed_seconds();
         return Checkpointer::Due::no;
@@ -223,7 +223,11 @@ private:
 
     int finish() {
         io::DrumRunInfo& info = plan_.info;
-        checkpoint(true, 0.0);
+        // The run is finished only when its results are written: a checkpoint
+        // of the final state first (a resume from it writes the results
+        // again), then the results, then the checkpoint that says "finished".
+        checkpoint(false, 0.0);
+        if (steps_ % sample_every_ != 0) sample();  // always end with the final state
         const double updates = static_cast<double>(sim_.particles().free_count()) * static_cast<double>(steps_);
         info.grain_updates_per_second = info.wall_seconds > 0.0 ? updates / info.wall_seconds : 0.0;
         io::write_drum_run_info(dir_ / "drum_run.toml", info);
@@ -231,6 +235,7 @@ private:
             fmt::print("rotation simulated in {:.1f} s: {:.3g} grain updates/s ({:.1f} s per revolution)\n\n",
                        info.wall_seconds, info.grain_updates_per_second, info.wall_seconds / info.revolutions);
         const std::string summary = io::analyze_drum_run(dir_);
+        checkpoint(true, 0.0);
         if (talk()) fmt::print("{}\nwritten to {}\n", summary, dir_.string());
         // The figures are a convenience: a machine without matplotlib still
         // has every number in the run directory.
@@ -249,7 +254,7 @@ private:
         c.record.set("finished", std::int64_t{finished});
         c.record.set("snapshot_times", snapshots_ ? snapshots_->times() : std::vector<double>{});
         io::record_file_lengths(c.record, dir_, {"time_series.csv", "drum_series.csv", "profiles.csv"});
-        checkpoints_.write(c);
+        checkpoints_.write(sim_, c);
     }
 
     Simulation& sim_;
@@ -274,12 +279,16 @@ int drum_command(const DrumOptions& options) {
         fmt::print("note: Froude number {:.3g} > 1: above the critical speed the grains are held against the wall\n",
                    omega * omega * inner_radius / 9.81);
 
+    const int threads = resolve_threads(options.threads);
+    check_memory(drum_memory(s.geometry, static_cast<double>(s.grain_count()), threads),
+                 memory_limit_bytes(options.max_memory_gib), "command line");
     DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed);
     if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
     setup.scenario.model.shear = s.shear;
     setup.scenario.model.friction_normal = s.friction_normal;
     setup.scenario.time_step.allow_unsafe = options.allow_unsafe_dt;
-    Simulation sim(std::move(setup.scenario), resolve_threads(options.threads));
+    Simulation sim(std::move(setup.scenario), threads);
+    check_drum_durations(s.revolutions, omega, s.samples_per_revolution, s.settle_max_time, sim.dt());
 
     DrumPlan plan;
     io::DrumRunInfo& info = plan.info;
@@ -312,7 +321,7 @@ int drum_command(const DrumOptions& options) {
     plan.plot = options.plot;
     plan.quiet = options.quiet;
 
-    io::prepare_output_directory(s.output, options.force);
+    const io::RunLock lock = io::prepare_output_directory(s.output, options.force);
     if (!options.quiet) {
         fmt::print("tumble drum: {} mode, {} grains ({} {}, {} {}), {} wall particles, inner radius {:.4g} m, "
                    "length {:.4g} m; dt = {:.3g} s\n",
@@ -328,6 +337,15 @@ int drum_command(const DrumOptions& options) {
 int resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
     DrumPlan plan = load_plan(checkpoint.record);
     plan.quiet = quiet;
+    try {
+        check_drum_durations(plan.info.revolutions, plan.info.omega, plan.info.samples_per_revolution,
+                             plan.settle_max_time, checkpoint.state.dt);
+        if (plan.rotation_start_step < 0 || plan.rotation_start_step > checkpoint.state.step ||
+            plan.snapshots_per_revolution < 0 || plan.info.profile_bins < 2)
+            throw Error("drum.rotation_start_step, drum.snapshots_per_revolution or profile_bins out of range");
+    } catch (const Error& e) {
+        throw Error(checkpoint.record.source + ": its record does not fit its state: " + e.what());
+    }
     Simulation sim = restore_simulation(checkpoint, dir);
     if (!quiet)
         fmt::print("tumble resume: drum run at step {} (t = {:.6g} s, {})\n", sim.step_count(), sim.time(),
@@ -339,6 +357,12 @@ int resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
 }
 
 int analyze_command(const std::string& directory) {
+    const io::RunLock lock(directory);
+    // A stopped or interrupted run: its series end early, and a summary of
+    // them would look like that of a finished run (tumble sweep takes it so).
+    if (io::resumable(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0))))
+        throw Error(directory + ": the run is unfinished (its newest checkpoint is not at its end); finish it with "
+                                "tumble resume " + directory + ", which analyses it");
     fmt::print("{}", io::analyze_drum_run(directory));
     return 0;
 }

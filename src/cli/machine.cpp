@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
+#include "tumble/core/error.hpp"
 #include "tumble/core/parallel.hpp"
 
 namespace tumble::cli {
@@ -28,6 +29,10 @@ int resolve_threads(int requested) {
         fmt::print(stderr, "tumble: note: built without OpenMP (TUMBLE_OPENMP=OFF); running on 1 thread\n");
         return 1;
     }
+    if (threads > hardware_threads())
+        throw Error(fmt::format("--threads: {} is more than the {} logical cores of this machine (threads beyond "
+                                "the cores only wait for each other; 0 uses them all)",
+                                threads, hardware_threads()));
     return threads;
 }
 

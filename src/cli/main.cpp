@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The tumble command line: run, bench, drum, analyze, plot, sweep, render, resume.
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,11 +17,37 @@
 
 namespace {
 
+// A number that is finite and >= 0 (CLI::NonNegativeNumber lets NaN through).
+const CLI::Validator finite_non_negative(
+    [](std::string& text) {
+        const double v = std::strtod(text.c_str(), nullptr);
+        return std::isfinite(v) && v >= 0.0 ? std::string() : "must be a finite number >= 0, got " + text;
+    },
+    "NUMBER >= 0");
+const CLI::Validator finite_positive(
+    [](std::string& text) {
+        const double v = std::strtod(text.c_str(), nullptr);
+        return std::isfinite(v) && v > 0.0 ? std::string() : "must be a finite number > 0, got " + text;
+    },
+    "NUMBER > 0");
+// A seed that drum_run.toml can hold: 0 to 2^63 - 1, in decimal digits.
+const CLI::Validator seed_range(
+    [](std::string& text) {
+        const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        const std::string largest = "9223372036854775807";
+        const bool fits = text.size() < largest.size() || (text.size() == largest.size() && text <= largest);
+        return digits && fits ? std::string() : "must be an integer from 0 to 2^63 - 1, got " + text;
+    },
+    "0 .. 2^63 - 1");
+// CLI11 reads an empty value as the type's default: refuse it instead.
+const CLI::Validator not_empty(
+    [](std::string& text) { return text.empty() ? std::string("needs a value, got an empty one") : std::string(); }, "");
+
 // The checkpoint options that tumble run and tumble drum share.
 void add_checkpoint_options(CLI::App* command, tumble::cli::CheckpointPolicy& policy) {
     command->add_option("--checkpoint-every-minutes", policy.every_minutes,
                         "Wall-clock minutes between checkpoints (default 10; 0: not by the clock)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(finite_non_negative);
     command->add_option("--stop-at-step", policy.stop_at_step,
                         "Write a checkpoint and stop at this step (exit code 4; for batch time limits and tests)")
         ->check(CLI::PositiveNumber);
@@ -53,6 +81,8 @@ int main(int argc, char** argv) {
         ->check(CLI::NonNegativeNumber);
     const char* threads_help = "Threads of the time step (0: every core; default 1)";
     run_cmd->add_option("--threads", run.threads, threads_help)->check(CLI::NonNegativeNumber);
+    const char* memory_help = "Refuse a run estimated to need more memory than this, GiB (default: half the machine's)";
+    run_cmd->add_option("--max-memory", run.max_memory_gib, memory_help)->check(finite_positive);
 
     BenchOptions bench;
     CLI::App* bench_cmd = app.add_subcommand("bench", "Speed on the paper's dense periodic cube (SPEC-NOTES \"Speed\")");
@@ -68,8 +98,7 @@ int main(int argc, char** argv) {
     DrumOptions drum;
     std::string drum_config;
     std::optional<double> omega, rpm, froude, revolutions, length, diameter, wall_radius, dt, fill;
-    std::optional<std::size_t> grains;
-    std::optional<std::uint64_t> seed;
+    std::optional<std::int64_t> grains, seed;
     std::optional<int> samples, bins, snapshots;
     std::optional<std::string> mode, out, shear, friction_normal;
     CLI::App* drum_cmd = app.add_subcommand(
@@ -77,7 +106,8 @@ int main(int argc, char** argv) {
                 "5 rad/s, 5 revolutions; see docs/DRUM.md)");
     drum_cmd->add_option("--config", drum_config, "Drum settings file (TOML; examples/drum_*.toml)");
     drum_cmd->add_option("--mode", mode, "two-component or self");
-    auto* grains_opt = drum_cmd->add_option("--grains", grains, "Total number of grains (default 1000)");
+    auto* grains_opt = drum_cmd->add_option("--grains", grains, "Total number of grains (default 1000)")
+                           ->check(CLI::Range(std::int64_t{2}, std::int64_t{10'000'000}));
     drum_cmd->add_option("--fill", fill, "Fill fraction of the drum to aim at, instead of --grains")->excludes(grains_opt);
     auto* omega_opt = drum_cmd->add_option("--omega", omega, "Rotation speed, rad/s");
     auto* rpm_opt = drum_cmd->add_option("--rpm", rpm, "Rotation speed, revolutions per minute");
@@ -99,7 +129,7 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember(keywords(tumble::friction_normals)));
     drum_cmd->add_flag("--allow-unsafe-dt", drum.allow_unsafe_dt,
                        "Accept a --dt above the safe maximum (experts and tests; the blow-up check still stops the run)");
-    drum_cmd->add_option("--seed", seed, "Seed of the random filling");
+    drum_cmd->add_option("--seed", seed, "Seed of the random filling (0 to 2^63 - 1)")->check(seed_range);
     drum_cmd->add_option("-o,--out", out, "Run directory (default drum-out)");
     drum_cmd->add_flag("--force", drum.force, "Overwrite an earlier run in that directory");
     drum_cmd->add_flag("-q,--quiet", drum.quiet, "Print nothing but errors");
@@ -109,6 +139,9 @@ int main(int argc, char** argv) {
                          "Revolutions between checkpoints while the drum turns (default 1; 0: not by revolutions)")
         ->check(CLI::NonNegativeNumber);
     drum_cmd->add_option("--threads", drum.threads, threads_help)->check(CLI::NonNegativeNumber);
+    drum_cmd->add_option("--max-memory", drum.max_memory_gib, memory_help)->check(finite_positive);
+    for (CLI::Option* option : drum_cmd->get_options())
+        if (option->get_expected_min() > 0) option->check(not_empty);
 
     std::string resume_dir;
     bool resume_quiet = false;
@@ -161,7 +194,7 @@ int main(int argc, char** argv) {
     sweep_cmd->add_flag("--list", sweep.list, "Print the points and their state; run nothing");
     sweep_cmd->add_option("--wait-timeout", sweep.wait_timeout,
                           "Under MPI: seconds rank 0 waits for the other ranks' points (default 7 days)")
-        ->check(CLI::PositiveNumber);
+        ->check(finite_positive);
     sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "Print nothing but errors and failed points");
 
     CLI11_PARSE(app, argc, argv);
@@ -181,7 +214,7 @@ int main(int argc, char** argv) {
             if (rpm) d.speed = *rpm, d.speed_unit = SpeedUnit::rpm;
             if (froude) d.speed = *froude, d.speed_unit = SpeedUnit::froude;
             if (mode) d.mode = *mode;
-            if (grains) d.grains = *grains, d.fill_fraction = 0.0;
+            if (grains) d.grains = static_cast<std::size_t>(*grains), d.fill_fraction = 0.0;
             if (fill) d.fill_fraction = *fill;
             if (revolutions) d.revolutions = *revolutions;
             if (samples) d.samples_per_revolution = *samples;
@@ -193,7 +226,7 @@ int main(int argc, char** argv) {
             if (dt) d.dt = *dt;
             if (shear) d.shear = tumble::find_keyword(tumble::shear_models, *shear)->model;
             if (friction_normal) d.friction_normal = tumble::find_keyword(tumble::friction_normals, *friction_normal)->choice;
-            if (seed) d.seed = *seed;
+            if (seed) d.seed = static_cast<std::uint64_t>(*seed);
             if (out) d.output = *out;
             tumble::io::check_drum_settings(d, "command line");
             return drum_command(drum);

@@ -4,12 +4,16 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
+#include "cli/limits.hpp"
+#include "io/run_lock.hpp"
 #include "tumble/core/error.hpp"
 
 namespace tumble::cli {
 
 int resume_command(const std::string& directory, bool quiet) {
-    io::LoadedCheckpoint loaded = io::load_newest_checkpoint(directory);
+    const io::RunLock lock(directory);  // held until the run ends
+    io::LoadedCheckpoint loaded =
+        io::load_newest_checkpoint(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0)));
     for (const std::string& why : loaded.rejected)
         fmt::print(stderr, "tumble resume: warning: {}; using the previous checkpoint\n", why);
     const io::CheckpointRecord& record = loaded.checkpoint.record;

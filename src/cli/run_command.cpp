@@ -8,6 +8,7 @@
 
 #include "cli/checkpointing.hpp"
 #include "cli/commands.hpp"
+#include "cli/limits.hpp"
 #include "cli/progress.hpp"
 #include "io/config.hpp"
 #include "io/output.hpp"
@@ -23,7 +24,7 @@ namespace {
 
 // Steps between two samples at the given interval (s); 0 if never.
 std::int64_t every(double interval, double dt) {
-    return interval > 0.0 ? std::max<std::int64_t>(1, std::llround(interval / dt)) : 0;
+    return interval > 0.0 ? std::max<std::int64_t>(1, std::llround(std::min(interval / dt, max_steps))) : 0;
 }
 
 // What a run carries from one process to the next (kept in its checkpoints).
@@ -87,12 +88,16 @@ public:
             }
         }
         progress.finish();
+        // The run is finished only when its results are written: a checkpoint
+        // of the final state first (a resume from it writes the results
+        // again), then the results, then the checkpoint that says "finished".
+        checkpoint(false, progress.elapsed_seconds());
         if (!plan_.sample_every || plan_.steps % plan_.sample_every != 0) series_.write(sim_.observe());  // the final state
         const double seconds = plan_.wall_seconds + progress.elapsed_seconds();
-        checkpoint(true, progress.elapsed_seconds());
         io::write_run_json(dir_ / "run.json", sim_,
                            {plan_.scenario_file, plan_.seed, plan_.duration, plan_.steps, seconds,
                             sim_.particles().size(), sim_.particles().free_count()});
+        checkpoint(true, progress.elapsed_seconds());
         if (talk)
             fmt::print("done in {:.1f} s ({:.3g} particle updates/s); output in {}\n", seconds,
                        seconds > 0 ? static_cast<double>(sim_.particles().free_count()) * plan_.steps / seconds : 0.0,
@@ -117,7 +122,7 @@ private:
         c.record.set("finished", static_cast<std::int64_t>(finished));
         c.record.set("snapshot_times", snapshots_ ? snapshots_->times() : std::vector<double>{});
         io::record_file_lengths(c.record, dir_, {"time_series.csv"});
-        checkpoints_.write(c);
+        checkpoints_.write(sim_, c);
     }
 
     Simulation& sim_;
@@ -134,19 +139,22 @@ int run_command(const RunOptions& options) {
     // Everything is read and checked before anything is written.
     io::RunConfig config = io::load_run_config(options.scenario_file);
     if (!options.output_directory.empty()) config.output.directory = options.output_directory;
-    Simulation sim(std::move(config.scenario), resolve_threads(options.threads));
+    const int threads = resolve_threads(options.threads);
+    check_memory(scenario_memory(config.scenario, threads), memory_limit_bytes(options.max_memory_gib),
+                 options.scenario_file);
+    Simulation sim(std::move(config.scenario), threads);
     const double dt = sim.dt();
     RunPlan plan{options.scenario_file,
                  config.seed,
                  config.duration,
-                 std::llround(std::ceil(config.duration / dt - 1e-9)),
+                 step_count(config.duration, dt, options.scenario_file + ": simulation.duration"),
                  every(config.output.time_series_interval, dt),
                  every(config.output.snapshot_interval, dt),
                  0.0,
                  options.quiet};
 
     const auto& dir = config.output.directory;
-    io::prepare_output_directory(dir, options.force);
+    const io::RunLock lock = io::prepare_output_directory(dir, options.force);
     if (!options.quiet) {
         const TimeStepReport& t = sim.time_step_report();
         fmt::print("tumble run {}: {} particles ({} free), {} steps of {:.3g} s ({}; safe maximum {:.3g} s)\n",
@@ -161,6 +169,11 @@ int run_command(const RunOptions& options) {
 int resume_run(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
     RunPlan plan = load_plan(checkpoint.record);
     plan.quiet = quiet;
+    if (plan.steps != step_count(plan.duration, checkpoint.state.dt, checkpoint.record.source + ": run.duration") ||
+        plan.sample_every < 0 || plan.snapshot_every < 0 || plan.sample_every > max_steps ||
+        plan.snapshot_every > max_steps)
+        throw Error(checkpoint.record.source + ": record keys run.steps, run.sample_every or run.snapshot_every do not "
+                                               "fit its duration and time step");
     Simulation sim = restore_simulation(checkpoint, dir);
     if (!quiet)
         fmt::print("tumble resume: run of {} at step {} of {} (t = {:.6g} s)\n", plan.scenario_file, sim.step_count(),

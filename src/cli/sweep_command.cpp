@@ -6,17 +6,23 @@
 // sweep_summary.csv.
 #include "cli/sweep_command.hpp"
 #include "cli/commands.hpp"
+#include "cli/limits.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <map>
+#include <optional>
 #include <thread>
 
 #include <fmt/format.h>
 
 #include "io/checkpoint.hpp"
+#include "io/run_lock.hpp"
 #include "io/sweep.hpp"
+#include "tumble/integrate/time_step.hpp"
+#include "tumble/setup/drum.hpp"
 #include "io/toml_reader.hpp"
 #include "tumble/core/error.hpp"
 
@@ -45,6 +51,23 @@ bool point_done(const io::SweepPoint& p, const std::string& job) {
     return false;
 }
 
+// Every point checked as tumble drum will check it (step counts, samples),
+// with the time step the drum chooses for its mode, before any point runs.
+void check_points(const std::vector<io::SweepPoint>& points, const std::string& sweep_file) {
+    std::map<std::string, double> dt_of_mode;
+    const io::DrumSettings defaults;
+    for (const io::SweepPoint& p : points) {
+        if (!dt_of_mode.count(p.mode))
+            dt_of_mode[p.mode] = assess_time_step(build_drum_scenario({}, p.mode, 2, 1).scenario).dt;
+        try {
+            check_drum_durations(p.revolutions, p.omega, p.samples_per_revolution, defaults.settle_max_time,
+                                 dt_of_mode[p.mode]);
+        } catch (const Error& e) {
+            throw Error(sweep_file + ": point " + p.name + " (sweep.revolutions, and the speeds): " + e.what());
+        }
+    }
+}
+
 }  // namespace
 
 int sweep_command(const SweepOptions& o) {
@@ -52,6 +75,7 @@ int sweep_command(const SweepOptions& o) {
     const io::SweepSettings settings = io::load_sweep_settings(o.sweep_file);
     const fs::path dir = o.output_directory.empty() ? settings.output : fs::path(o.output_directory);
     const std::vector<io::SweepPoint> points = io::expand_sweep(settings, dir);
+    check_points(points, o.sweep_file);
     const io::RankInfo rank = io::detect_rank();
     const std::string who = rank.under_mpi() ? fmt::format("[rank {}/{}] ", rank.rank, rank.size) : std::string();
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
@@ -67,8 +91,13 @@ int sweep_command(const SweepOptions& o) {
     }
 
     std::error_code ec;
-    fs::create_directories(dir / "points", ec);
+    fs::create_directories(dir, ec);
     if (ec) throw Error(dir.string() + ": cannot create the sweep directory: " + ec.message());
+    // Under MPI, rank 0 holds the sweep directory's lock; each point's run holds its own.
+    std::optional<io::RunLock> lock;
+    if (rank.rank == 0) lock.emplace(dir);
+    fs::create_directories(dir / "points", ec);
+    if (ec) throw Error((dir / "points").string() + ": cannot create the folder: " + ec.message());
     if (rank.rank == 0) {
         std::ofstream copy(dir / "sweep.toml", std::ios::trunc);  // what was asked, for the record
         copy << "# copy of " << o.sweep_file << " as last run by tumble sweep\n"
@@ -87,7 +116,7 @@ int sweep_command(const SweepOptions& o) {
             ++skipped;
             continue;
         }
-        const bool resume = s != io::PointState::pending && io::resumable(p.directory);
+        const bool resume = s != io::PointState::pending && io::resumable(p.directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0)));
         if (s != io::PointState::pending && !o.quiet)
             fmt::print("{}{}: {} before; {}\n", who, p.name, io::to_string(s),
                        resume ? "resuming it from its newest checkpoint" : "running it again from the start");
@@ -100,6 +129,7 @@ int sweep_command(const SweepOptions& o) {
         fmt::print("{}tumble sweep: {} points in {} ({} for this rank: {} finished before, {} to run, {} at once)\n",
                    who, points.size(), dir.string(), mine.size(), skipped, todo.size(), jobs);
 
+    install_stop_signals();  // SIGINT, SIGTERM: the running points checkpoint and stop
     const auto start = Clock::now();
     std::size_t done = 0, failed_here = 0;
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
@@ -112,6 +142,10 @@ int sweep_command(const SweepOptions& o) {
             ++done;
             const io::SweepPoint& p = points[job.point];
             const bool ok = out.exit_code == 0 && io::point_state(p.directory) == io::PointState::finished;
+            if (out.exit_code == exit_stopped && stop_signalled()) {
+                fmt::print(stderr, "{}stopped {} with a checkpoint (resumed by the next sweep)\n", who, p.name);
+                return;
+            }
             if (!ok) {
                 ++failed_here;
                 io::write_failure_marker(p.directory, out.exit_code, rank.job);
@@ -124,7 +158,14 @@ int sweep_command(const SweepOptions& o) {
                 fmt::print("{}{} {} in {} [{}/{}; elapsed {}, ETA {}]\n", who, ok ? "done  " : "failed", p.name,
                            duration(out.seconds), done, todo.size(), duration(t), duration(eta));
             }
-        });
+        },
+        stop_signalled);
+    if (stop_signalled()) {
+        fmt::print(stderr, "{}tumble sweep: stopped by a signal; the running points wrote checkpoints. Continue "
+                           "with the same command: tumble sweep {} -o {}\n",
+                   who, o.sweep_file, dir.string());
+        return exit_stopped;
+    }
 
     if (rank.rank != 0) {
         // Exit code 0 even if points failed: mpirun would kill rank 0 before

@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "tumble/core/error.hpp"
@@ -42,6 +43,7 @@ public:
         bytes_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
     }
     const std::string& bytes() const { return bytes_; }
+    std::string take() { return std::move(bytes_); }
 
 private:
     std::string bytes_;

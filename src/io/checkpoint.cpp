@@ -1,7 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "io/checkpoint.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
 #include <limits>
 
 #include <fmt/format.h>
@@ -211,33 +217,46 @@ template const std::int64_t& CheckpointRecord::get<std::int64_t>(const std::stri
 template const std::string& CheckpointRecord::get<std::string>(const std::string&, const char*) const;
 template const std::vector<double>& CheckpointRecord::get<std::vector<double>>(const std::string&, const char*) const;
 
+// Written in one piece (no copy of the payload: a checkpoint of 10^7 spheres
+// is gigabytes), the payload length filled in afterwards.
 std::string encode_checkpoint(const Checkpoint& c) {
-    ByteWriter payload;
-    put_record(payload, c.record);
-    put_scenario(payload, c.scenario);
-    put_state(payload, c.state);
-    ByteWriter file;
-    for (char ch : magic) file.put(ch);
-    file.put(checkpoint_format_version);
-    file.put(static_cast<std::uint64_t>(payload.bytes().size()));
-    std::string bytes = file.bytes() + payload.bytes();
-    ByteWriter checksum;
-    checksum.put(crc32(bytes));
-    return bytes + checksum.bytes();
+    ByteWriter w;
+    for (char ch : magic) w.put(ch);
+    w.put(checkpoint_format_version);
+    w.put(std::uint64_t{0});  // the payload length, below
+    put_record(w, c.record);
+    put_scenario(w, c.scenario);
+    put_state(w, c.state);
+    std::string bytes = w.take();
+    const auto length = static_cast<std::uint64_t>(bytes.size() - header_size);
+    std::memcpy(bytes.data() + header_size - sizeof length, &length, sizeof length);
+    const std::uint32_t checksum = crc32(bytes);
+    bytes.append(reinterpret_cast<const char*>(&checksum), sizeof checksum);
+    return bytes;
 }
 
-Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
-    ByteReader header(bytes, name);
-    if (bytes.substr(0, magic.size()) != magic) header.fail("not a tumble checkpoint (no TUMBLECK at the start)");
+namespace {
+// Checks the header (the first header_size bytes of `head`) against the
+// size of the whole file; returns the payload length.
+std::uint64_t check_header(std::string_view head, std::uint64_t file_size, const std::string& name) {
+    ByteReader header(head, name);
+    if (head.substr(0, magic.size()) != magic) header.fail("not a tumble checkpoint (no TUMBLECK at the start)");
     for (std::size_t k = 0; k < magic.size(); ++k) header.get<char>("magic");
     const auto version = header.get<std::uint32_t>("format version");
     if (version != checkpoint_format_version)
         header.fail(fmt::format("checkpoint format version {}, this tumble reads version {}", version,
                                 checkpoint_format_version));
     const auto length = header.get<std::uint64_t>("payload length");
-    if (length != bytes.size() - std::min(bytes.size(), header_size + sizeof(std::uint32_t)))
-        header.fail(fmt::format("{} bytes, the header announces {} (truncated or damaged)", bytes.size(),
+    if (length != file_size - std::min<std::uint64_t>(file_size, header_size + sizeof(std::uint32_t)))
+        header.fail(fmt::format("{} bytes, the header announces {} (truncated or damaged)", file_size,
                                 header_size + length + sizeof(std::uint32_t)));
+    return length;
+}
+}  // namespace
+
+Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
+    const std::uint64_t length = check_header(bytes, bytes.size(), name);
+    ByteReader header(bytes, name);
     const std::string_view covered = bytes.substr(0, header_size + length);
     ByteReader trailer(bytes.substr(covered.size()), name);
     if (trailer.get<std::uint32_t>("checksum") != crc32(covered)) header.fail("checksum mismatch (damaged)");
@@ -275,13 +294,50 @@ fs::path write_checkpoint(const fs::path& run_directory, const Checkpoint& check
     return file;
 }
 
-LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory) {
+namespace {
+// The bytes of a checkpoint file: a regular file of at most max_bytes whose
+// header fits its size, checked before the file is read in.
+std::string read_checkpoint_file(const fs::path& file, std::uintmax_t max_bytes) {
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) throw Error(file.string() + ": not a regular file");
+    const std::uintmax_t size = fs::file_size(file, ec);
+    if (ec) throw Error(file.string() + ": cannot read its size: " + ec.message());
+    if (size > max_bytes)
+        throw Error(fmt::format("{}: {} bytes, more than the {} bytes a checkpoint may have here (the memory limit)",
+                                file.string(), size, max_bytes));
+    std::ifstream in(file, std::ios::binary);
+    std::string head(header_size, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    check_header(head, size, file.string());
+    return read_text_file(file, static_cast<std::size_t>(size));
+}
+
+// Why the output files are shorter than when the checkpoint was written
+// (a power cut loses what was not yet on the disk), or empty.
+std::string recorded_lengths_problem(const CheckpointRecord& record, const fs::path& directory) {
+    for (const auto& [key, value] : record.values()) {
+        if (key.rfind("file:", 0) != 0) continue;
+        const fs::path file = directory / key.substr(5);
+        const std::int64_t length = record.integer(key);
+        std::error_code ec;
+        const auto size = fs::file_size(file, ec);
+        if (ec || length < 0 || size < static_cast<std::uintmax_t>(length))
+            return file.string() + " is shorter than when the checkpoint was written (" + std::to_string(length) +
+                   " bytes)";
+    }
+    return {};
+}
+}  // namespace
+
+LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory, std::uintmax_t max_bytes) {
     LoadedCheckpoint loaded;
     const std::vector<fs::path> files = checkpoint_files(run_directory);
     for (auto file = files.rbegin(); file != files.rend(); ++file) {
         try {
-            const std::string bytes = read_text_file(*file, std::numeric_limits<std::size_t>::max());
-            loaded.checkpoint = decode_checkpoint(bytes, file->string());
+            loaded.checkpoint = decode_checkpoint(read_checkpoint_file(*file, max_bytes), file->string());
+            if (const std::string why = recorded_lengths_problem(loaded.checkpoint.record, run_directory); !why.empty())
+                throw Error(file->string() + ": " + why);
             loaded.file = *file;
             return loaded;
         } catch (const Error& e) {
@@ -293,9 +349,9 @@ LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory) {
     throw Error(run_directory.string() + ": cannot resume: " + reason);
 }
 
-bool resumable(const fs::path& run_directory) {
+bool resumable(const fs::path& run_directory, std::uintmax_t max_bytes) {
     try {
-        return load_newest_checkpoint(run_directory).checkpoint.record.integer("finished") == 0;
+        return load_newest_checkpoint(run_directory, max_bytes).checkpoint.record.integer("finished") == 0;
     } catch (const Error&) {
         return false;
     }
@@ -303,22 +359,30 @@ bool resumable(const fs::path& run_directory) {
 
 void record_file_lengths(CheckpointRecord& record, const fs::path& directory, std::initializer_list<const char*> names) {
     for (const char* name : names) {
+        const fs::path file = directory / name;
         std::error_code ec;
-        const auto size = fs::file_size(directory / name, ec);
-        if (!ec) record.set(std::string("file:") + name, static_cast<std::int64_t>(size));
+        const auto size = fs::file_size(file, ec);
+        if (ec) continue;
+        // On the disk before the checkpoint that counts on it.
+        const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd < 0 || ::fsync(fd) != 0) {
+            const std::string why = std::strerror(errno);
+            if (fd >= 0) ::close(fd);
+            throw Error(file.string() + ": flushing to disk failed: " + why);
+        }
+        ::close(fd);
+        record.set(std::string("file:") + name, static_cast<std::int64_t>(size));
     }
 }
 
 void truncate_to_recorded_lengths(const CheckpointRecord& record, const fs::path& directory) {
+    if (const std::string why = recorded_lengths_problem(record, directory); !why.empty())
+        throw Error(why + "; cannot resume");
     for (const auto& [key, value] : record.values()) {
         if (key.rfind("file:", 0) != 0) continue;
         const fs::path file = directory / key.substr(5);
         const std::int64_t length = record.integer(key);
         std::error_code ec;
-        const auto size = fs::file_size(file, ec);
-        if (ec || length < 0 || size < static_cast<std::uintmax_t>(length))
-            throw Error(file.string() + ": shorter than when the checkpoint was written (" + std::to_string(length) +
-                        " bytes); cannot resume");
         fs::resize_file(file, static_cast<std::uintmax_t>(length), ec);
         if (ec) throw Error(file.string() + ": cannot cut back to " + std::to_string(length) + " bytes: " + ec.message());
     }

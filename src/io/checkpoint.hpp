@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
+#include <limits>
 #include <map>
 #include <string>
 #include <string_view>
@@ -75,21 +76,25 @@ std::vector<std::filesystem::path> checkpoint_files(const std::filesystem::path&
 // (disk full, no permission), with no partial file left under a valid name.
 std::filesystem::path write_checkpoint(const std::filesystem::path& run_directory, const Checkpoint& checkpoint);
 
-// The newest checkpoint that reads back intact; `rejected` gets a message for
-// each newer one that did not (damaged, truncated). tumble::Error if none.
+// The newest checkpoint that reads back intact and whose output files are at
+// least as long as it recorded; `rejected` gets a message for each newer one
+// that did not (damaged, truncated, not a regular file, over max_bytes, its
+// output files cut short by a crash). tumble::Error if none.
 struct LoadedCheckpoint {
     Checkpoint checkpoint;
     std::filesystem::path file;
     std::vector<std::string> rejected;
 };
-LoadedCheckpoint load_newest_checkpoint(const std::filesystem::path& run_directory);
+LoadedCheckpoint load_newest_checkpoint(const std::filesystem::path& run_directory,
+                                        std::uintmax_t max_bytes = std::numeric_limits<std::uintmax_t>::max());
 
 // True if the run stopped before its end and has an intact checkpoint to go
 // on from (its record's "finished" is 0).
-bool resumable(const std::filesystem::path& run_directory);
+bool resumable(const std::filesystem::path& run_directory,
+               std::uintmax_t max_bytes = std::numeric_limits<std::uintmax_t>::max());
 
-// Output files: keep the length of each (that exists) under "file:NAME", and
-// cut each file back to its recorded length when resuming, so that what the
+// Output files: flush each (that exists) to the disk and keep its length under
+// "file:NAME", and cut each file back to its recorded length when resuming, so that what the
 // interrupted run wrote after the checkpoint is written again, identically.
 void record_file_lengths(CheckpointRecord& record, const std::filesystem::path& directory,
                          std::initializer_list<const char*> names);

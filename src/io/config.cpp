@@ -457,7 +457,13 @@ private:
         const fs::path given = r_.string(n, fkey);
         const fs::path file = given.is_absolute() ? given : base_dir_ / given;
         std::error_code ec;
-        if (!fs::is_regular_file(file, ec)) r_.fail(fkey, "no such file: " + file.string(), &n);
+        if (!fs::exists(file, ec)) r_.fail(fkey, "no such file: " + file.string(), &n);
+        if (!fs::is_regular_file(file, ec))
+            r_.fail(fkey, "not a regular file (a device, a folder or a link to one): " + file.string(), &n);
+        if (fs::file_size(file, ec) > max_input_file_bytes)
+            r_.fail(fkey, fmt::format("{}: larger than {} MiB: not an input file of tumble", file.string(),
+                                      max_input_file_bytes >> 20),
+                    &n);
         CsvDefaults defaults;
         defaults.material = d.material;
         defaults.motion = d.motion;

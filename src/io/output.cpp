@@ -5,6 +5,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
+#include <csignal>
+#include <cstdlib>
 #include <cerrno>
 #include <cstring>
 #include <numeric>
@@ -37,6 +40,20 @@ namespace {
 }
 }  // namespace
 
+namespace {
+// A test hook (tests/unit/test_resume.cpp): with TUMBLE_TEST_KILL_AT_RENAME=N
+// in the environment, the process kills itself (SIGKILL) just before its Nth
+// rename of a file into place, as a power cut or kill -9 at that moment would.
+void kill_point_for_tests() {
+    static const long kill_at = [] {
+        const char* n = std::getenv("TUMBLE_TEST_KILL_AT_RENAME");
+        return n ? std::atol(n) : 0L;
+    }();
+    static std::atomic<long> renames{0};
+    if (kill_at > 0 && ++renames == kill_at) ::raise(SIGKILL);
+}
+}  // namespace
+
 void write_file_atomically(const fs::path& file, std::string_view bytes) {
     const fs::path temporary = file.string() + ".tmp";
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -61,6 +78,7 @@ void write_file_atomically(const fs::path& file, std::string_view bytes) {
         errno = saved;
         fail_with_errno(temporary, "closing");
     }
+    kill_point_for_tests();
     if (::rename(temporary.c_str(), file.c_str()) != 0) {
         const int saved = errno;
         ::unlink(temporary.c_str());
@@ -120,16 +138,31 @@ fs::path write_snapshot(const fs::path& directory, int number, const Simulation&
     return file;
 }
 
-void prepare_output_directory(const fs::path& directory, bool overwrite) {
+const char* const run_files[14] = {"summary.json",   "summary.txt",      "profile_comparison.csv",
+                                   "depth_mobility.csv", "run.json",     "drum_run.toml",
+                                   "time_series.csv", "drum_series.csv",  "profiles.csv",
+                                   "particles.pvd",   "contacts.pvd",     "snapshots",
+                                   "checkpoints",     "figures"};
+
+RunLock prepare_output_directory(const fs::path& directory, bool overwrite) {
     std::error_code ec;
-    if (fs::exists(directory / "time_series.csv", ec) && !overwrite)
-        throw Error(directory.string() + ": holds the output of an earlier run; choose another directory or pass --force");
-    if (overwrite) {
-        fs::remove_all(directory / "snapshots", ec);
-        fs::remove_all(directory / "checkpoints", ec);
-    }
+    const bool written_by_tumble = fs::exists(directory / run_lock_file, ec);
     fs::create_directories(directory, ec);
     if (ec) throw Error(directory.string() + ": cannot create the output directory: " + ec.message());
+    RunLock lock(directory);
+    if (fs::exists(directory / "time_series.csv", ec) && !overwrite)
+        throw Error(directory.string() + ": holds the output of an earlier run; choose another directory or pass --force");
+    if (!written_by_tumble)
+        for (const char* name : {"time_series.csv", "snapshots", "checkpoints"})
+            if (fs::exists(directory / name, ec))
+                throw Error((directory / name).string() + ": exists, but tumble did not write " + directory.string() +
+                            " (it has no " + run_lock_file + "); choose another directory");
+    if (overwrite)
+        for (const char* name : run_files) {
+            fs::remove_all(directory / name, ec);
+            if (ec) throw Error((directory / name).string() + ": cannot remove the earlier run's file: " + ec.message());
+        }
+    return lock;
 }
 
 void write_run_json(const fs::path& file, const Simulation& sim, const RunSummary& s) {

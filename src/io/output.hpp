@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "io/run_lock.hpp"
 #include "tumble/sim/simulation.hpp"
 
 namespace tumble::io {
@@ -47,9 +48,16 @@ private:
 // Writes snapshots/NNNNNN.csv (NNNNNN = the sample number) and returns its path.
 std::filesystem::path write_snapshot(const std::filesystem::path& directory, int number, const Simulation& sim);
 
-// Creates the output directory. Refuses (tumble::Error) one that already holds
-// a run, unless `overwrite` (which also removes its snapshots and checkpoints).
-void prepare_output_directory(const std::filesystem::path& directory, bool overwrite);
+// The files and folders a run writes into its directory (tumble run, tumble
+// drum and the analysis), summary.json first.
+extern const char* const run_files[14];
+
+// Creates the output directory and locks it for this process (RunLock).
+// Refuses (tumble::Error) one that already holds a run, unless `overwrite`:
+// then the earlier run's files (run_files) are removed before anything new is
+// written. Only a directory that tumble wrote before (it holds the lock file)
+// is cleared; one with its own snapshots/ or checkpoints/ is refused.
+RunLock prepare_output_directory(const std::filesystem::path& directory, bool overwrite);
 
 struct RunSummary {
     std::string scenario_file;

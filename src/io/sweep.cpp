@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -301,7 +302,8 @@ fs::path self_executable() {
 
 std::vector<PointOutcome> run_jobs(const std::vector<PointJob>& jobs, unsigned parallel,
                                    const std::function<void(const PointJob&)>& on_start,
-                                   const std::function<void(const PointJob&, const PointOutcome&)>& on_finish) {
+                                   const std::function<void(const PointJob&, const PointOutcome&)>& on_finish,
+                                   const std::function<bool()>& stop) {
     using Clock = std::chrono::steady_clock;
     struct Running {
         std::size_t job;
@@ -317,8 +319,13 @@ std::vector<PointOutcome> run_jobs(const std::vector<PointJob>& jobs, unsigned p
         outcomes.push_back(o);
         if (on_finish) on_finish(jobs[job], o);
     };
-    while (next < jobs.size() || !running.empty()) {
-        while (next < jobs.size() && running.size() < parallel) {
+    bool stopping = false;
+    while ((next < jobs.size() && !stopping) || !running.empty()) {
+        if (!stopping && stop && stop()) {
+            stopping = true;
+            for (const Running& r : running) ::kill(r.pid, SIGTERM);
+        }
+        while (!stopping && next < jobs.size() && running.size() < parallel) {
             const PointJob& job = jobs[next];
             if (on_start) on_start(job);
             const auto start = Clock::now();

@@ -142,11 +142,14 @@ struct PointOutcome {
 };
 
 // Runs `jobs` with up to `parallel` at once, in order. `on_start(job)` and
-// `on_finish(job, outcome)` are called from the calling thread. Returns the
+// `on_finish(job, outcome)` are called from the calling thread. Once
+// `stop()` returns true, no job is started and each running one is sent
+// SIGTERM (a drum writes a checkpoint and stops) and waited for. Returns the
 // outcomes in the order the jobs finished.
 std::vector<PointOutcome> run_jobs(const std::vector<PointJob>& jobs, unsigned parallel,
                                    const std::function<void(const PointJob&)>& on_start,
-                                   const std::function<void(const PointJob&, const PointOutcome&)>& on_finish);
+                                   const std::function<void(const PointJob&, const PointOutcome&)>& on_finish,
+                                   const std::function<bool()>& stop = {});
 
 // ---------------------------------------------------------------- JSON
 

@@ -4,6 +4,7 @@
 // JSON reader and the aggregation into sweep.csv / sweep_summary.csv. The
 // last test runs the real command end to end.
 #include <gtest/gtest.h>
+#include <signal.h>
 
 #include "test_support.hpp"
 
@@ -601,13 +602,13 @@ TEST_F(Sweep, EndToEndTinySweep) {
     EXPECT_TRUE(fs::exists(out / "points" / "self_omega5.000_seed2" / "summary.json"));
     EXPECT_EQ(slurp(out / "sweep.csv").substr(0, 200), first.substr(0, 200));  // header and first row unchanged
 
-    // A failing point (its time_series.csv cannot be written) is reported
-    // with its log, the others are kept, the exit code is non-zero; once
-    // the cause is gone, the next run redoes it.
+    // A failing point (its lock file cannot be opened) is reported with its
+    // log, the others are kept, the exit code is non-zero; once the cause is
+    // gone, the next run redoes it.
     const fs::path broken = out / "points" / "self_omega3.000_seed1";
     fs::remove(broken / "summary.json");
-    fs::remove(broken / "time_series.csv");
-    fs::create_directories(broken / "time_series.csv");
+    fs::remove(broken / ".tumble.lock");
+    fs::create_directories(broken / ".tumble.lock");
     r = run(bin + " sweep " + file + " -o " + out.string());
     EXPECT_NE(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("FAILED self_omega3.000_seed1"), std::string::npos) << r.output;
@@ -618,7 +619,8 @@ TEST_F(Sweep, EndToEndTinySweep) {
     ASSERT_EQ(after.size(), 5u);
     EXPECT_EQ(row_map(after, 1)["status"], "failed");
     EXPECT_EQ(row_map(after, 2)["status"], "finished");
-    fs::remove(broken / "time_series.csv");
+    fs::remove(broken / ".tumble.lock");
+    std::ofstream(broken / ".tumble.lock").put('\n');
     r = run(bin + " sweep " + file + " -o " + out.string());
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("self_omega3.000_seed1: failed before"), std::string::npos) << r.output;
@@ -703,9 +705,10 @@ TEST_F(Sweep, KilledHalfWayAndRestartedGivesTheUninterruptedTable) {
     while (!fs::exists(first_point) && std::chrono::steady_clock::now() < deadline)
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
     std::this_thread::sleep_for(std::chrono::seconds(1));
-    const std::string pid = slurp(pid_file);
-    ASSERT_FALSE(pid.empty());
-    ASSERT_EQ(run("kill -9 -- -" + pid).exit_code, 0) << "the sweep ended before it could be killed";
+    const pid_t group = std::stoi(slurp(pid_file));
+    ASSERT_EQ(::kill(-group, SIGKILL), 0) << "the sweep ended before it could be killed";
+    for (int k = 0; k < 1000 && ::kill(-group, 0) == 0; ++k)  // gone, and its locks with it
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
     ASSERT_TRUE(fs::exists(first_point));
     EXPECT_FALSE(fs::exists(killed / "points" / "self_omega5.000_seed2" / "summary.json"));
 

@@ -38,6 +38,10 @@ struct CellGrid {
                 lo[k] = std::min(lo[k], x[k]);
                 hi[k] = std::max(hi[k], x[k]);
             }
+            // NaN or Inf would make a grid of ~10^18 cells.
+            if (!std::isfinite(hi[k] - lo[k]))
+                throw Error("neighbour search: a particle position is not finite: the simulation blew up (check "
+                            "the time step and the input)");
         }
         origin = lo;
         // Periodic axes: a whole number of cells of at least one cutoff.

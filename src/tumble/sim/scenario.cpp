@@ -63,6 +63,15 @@ std::string scenario_problem(const Scenario& s) {
             const bool inside = p.position[k] >= s.domain.lo[k] && p.position[k] < s.domain.hi[k];
             if (s.domain.periodic[k] && !inside) return who + "lies outside the periodic axis " + "xyz"[k];
             if (s.domain.walls[k] && !inside) return who + "lies outside the walls along " + "xyz"[k];
+            // A sphere may be clamped between two walls closer than its
+            // diameter, but not wider than their distance (it would overlap
+            // each by more than its radius); a periodic image must not touch
+            // the sphere itself.
+            const double room = s.domain.hi[k] - s.domain.lo[k];
+            if (s.domain.periodic[k] && 2.0 * p.radius > room)
+                return who + "its diameter exceeds the periodic length along " + "xyz"[k];
+            if (s.domain.walls[k] && p.radius > room)
+                return who + "its radius exceeds the distance between the walls along " + "xyz"[k];
         }
     }
     return {};

@@ -54,7 +54,8 @@ void Simulation::step() {
 }
 
 void Simulation::set_threads(int threads) {
-    if (threads < 1) throw Error("threads: need at least 1, got " + std::to_string(threads));
+    if (threads < 1 || threads > max_threads)
+        throw Error("threads: need 1 to " + std::to_string(max_threads) + ", got " + std::to_string(threads));
     threads_ = threads;
 }
 
@@ -213,9 +214,11 @@ SimulationState Simulation::capture() const {
 
 namespace {
 
-// Reason why a captured state cannot belong to a run of a scenario with n
-// particles, or empty.
-std::string state_problem(const SimulationState& s, std::size_t n) {
+// Reason why a captured state cannot belong to a run of the scenario whose
+// particles are `fresh` (as built from it), or empty. A state is input (a
+// checkpoint file): every index, count and size is checked before use.
+std::string state_problem(const SimulationState& s, const ParticleStore& fresh) {
+    const std::size_t n = fresh.size();
     const ParticleStore& p = s.particles;
     for (std::size_t size : {p.position.size(), p.velocity.size(), p.angular_velocity.size(), p.force.size(),
                              p.torque.size(), p.radius.size(), p.inv_mass.size(), p.inv_inertia.size(), p.mass.size(),
@@ -229,6 +232,17 @@ std::string state_problem(const SimulationState& s, std::size_t n) {
         if (id < 0 || static_cast<std::size_t>(id) >= n || seen[static_cast<std::size_t>(id)])
             return "the particle ids are not the numbers 0 .. " + std::to_string(n - 1) + " each once";
         seen[static_cast<std::size_t>(id)] = true;
+    }
+    // What the scenario fixes for each particle must be as it says.
+    std::vector<std::size_t> by_id(n);
+    for (std::size_t i = 0; i < n; ++i) by_id[static_cast<std::size_t>(fresh.id[i])] = i;
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = by_id[static_cast<std::size_t>(p.id[k])];
+        if (p.material[k] != fresh.material[i] || p.motion[k] != fresh.motion[i] || p.tag[k] != fresh.tag[i] ||
+            p.radius[k] != fresh.radius[i] || p.mass[k] != fresh.mass[i] || p.inv_mass[k] != fresh.inv_mass[i] ||
+            p.inv_inertia[k] != fresh.inv_inertia[i])
+            return "particle " + std::to_string(p.id[k]) +
+                   " differs from the scenario's in its material, motion, tag, radius or mass";
     }
     const PairList& pairs = s.neighbors.pairs;
     const std::size_t n_pairs = pairs.size();
@@ -248,7 +262,7 @@ std::string state_problem(const SimulationState& s, std::size_t n) {
 }  // namespace
 
 void Simulation::restore(SimulationState state) {
-    std::string why = state_problem(state, particles_.size());
+    std::string why = state_problem(state, particles_);
     if (why.empty() && state.dt != dt_) {
         std::ostringstream text;
         text.precision(17);

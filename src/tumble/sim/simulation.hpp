@@ -47,11 +47,12 @@ public:
     // `threads` as in set_threads().
     explicit Simulation(Scenario scenario, int threads = 1);
 
-    // Threads for the time step (>= 1; tumble::Error otherwise). The same
+    // Threads for the time step (1 to max_threads; tumble::Error otherwise). The same
     // thread count gives the same numbers bitwise on every run; another count
     // sums each particle's contact forces in another order, so results differ
     // by round-off (docs/BENCHMARKS.md "Threads"). Without OpenMP the work is
     // still split this way but runs on one thread.
+    static constexpr int max_threads = 1024;
     void set_threads(int threads);
     int threads() const { return threads_; }
 

@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: MIT
+#include "cli/limits.hpp"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "tumble/core/constants.hpp"
+#include "tumble/core/error.hpp"
+
+namespace tumble::cli {
+
+namespace {
+
+// The peak comes with a checkpoint: the simulation (about 700 bytes per
+// sphere with its 3 list pairs, docs/BENCHMARKS.md "Memory per sphere"),
+// its captured copy and the encoded file, each with the neighbour list (50
+// bytes per further pair) and the flat walls' contact history (240); 48 per
+// extra thread. Measured: 1.85 kB per sphere for lattices of 97336 and
+// 343000 spheres (maximum resident size of tumble run, 2026-11-30).
+constexpr double bytes_per_sphere = 1900.0, bytes_per_pair = 3 * 50.0, bytes_per_thread = 48.0,
+                 bytes_for_walls = 3 * 240.0;
+
+double estimate(double spheres, double pairs_per_sphere, bool walls, int threads) {
+    return spheres * (bytes_per_sphere + bytes_per_pair * std::max(0.0, pairs_per_sphere - 3.0) +
+                      bytes_per_thread * (threads - 1) + (walls ? bytes_for_walls : 0.0));
+}
+
+std::string gib(double bytes) { return fmt::format("{:.3g} GiB", bytes / (1024.0 * 1024.0 * 1024.0)); }
+
+}  // namespace
+
+std::int64_t step_count(double seconds, double dt, const std::string& what) {
+    const double steps = std::ceil(seconds / dt - 1e-9);
+    if (!(steps <= max_steps))
+        throw Error(fmt::format("{}: {:g} s in steps of {:g} s is {:g} steps, more than any run can take (at most "
+                                "{:g}); check the duration, the time step and the materials that set it",
+                                what, seconds, dt, steps, max_steps));
+    return steps > 0.0 ? static_cast<std::int64_t>(steps) : 0;
+}
+
+void check_drum_durations(double revolutions, double omega, int samples_per_revolution, double settle_max_time,
+                          double dt) {
+    step_count(settle_max_time, dt, "settle.max_time");
+    const double rotation = revolutions * 2.0 * pi / omega;
+    const char* what = "the rotation (--revolutions, and --omega, --rpm or --froude)";
+    const std::int64_t steps = step_count(rotation, dt, what);
+    const double sample = rotation / (revolutions * samples_per_revolution);  // s between samples
+    if (steps < 1 || !(revolutions * samples_per_revolution >= 1.0) || !(sample >= dt))
+        throw Error(fmt::format("{}: {:g} revolutions of {:g} s in steps of {:g} s (--dt) give {} steps, too few for "
+                                "a sample after the start ({} samples per revolution, --samples)",
+                                what, revolutions, rotation / revolutions, dt, steps, samples_per_revolution));
+}
+
+MemoryNeed scenario_memory(const Scenario& s, int threads) {
+    double r_min = INFINITY, r_max = 0.0;
+    for (const ParticleSpec& p : s.particles) r_min = std::min(r_min, p.radius), r_max = std::max(r_max, p.radius);
+    const double n = static_cast<double>(s.particles.size());
+    const double skin = s.neighbor.skin > 0.0 ? s.neighbor.skin : 0.2 * r_max;
+    // Pairs within reach in a dense packing (solid fraction 0.64), each stored once.
+    const double pairs = std::min(0.5 * (n - 1.0), 0.5 * 0.64 * std::pow((2.0 * r_max + skin) / r_min, 3));
+    const bool walls = s.domain.walls[0] || s.domain.walls[1] || s.domain.walls[2];
+    MemoryNeed need{estimate(n, pairs, walls, threads),
+                    fmt::format("{} spheres, {:.3g} neighbour pairs each", s.particles.size(), pairs)};
+    if (pairs > 3.0 && s.neighbor.skin > 0.0) need.driver += " (neighbor.skin)";
+    return need;
+}
+
+MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads) {
+    // As build_drum_wall lays them out, in floating point (no overflow).
+    const double s = 2.0 * g.wall_radius, Rc = 0.5 * g.diameter + g.wall_radius;
+    const double per_ring = s >= 2.0 * Rc ? 2.0 : pi / std::asin(s / (2.0 * Rc)) + 1.0;
+    const double rings = (g.length + s) / s + 2.0;
+    const double caps = 2.0 * (pi * Rc * Rc / (s * s) * 1.2 + Rc / s + 1.0);
+    const double wall = per_ring * rings + caps;
+    MemoryNeed need{estimate(grains + wall, 3.0, false, threads), ""};
+    need.driver = wall > grains ? fmt::format("the drum's wall, {:.3g} spheres (--length, --diameter, --wall-radius)", wall)
+                                : fmt::format("{:.3g} grains (--grains, --fill)", grains);
+    return need;
+}
+
+double memory_limit_bytes(double gib_limit) {
+    if (gib_limit > 0.0) return gib_limit * 1024.0 * 1024.0 * 1024.0;
+    double limit = 0.5 * static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+    rlimit address_space{};
+    if (::getrlimit(RLIMIT_AS, &address_space) == 0 && address_space.rlim_cur != RLIM_INFINITY)
+        limit = std::min(limit, static_cast<double>(address_space.rlim_cur));
+    return limit;
+}
+
+void check_memory(const MemoryNeed& need, double limit_bytes, const std::string& source) {
+    if (!(need.bytes <= limit_bytes))
+        throw Error(fmt::format("{}: the run would need about {} of memory for {}, more than the limit of {} "
+                                "(--max-memory GIB; default half the machine's memory)",
+                                source, gib(need.bytes), need.driver, gib(limit_bytes)));
+}
+
+}  // namespace tumble::cli

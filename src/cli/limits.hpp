@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+// What a run may ask of the machine, checked from its inputs before any
+// work is done (docs/CHECKPOINTS.md, "Limits"): the number of steps, the
+// threads, and the memory, each refused with the value and the option or
+// key that drives it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "tumble/setup/drum.hpp"
+#include "tumble/sim/scenario.hpp"
+
+namespace tumble::cli {
+
+// More steps than any run can finish (10^12: days at a million steps a second).
+inline constexpr double max_steps = 1e12;
+
+// ceil(seconds / dt), the steps of an interval; tumble::Error naming `what`
+// (the option or key) if it is not a finite count of at most max_steps.
+std::int64_t step_count(double seconds, double dt, const std::string& what);
+
+// A drum's settling and rotation in steps of dt: each a count a run can
+// finish, and the rotation long enough for a sample after its start (the
+// analysis needs two). For a new run, a checkpoint's plan and a sweep's
+// points alike; tumble::Error naming the options otherwise.
+void check_drum_durations(double revolutions, double omega, int samples_per_revolution, double settle_max_time,
+                          double dt);
+
+// The memory a run will need, estimated from its inputs
+// (docs/BENCHMARKS.md, "Memory per sphere"), and what drives it.
+struct MemoryNeed {
+    double bytes = 0.0;
+    std::string driver;  // the option or key that makes it large, with the count
+};
+MemoryNeed scenario_memory(const Scenario& s, int threads);
+MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads);
+
+// The limit: `gib` GiB if > 0, else half the machine's memory (or the
+// process's address-space limit, ulimit -v, if lower).
+double memory_limit_bytes(double gib);
+// tumble::Error "SOURCE: ..." with the estimate, its driver and the limit if
+// need > limit; `source` is the input file or "command line".
+void check_memory(const MemoryNeed& need, double limit_bytes, const std::string& source);
+
+}  // namespace tumble::cli

@@ -1,0 +1,403 @@
+// SPDX-License-Identifier: MIT
+// Never silently wrong (issue 12): one process per run directory, a run is
+// checked at its end and finished only when its results are written, and
+// every input (command line, scenario, checkpoint) is checked before the
+// work. Each test reproduces one of the issue's failures and expects the
+// clear error or the uninterrupted result. tests/data/bad/run and
+// tests/data/bad/cli hold the refused inputs, one case per class.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "io/checkpoint.hpp"
+#include "io/run_lock.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace io = tumble::io;
+using tumble::test_support::read_file;
+
+// The small drum of test_resume.cpp: settles near step 7700, turns 6147
+// steps per 0.2 revolutions.
+std::string drum(const std::string& revolutions) {
+    return " drum -q --mode self --grains 20 --length 0.03 --diameter 0.03 --omega 10 --samples 50 --snapshots 20 "
+           "--no-plot --revolutions " + revolutions;
+}
+const std::string small_drum = drum("0.2");
+const char* const drum_files[] = {"time_series.csv", "drum_series.csv", "profiles.csv", "particles.pvd",
+                                  "contacts.pvd"};
+const fs::path corpus = fs::path(TUMBLE_SOURCE_DIR) / "tests" / "data" / "bad";
+
+tumble::test_support::CommandResult tumble(const std::string& arguments) {
+    return tumble::test_support::run_command(std::string(TUMBLE_BINARY) + " " + arguments);
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// The step column of the last row of a time_series.csv.
+std::string last_step(const fs::path& series) {
+    const std::string text = read_file(series);
+    const std::size_t start = text.rfind('\n', text.size() - 2) + 1;
+    const std::size_t comma = text.find(',', start);
+    return text.substr(comma + 1, text.find(',', comma + 1) - comma - 1);
+}
+
+class Safety : public tumble::test_support::ScratchTest {
+protected:
+    fs::path drum_reference(const std::string& revolutions = "0.2") {
+        const fs::path out = dir_ / "reference";
+        const auto r = tumble(drum(revolutions) + " --out " + out.string());
+        EXPECT_EQ(r.exit_code, 0) << r.output;
+        return out;
+    }
+    void expect_same_drum_output(const fs::path& a, const fs::path& b) {
+        for (const char* name : drum_files) EXPECT_EQ(read_file(a / name), read_file(b / name)) << name;
+        EXPECT_TRUE(fs::exists(b / "summary.json"));
+    }
+    fs::path walled_box(const std::string& duration = "0.02") {
+        return write("box.toml", tumble::test_support::walled_box_scenario(duration, "", "[output]\n"
+                                                                                          "time_series_interval = 0.001\n"));
+    }
+    // Starts tumble with its output in dir_/LOG; returns the pid.
+    pid_t start(const std::string& arguments, const std::string& log) {
+        const std::string command =
+            std::string("exec ") + TUMBLE_BINARY + " " + arguments + " > " + (dir_ / log).string() + " 2>&1";
+        const pid_t pid = fork();
+        if (pid == 0) {
+            execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+            _exit(127);
+        }
+        return pid;
+    }
+    static int exit_code(pid_t pid) {
+        int status = 0;
+        waitpid(pid, &status, 0);
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+    }
+    // A stopped run of the walled box and its newest checkpoint, to be altered.
+    io::Checkpoint stopped_box(const fs::path& out) {
+        const auto r = tumble("run -q " + walled_box().string() + " --out " + out.string() + " --stop-at-step 20");
+        EXPECT_EQ(r.exit_code, 4) << r.output;
+        return io::load_newest_checkpoint(out).checkpoint;
+    }
+};
+
+// ---- 1. one process per run directory
+
+TEST_F(Safety, TwoResumesAtOnceOneRefusesAndTheResultIsTheUninterruptedOne) {
+    const fs::path full = drum_reference("1");
+    const fs::path out = dir_ / "run";
+    ASSERT_EQ(tumble(drum("1") + " --out " + out.string() + " --stop-at-step 3000").exit_code, 4);
+    // The second starts when the first holds the lock (its pid is in the
+    // lock file), before it has gone far.
+    const pid_t a = start("resume -q " + out.string(), "a.log");
+    for (int k = 0; k < 2000 && read_file(out / io::run_lock_file) != std::to_string(a) + "\n"; ++k)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    const pid_t b = start("resume -q " + out.string(), "b.log");
+    const int code_a = exit_code(a), code_b = exit_code(b);
+    const std::string refused = read_file(dir_ / (code_a == 0 ? "b.log" : "a.log"));
+    EXPECT_EQ(std::min(code_a, code_b), 0);
+    EXPECT_EQ(std::max(code_a, code_b), 2) << refused;
+    EXPECT_TRUE(std::regex_search(refused, std::regex("in use by another tumble process \\(pid [0-9]+")))
+        << refused;
+    expect_same_drum_output(full, out);
+}
+
+TEST_F(Safety, EveryWritingCommandRefusesADirectoryInUseNamingTheHolder) {
+    const fs::path scenario = walled_box("0.002");
+    const fs::path out = dir_ / "run", sweep = dir_ / "sweep";
+    ASSERT_EQ(tumble("run -q " + scenario.string() + " --out " + out.string()).exit_code, 0);
+    const std::string before = read_file(out / "time_series.csv");
+    fs::create_directories(sweep);
+    const io::RunLock held(out), held_sweep(sweep);  // this test process holds both
+    const std::string holder = "in use by another tumble process (pid " + std::to_string(::getpid()) + ",";
+    for (const std::string& command :
+         {"run -q --force " + scenario.string() + " --out " + out.string(), small_drum + " --force --out " + out.string(),
+          "resume -q " + out.string(), "analyze " + out.string(),
+          "sweep -q " + std::string(TUMBLE_SOURCE_DIR) + "/examples/sweep_tiny.toml -o " + sweep.string()}) {
+        const auto r = tumble(command);
+        EXPECT_EQ(r.exit_code, 2) << command << "\n" << r.output;
+        EXPECT_TRUE(contains(r.output, holder)) << command << "\n" << r.output;
+    }
+    EXPECT_EQ(read_file(out / "time_series.csv"), before);
+    EXPECT_FALSE(fs::exists(sweep / "points"));
+}
+
+// ---- 2. checked ends
+
+TEST_F(Safety, ARunThatEndsUnphysicalBeforeTheFirstCheckIsAnError) {
+    // 1000 m/s, ten thousand times the kinetic energy the time step allows
+    // for, and fewer steps than the 100 between two checks.
+    const fs::path scenario = write("fast.toml", R"([simulation]
+duration = 0.0005
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [0.1, 0.1, 0.1]
+periodic = [true, true, true]
+[[material]]
+name = "m"
+E = 1.0e6
+G = 0.3e6
+nu = 0.25
+xi = 500.0
+eta = 500.0
+rho = 1000.0
+radius = 0.0036
+[[pair]]
+materials = ["m", "m"]
+mu = 0.1
+W = 0.2
+[[particles]]
+kind = "list"
+material = "m"
+particles = [{ position = [0.05, 0.05, 0.05], velocity = [1000.0, 0.0, 0.0] }]
+)");
+    const fs::path out = dir_ / "run";
+    const auto r = tumble("run -q " + scenario.string() + " --out " + out.string());
+    EXPECT_EQ(r.exit_code, 5) << r.output;
+    EXPECT_TRUE(contains(r.output, "the simulation blew up at step")) << r.output;
+    EXPECT_FALSE(fs::exists(out / "run.json"));
+    EXPECT_TRUE(io::checkpoint_files(out).empty());
+}
+
+TEST_F(Safety, ARunThatTurnsNonFiniteBetweenChecksStopsWithAClearErrorInBoundedMemory) {
+    // E = 1e308: the first contact's force overflows; the neighbour list is
+    // rebuilt with NaN positions before the next health check, which made a
+    // grid of 10^18 cells (std::bad_alloc).
+    std::string text = tumble::test_support::walled_box_scenario("0.3", "gravity = [0.0, 0.0, -9.81]\n");
+    text.replace(text.find("E = 1.0e6"), 9, "E = 1e308");
+    const fs::path out = dir_ / "run";
+    const auto r = tumble("run -q " + write("stiff.toml", text).string() + " --out " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_TRUE(contains(r.output, "a particle position is not finite: the simulation blew up")) << r.output;
+    EXPECT_FALSE(fs::exists(out / "run.json"));
+    EXPECT_TRUE(io::checkpoint_files(out).empty()) << "no checkpoint, finished or not, of a broken state";
+}
+
+// ---- 3. a run is finished only when its results are written
+
+// Copies the run stopped at its last step, resumes it with a kill before the
+// Nth file rename (N = 1, 2, ... until the resume gets through), resumes it
+// again, and compares with the uninterrupted run.
+void kill_at_every_rename(const fs::path& stopped, const fs::path& work,
+                          const std::function<void(const fs::path&)>& expect_finished) {
+    for (int n = 1; n < 20; ++n) {
+        fs::remove_all(work);
+        fs::copy(stopped, work, fs::copy_options::recursive);
+        const auto killed = tumble::test_support::run_command("TUMBLE_TEST_KILL_AT_RENAME=" + std::to_string(n) + " " +
+                                                              TUMBLE_BINARY + " resume -q " + work.string());
+        if (killed.exit_code == 0) {
+            EXPECT_GT(n, 2) << "the finalisation writes its results between two checkpoints";
+            expect_finished(work);
+            return;
+        }
+        EXPECT_EQ(killed.exit_code, 128 + 9) << "rename " << n << ": " << killed.output;  // SIGKILL by the hook
+        const auto resumed = tumble("resume -q " + work.string());
+        ASSERT_EQ(resumed.exit_code, 0) << "rename " << n << ": " << resumed.output;
+        expect_finished(work);
+        const auto again = tumble("resume " + work.string());
+        EXPECT_TRUE(contains(again.output, "has finished")) << again.output;
+    }
+    ADD_FAILURE() << "the finalisation never got through";
+}
+
+TEST_F(Safety, AScenarioRunKilledAtEveryWriteOfItsEndResumesToTheUninterruptedResult) {
+    const fs::path scenario = walled_box();
+    const fs::path full = dir_ / "full", stopped = dir_ / "stopped";
+    ASSERT_EQ(tumble("run -q " + scenario.string() + " --out " + full.string()).exit_code, 0);
+    const std::string end = last_step(full / "time_series.csv");
+    ASSERT_EQ(tumble("run -q " + scenario.string() + " --out " + stopped.string() + " --stop-at-step " + end).exit_code,
+              4);
+    kill_at_every_rename(stopped, dir_ / "work", [&](const fs::path& run) {
+        EXPECT_EQ(read_file(run / "time_series.csv"), read_file(full / "time_series.csv"));
+        EXPECT_TRUE(contains(read_file(run / "run.json"), "\"steps\": " + end));
+    });
+}
+
+TEST_F(Safety, ADrumRunKilledAtEveryWriteOfItsEndResumesToTheUninterruptedResult) {
+    const fs::path full = drum_reference(), stopped = dir_ / "stopped";
+    const std::string end = last_step(full / "time_series.csv");
+    ASSERT_EQ(tumble(small_drum + " --out " + stopped.string() + " --stop-at-step " + end).exit_code, 4);
+    kill_at_every_rename(stopped, dir_ / "work", [&](const fs::path& run) { expect_same_drum_output(full, run); });
+}
+
+// ---- 4. a checkpoint is input
+
+TEST_F(Safety, ACheckpointWithValidChecksumButImpossibleContentsIsRefused) {
+    struct Case {
+        const char* what;
+        std::function<void(io::Checkpoint&)> alter;
+        const char* expect;
+    };
+    const std::vector<Case> cases = {
+        {"material -7", [](io::Checkpoint& c) { c.state.particles.material[0] = -7; }, "differs from the scenario's"},
+        {"material 1000", [](io::Checkpoint& c) { c.state.particles.material[3] = 1000; }, "differs from the scenario's"},
+        {"motion 77", [](io::Checkpoint& c) { c.state.particles.motion[1] = 77; }, "differs from the scenario's"},
+        {"steps 2^62", [](io::Checkpoint& c) { c.record.set("run.steps", std::int64_t{1} << 62); }, "run.steps"},
+        {"threads", [](io::Checkpoint& c) { c.record.set("threads", std::int64_t{100000}); }, "threads: need 1 to"},
+    };
+    for (const Case& k : cases) {
+        const fs::path out = dir_ / "run";
+        fs::remove_all(out);
+        io::Checkpoint c = stopped_box(out);
+        const std::string series = read_file(out / "time_series.csv");
+        k.alter(c);
+        io::write_checkpoint(out, c);
+        const auto r = tumble("resume -q " + out.string());
+        EXPECT_EQ(r.exit_code, 2) << k.what << ": " << r.output;
+        EXPECT_TRUE(contains(r.output, k.expect)) << k.what << ": " << r.output;
+        EXPECT_EQ(read_file(out / "time_series.csv"), series) << k.what;
+    }
+}
+
+// ---- 5. bounded memory: a checkpoint that is no file or too large is skipped
+
+TEST_F(Safety, ACheckpointLinkedToDevZeroOrSparseAndHugeFallsBackToThePreviousOne) {
+    const fs::path scenario = walled_box();
+    const fs::path full = dir_ / "full";
+    ASSERT_EQ(tumble("run -q " + scenario.string() + " --out " + full.string()).exit_code, 0);
+    for (const char* kind : {"dev-zero", "sparse"}) {
+        const fs::path out = dir_ / kind;
+        ASSERT_EQ(tumble("run -q " + scenario.string() + " --out " + out.string() + " --stop-at-step 40").exit_code, 4);
+        const fs::path next = out / "checkpoints" / "000002.tck";
+        if (std::string(kind) == "dev-zero") {
+            fs::create_symlink("/dev/zero", next);
+        } else {
+            std::ofstream(next).put('x');
+            fs::resize_file(next, std::uintmax_t{4} << 30);
+        }
+        const auto r = tumble("resume -q " + out.string());
+        ASSERT_EQ(r.exit_code, 0) << kind << ": " << r.output;
+        EXPECT_TRUE(contains(r.output, "using the previous checkpoint")) << kind << ": " << r.output;
+        EXPECT_EQ(read_file(out / "time_series.csv"), read_file(full / "time_series.csv")) << kind;
+    }
+}
+
+// ---- 6. a series cut short by a power cut: the previous checkpoint fits
+
+TEST_F(Safety, ASeriesShorterThanTheNewestCheckpointSaysFallsBackToThePreviousOne) {
+    const fs::path scenario = walled_box();
+    const fs::path full = dir_ / "full", out = dir_ / "cut";
+    ASSERT_EQ(tumble("run -q " + scenario.string() + " --out " + full.string()).exit_code, 0);
+    ASSERT_EQ(tumble("run -q " + scenario.string() + " --out " + out.string() +
+                     " --checkpoint-every-steps 300 --stop-at-step 700")
+                  .exit_code,
+              4);
+    const auto files = io::checkpoint_files(out);
+    ASSERT_EQ(files.size(), 2u);
+    const auto older = io::decode_checkpoint(read_file(files[0]), files[0].string()).record.integer("file:time_series.csv");
+    fs::resize_file(out / "time_series.csv", static_cast<std::uintmax_t>(older) + 10);
+    const auto r = tumble("resume -q " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "shorter than when the checkpoint was written")) << r.output;
+    EXPECT_EQ(read_file(out / "time_series.csv"), read_file(full / "time_series.csv"));
+}
+
+// ---- 7. --force removes only what tumble wrote, and the old results first
+
+TEST_F(Safety, ForceKeepsAUsersOwnFoldersAndRemovesTheOldResultsFirst) {
+    const fs::path mine = dir_ / "mine";
+    write("mine/snapshots/notes.txt", "my own notes\n");
+    write("mine/checkpoints/keep.txt", "mine\n");
+    const auto refused = tumble("run -q --force " + walled_box().string() + " --out " + mine.string());
+    EXPECT_EQ(refused.exit_code, 2);
+    EXPECT_TRUE(contains(refused.output, "snapshots: exists, but tumble did not write")) << refused.output;
+    EXPECT_EQ(read_file(mine / "snapshots" / "notes.txt"), "my own notes\n");
+    EXPECT_TRUE(fs::exists(mine / "checkpoints" / "keep.txt"));
+
+    const fs::path out = drum_reference();
+    ASSERT_TRUE(fs::exists(out / "summary.json"));
+    const auto again = tumble(small_drum + " --force --out " + out.string() + " --stop-at-step 100");
+    EXPECT_EQ(again.exit_code, 4) << again.output;
+    EXPECT_FALSE(fs::exists(out / "summary.json"));
+    EXPECT_FALSE(fs::exists(out / "drum_series.csv"));
+}
+
+// ---- 8. an unfinished run is not analysed as if it were finished
+
+TEST_F(Safety, AnalyzeRefusesAnUnfinishedRun) {
+    const fs::path out = dir_ / "run";
+    ASSERT_EQ(tumble(small_drum + " --out " + out.string() + " --stop-at-step 9000").exit_code, 4);
+    const auto r = tumble("analyze " + out.string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.output, "the run is unfinished")) << r.output;
+    EXPECT_FALSE(fs::exists(out / "summary.json"));
+}
+
+// ---- 9. a sweep stopped by a signal (the messages are in the corpora, and
+// the particle files in test_bad_input.cpp)
+
+TEST_F(Safety, ASweepStoppedBySigtermStopsItsRunningPointWithACheckpoint) {
+    const fs::path sweep = dir_ / "sweep";
+    const pid_t pid = start("sweep " + std::string(TUMBLE_SOURCE_DIR) + "/examples/sweep_tiny.toml -j 1 -o " +
+                                sweep.string(),
+                            "sweep.log");
+    const fs::path point = sweep / "points" / "self_omega3.000_seed1";
+    for (int k = 0; k < 6000 && !fs::exists(point / "time_series.csv"); ++k)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    ::kill(pid, SIGTERM);
+    EXPECT_EQ(exit_code(pid), 4);
+    const std::string log = read_file(dir_ / "sweep.log");
+    EXPECT_TRUE(contains(log, "stopped self_omega3.000_seed1 with a checkpoint")) << log;
+    EXPECT_NO_THROW(io::RunLock{point}) << "the point's run has ended";
+    EXPECT_TRUE(io::resumable(point));
+}
+
+// ---- 2, 3, 4, 5, 9: the corpus of refused runs and command lines
+
+// Each file says on its first line "# expect: TEXT"; nothing may be written.
+std::string expected_part(const fs::path& file) {
+    std::ifstream in(file);
+    std::string first;
+    std::getline(in, first);
+    return first.substr(std::string("# expect: ").size());
+}
+
+TEST_F(Safety, EveryRunOfTheCorpusIsRefusedBeforeAnythingIsWritten) {
+    std::size_t files = 0;
+    for (const auto& entry : fs::directory_iterator(corpus / "run")) {
+        ++files;
+        const fs::path out = dir_ / entry.path().stem();
+        const auto r = tumble("run -q " + entry.path().string() + " --out " + out.string());
+        EXPECT_EQ(r.exit_code, 2) << entry.path() << "\n" << r.output;
+        EXPECT_TRUE(contains(r.output, entry.path().string() + ": ")) << r.output;
+        EXPECT_TRUE(contains(r.output, expected_part(entry.path()))) << r.output;
+        EXPECT_FALSE(fs::exists(out)) << entry.path();
+    }
+    EXPECT_GE(files, 4u);
+}
+
+TEST_F(Safety, EveryCommandLineOfTheCorpusIsRefusedBeforeAnythingIsWritten) {
+    std::size_t files = 0;
+    for (const auto& entry : fs::directory_iterator(corpus / "cli")) {
+        ++files;
+        std::ifstream in(entry.path());
+        std::string expect, arguments;
+        std::getline(in, expect);
+        std::getline(in, arguments);
+        const fs::path out = dir_ / entry.path().stem();
+        arguments = std::regex_replace(arguments, std::regex("OUT"), out.string());
+        arguments = std::regex_replace(arguments, std::regex("SOURCE"), TUMBLE_SOURCE_DIR);
+        const auto r = tumble(arguments);
+        EXPECT_NE(r.exit_code, 0) << entry.path() << "\n" << r.output;
+        EXPECT_TRUE(contains(r.output, expected_part(entry.path()))) << entry.path() << "\n" << r.output;
+        EXPECT_FALSE(fs::exists(out)) << entry.path();
+    }
+    EXPECT_GE(files, 10u);
+}
+
+}  // namespace
