@@ -58,7 +58,7 @@ void check_points(const std::vector<io::SweepPoint>& points, const std::string& 
     const io::DrumSettings defaults;
     for (const io::SweepPoint& p : points) {
         if (!dt_of_mode.count(p.mode))
-            dt_of_mode[p.mode] = assess_time_step(build_drum_scenario({}, p.mode, 2, 1).scenario).dt;
+            dt_of_mode[p.mode] = assess_time_step(build_drum_scenario({}, p.mode, p.grains, p.seed).scenario).dt;
         try {
             check_drum_durations(p.revolutions, p.omega, p.samples_per_revolution, defaults.settle_max_time,
                                  dt_of_mode[p.mode]);
