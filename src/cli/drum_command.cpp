@@ -332,8 +332,8 @@ int resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
     return loop.run(checkpoint.record.numbers("snapshot_times"));
 }
 
-int analyze_command(const std::string& directory) {
-    fmt::print("{}", io::analyze_drum_run(directory));
+int analyze_command(const std::string& directory, double first_revolution) {
+    fmt::print("{}", io::analyze_drum_run(directory, {first_revolution}));
     return 0;
 }
 

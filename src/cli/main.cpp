@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
     std::optional<std::string> mode, out;
     CLI::App* drum_cmd = app.add_subcommand(
         "drum", "The paper's rotating-drum diffusion experiment (defaults: the paper's set-up, two components, "
-                "5 rad/s, 5 revolutions; see docs/DRUM.md)");
+                "5 rad/s, 12 revolutions; see docs/DRUM.md)");
     drum_cmd->add_option("--config", drum_config, "Drum settings file (TOML; examples/drum_*.toml)");
     drum_cmd->add_option("--mode", mode, "two-component or self");
     auto* grains_opt = drum_cmd->add_option("--grains", grains, "Total number of grains (default 1000)");
@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("--revolutions", revolutions, "Revolutions after settling");
     drum_cmd->add_option("--samples", samples, "Samples per revolution (default 20)");
     drum_cmd->add_option("--bins", bins, "Axial bins of the concentration profile (default 12)");
-    drum_cmd->add_option("--snapshots", snapshots, "Particle snapshots per revolution (default 4; 0: none)");
+    drum_cmd->add_option("--snapshots", snapshots, "Particle snapshots per revolution (default 8; 0: none)");
     drum_cmd->add_option("--length", length, "Inner length of the drum, m (default 0.12)");
     drum_cmd->add_option("--diameter", diameter, "Inner diameter of the drum, m (default 0.08)");
     drum_cmd->add_option("--wall-radius", wall_radius, "Radius of the wall particles, m (default 0.003)");
@@ -105,6 +105,9 @@ int main(int argc, char** argv) {
     std::string analyze_dir;
     CLI::App* analyze_cmd = app.add_subcommand("analyze", "Analyse a drum run directory again (summary.json, summary.txt)");
     analyze_cmd->add_option("directory", analyze_dir, "Run directory of tumble drum")->required();
+    double first_revolution = 1.0;
+    analyze_cmd->add_option("--first-revolution", first_revolution,
+                            "Leave the start-up out of the fits: use revolutions N >= this (default 1)");
 
     std::vector<std::string> plot_inputs;
     std::string plot_out;
@@ -152,7 +155,7 @@ int main(int argc, char** argv) {
     try {
         if (run_cmd->parsed()) return run_command(run);
         if (bench_cmd->parsed()) return bench_command(bench);
-        if (analyze_cmd->parsed()) return analyze_command(analyze_dir);
+        if (analyze_cmd->parsed()) return analyze_command(analyze_dir, first_revolution);
         if (plot_cmd->parsed()) return plot_command(plot_compare ? "compare" : "run", plot_inputs, plot_out);
         if (sweep_cmd->parsed()) return sweep_command(sweep);
         if (render_cmd->parsed()) return render_command(render);

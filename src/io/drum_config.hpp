@@ -26,10 +26,10 @@ struct DrumSettings {
     std::uint64_t seed = 1;
     double speed = 5.0;                // in `speed_unit`
     SpeedUnit speed_unit = SpeedUnit::rad_per_s;
-    double revolutions = 5.0;          // after the bed has settled
+    double revolutions = 12.0;         // after the bed has settled (the MSD estimator needs 5 blocks of 2 after the first)
     int samples_per_revolution = 20;
     int profile_bins = 12;
-    int snapshots_per_revolution = 4;  // per-particle snapshots (snapshots/NNNNNN.csv, 000000 at N = 0); 0: none
+    int snapshots_per_revolution = 8;  // per-particle snapshots (snapshots/NNNNNN.csv, 000000 at N = 0; the axial MSD needs them); 0: none
     double settle_speed = 0.01;        // m/s: settled when the rms grain speed is below this
     double settle_max_time = 3.0;      // s: give up settling (with a warning) after this
     double dt = 0.0;                   // s; 0: chosen from the materials

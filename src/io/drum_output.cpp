@@ -48,6 +48,7 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                         {"wall_seconds", info.wall_seconds},
                         {"grain_updates_per_second", info.grain_updates_per_second},
                         {"threads", info.threads},
+                        {"periodic_axis", info.periodic_axis},
                         {"component", components}};
     std::ostringstream text;
     text << "# tumble drum run: what was run (read by `tumble analyze`)\n" << t << '\n';
@@ -83,6 +84,7 @@ DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
     info.wall_seconds = num("wall_seconds");
     info.grain_updates_per_second = num("grain_updates_per_second");
     info.threads = t["threads"].value_or(1);  // absent in runs of tumble before threads
+    info.periodic_axis = t["periodic_axis"].value_or(false);  // absent before the periodic drum
     const auto entries = r.tables(t, "", "component");
     for (std::size_t i = 0; i < entries.size(); ++i) {
         const std::string p = at("component", i);
@@ -218,6 +220,15 @@ analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_
     return frame;
 }
 
+std::vector<analysis::GrainFrame> read_rotation_frames(const fs::path& dir, const DrumRunInfo& info) {
+    std::vector<analysis::GrainFrame> frames;
+    for (const fs::path& file : list_snapshot_csv(dir)) {
+        analysis::GrainFrame frame = read_snapshot_grains(file, info.settle_time, info.omega);
+        if (frame.revolutions >= -1e-9) frames.push_back(std::move(frame));  // from the start of rotation
+    }
+    return frames;
+}
+
 namespace {
 
 // Depth layers of one grain diameter; the last holds everything deeper (a
@@ -226,18 +237,11 @@ constexpr int depth_layers = 8;
 
 // The axial displacements by depth between consecutive particle snapshots
 // taken during the rotation; none without two such snapshots.
-std::optional<analysis::DepthMobility> depth_mobility_of_run(const fs::path& dir, const DrumRunInfo& info) {
-    std::optional<analysis::DepthMobility> mobility;
-    std::optional<analysis::GrainFrame> before;
-    for (const fs::path& file : list_snapshot_csv(dir)) {
-        analysis::GrainFrame after = read_snapshot_grains(file, info.settle_time, info.omega);
-        if (after.revolutions < -1e-9) continue;  // before the rotation
-        if (before) {
-            if (!mobility) mobility.emplace(static_cast<int>(info.components.size()), depth_layers);
-            mobility->add(*before, after, info.inner_radius);
-        }
-        before = std::move(after);
-    }
+std::optional<analysis::DepthMobility> depth_mobility_of_run(const std::vector<analysis::GrainFrame>& frames,
+                                                             const DrumRunInfo& info) {
+    if (frames.size() < 2) return std::nullopt;
+    analysis::DepthMobility mobility(static_cast<int>(info.components.size()), depth_layers);
+    for (std::size_t k = 1; k < frames.size(); ++k) mobility.add(frames[k - 1], frames[k], info.inner_radius);
     return mobility;
 }
 
@@ -258,9 +262,113 @@ void write_depth_mobility(const fs::path& file, const analysis::DepthMobility& m
     check_written(out, file);
 }
 
+
+// The MSD's blocks: a fifth of the rotation after the start-up (so 5
+// blocks), at least 2 revolutions (the lags fitted run from 1 revolution to
+// the block's length), at most 4, in whole frame spacings.
+analysis::MsdOptions msd_options_of_run(const std::vector<analysis::GrainFrame>& frames, const DrumRunInfo& info,
+                                        const AnalyzeOptions& options) {
+    analysis::MsdOptions o;
+    o.half_length = info.periodic_axis ? INFINITY : 0.5 * info.inner_length;
+    if (frames.size() < 2) return o;
+    const double h = frames[1].revolutions - frames[0].revolutions;
+    const double span = frames.back().revolutions - std::max(options.first_revolution, frames.front().revolutions);
+    o.block = std::floor(std::clamp(span / 5.0, 2.0, 4.0) / h + 1e-9) * h;
+    return o;
+}
+
+// The frames after the start-up.
+std::vector<analysis::GrainFrame> steady_frames(const std::vector<analysis::GrainFrame>& frames, double first) {
+    std::vector<analysis::GrainFrame> out;
+    for (const analysis::GrainFrame& f : frames)
+        if (f.revolutions >= first - 1e-9) out.push_back(f);
+    return out;
+}
+
+// Per component, the MSD's blocks (none without two frames after the start-up).
+std::vector<analysis::MsdBlocks> axial_msd_of_run(const std::vector<analysis::GrainFrame>& frames,
+                                                  const DrumRunInfo& info, const AnalyzeOptions& options) {
+    const std::vector<analysis::GrainFrame> steady = steady_frames(frames, options.first_revolution);
+    std::vector<analysis::MsdBlocks> out;
+    if (steady.size() < 3) return out;
+    const analysis::MsdOptions o = msd_options_of_run(frames, info, options);
+    for (std::size_t c = 0; c < info.components.size(); ++c)
+        out.push_back(analysis::axial_msd_blocks(
+            analysis::axial_tracks(steady, static_cast<std::int32_t>(c), info.periodic_axis ? info.inner_length : 0.0),
+            o));
+    return out;
+}
+
+// axial_msd.csv: the MSD against lag from one snapshot spacing to 4
+// revolutions (or the rotation after the start-up), every window pooled.
+void write_axial_msd(const fs::path& file, const std::vector<analysis::GrainFrame>& frames, const DrumRunInfo& info,
+                     const AnalyzeOptions& options) {
+    const std::vector<analysis::GrainFrame> steady = steady_frames(frames, options.first_revolution);
+    if (steady.size() < 3) return;
+    analysis::MsdOptions o = msd_options_of_run(frames, info, options);
+    o.block = std::min(4.0, steady.back().revolutions - steady.front().revolutions);
+    std::vector<std::vector<double>> msd;
+    std::vector<double> lag;
+    for (std::size_t c = 0; c < info.components.size(); ++c) {
+        const analysis::MsdBlocks b = analysis::axial_msd_blocks(
+            analysis::axial_tracks(steady, static_cast<std::int32_t>(c), info.periodic_axis ? info.inner_length : 0.0),
+            o);
+        lag = b.lag;
+        msd.push_back(analysis::weighted_msd(b, std::vector<double>(b.blocks(), 1.0)));
+    }
+    std::ofstream out = open_for_writing(file);
+    out << "lag";
+    for (const DrumComponent& c : info.components) out << ",msd_" << c.name;
+    out << '\n';
+    for (std::size_t l = 0; l < lag.size(); ++l) {
+        out << lag[l];
+        for (const auto& m : msd) out << ',' << m[l];
+        out << '\n';
+    }
+    check_written(out, file);
+}
+
+analysis::HoggFit fit_hogg_or_note(const std::vector<double>& N, const std::vector<double>& z, double L,
+                                   const analysis::HoggFitOptions& o) {
+    return analysis::fit_hogg(N.empty() ? std::vector<double>{0.0} : N, z.empty() ? std::vector<double>{0.0} : z, L,
+                              o);
+}
+
+std::string describe_hogg(const analysis::HoggFit& f) {
+    if (!f.determined)
+        return fmt::format("D not determined: {}{}", f.note,
+                           std::isfinite(f.D) ? fmt::format(" (best estimate {:.3e} m^2/rev)", f.D) : "");
+    return fmt::format("D = {:.3e} +- {:.1e} m^2/rev (95 %: [{:.3e}, {:.3e}]), fitted <z>(0) = {:.4g} m", f.D,
+                       f.D_stderr, f.D - 1.96 * f.D_stderr, f.D + 1.96 * f.D_stderr, f.amplitude);
+}
+
+toml::table msd_json(const analysis::MsdEstimate& m) {
+    return toml::table{{"D", m.D},
+                       {"D_lo", m.interval.lo},
+                       {"D_hi", m.interval.hi},
+                       {"determined", m.determined},
+                       {"note", m.note},
+                       {"fit_lag_lo", m.fit_lo},
+                       {"fit_lag_hi", m.fit_hi},
+                       {"blocks", static_cast<std::int64_t>(m.blocks)}};
+}
+
+// The 95 % interval of a Hogg fit: +-1.96 standard errors.
+toml::table hogg_json(const analysis::HoggFit& f, double first_revolution) {
+    return toml::table{{"D", f.D},
+                       {"D_stderr", f.D_stderr},
+                       {"D_lo", f.D - 1.96 * f.D_stderr},
+                       {"D_hi", f.D + 1.96 * f.D_stderr},
+                       {"amplitude", f.amplitude},
+                       {"first_revolution", first_revolution},
+                       {"determined", f.determined},
+                       {"note", f.note},
+                       {"points", static_cast<std::int64_t>(f.points)}};
+}
+
 }  // namespace
 
-std::string analyze_drum_run(const fs::path& dir) {
+std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options) {
     const DrumRunInfo info = read_drum_run_info(dir / "drum_run.toml");
     const std::size_t n_components = info.components.size();
     const DrumSeries series = read_drum_series(dir / "drum_series.csv", n_components);
@@ -281,8 +389,14 @@ std::string analyze_drum_run(const fs::path& dir) {
                         info.settled ? fmt::format("settled in {:.3g} s", info.settle_time)
                                      : fmt::format("NOT settled after {:.3g} s", info.settle_time));
 
+    const std::vector<analysis::GrainFrame> frames = read_rotation_frames(dir, info);
+    const std::vector<analysis::MsdBlocks> msd_blocks = axial_msd_of_run(frames, info, options);
+    const analysis::MsdOptions msd_opts = msd_options_of_run(frames, info, options);
+    write_axial_msd(dir / "axial_msd.csv", frames, info, options);
+
     toml::array components_json;
     std::vector<analysis::DiffusionFit> fits;
+    std::vector<analysis::MsdEstimate> msd;
     for (std::size_t c = 0; c < n_components; ++c) {
         const DrumComponent& comp = info.components[c];
         // The Hogg solution describes the component that starts at z > 0;
@@ -293,19 +407,60 @@ std::string analyze_drum_run(const fs::path& dir) {
                 N.push_back(series.revolutions[k]);
                 z.push_back(comp.start_side * series.mean_z[c][k]);
             }
-        const analysis::DiffusionFit fit = analysis::fit_diffusion(N, z, L);
-        fits.push_back(fit);
         text << fmt::format("  {} ({} grains, started at z {} 0): <z>(0) = {:.4g} m (L/4 = {:.4g} m)\n", comp.name,
                             comp.grains, comp.start_side > 0 ? ">" : "<", z.empty() ? 0.0 : z.front(), L / 4.0);
-        if (fit.determined)
-            text << fmt::format("    D = {:.3e} +- {:.1e} m^2/rev (full Hogg series); one-term: {:.3e} +- {:.1e}\n",
-                                fit.D, fit.D_stderr, fit.one_term_D, fit.one_term_D_stderr);
+
+        // The grains' axial MSD: the headline D.
+        msd.push_back(msd_blocks.empty() ? analysis::MsdEstimate{}
+                                         : analysis::estimate_axial_diffusion({msd_blocks[c]}, msd_opts));
+        analysis::MsdEstimate& m = msd.back();
+        if (msd_blocks.empty()) m.note = "no particle snapshots during the rotation (tumble drum --snapshots)";
+        if (m.determined)
+            text << fmt::format("    D = {:.3e} m^2/rev, 95 % interval [{:.3e}, {:.3e}] (grains' axial MSD, lags "
+                                "{:.3g}-{:.3g} rev, {} blocks)\n",
+                                m.D, m.interval.lo, m.interval.hi, m.fit_lo, m.fit_hi, m.blocks);
         else
-            text << fmt::format("    D not determined: {} (best estimate {:.3e} m^2/rev)\n", fit.note, fit.D);
+            text << fmt::format("    D (grains' axial MSD) not determined: {}{}\n", m.note,
+                                std::isfinite(m.D) ? fmt::format(" (best estimate {:.3e} m^2/rev)", m.D) : "");
+
+        // Hogg with the amplitude free and the start-up left out.
+        const analysis::HoggFit hogg = fit_hogg_or_note(N, z, L, {options.first_revolution, false, -1.0});
+        text << "    Hogg, amplitude free, N >= " << fmt::format("{:.3g}", options.first_revolution) << ": "
+             << describe_hogg(hogg) << "\n";
+
+        // Drift: with D held at the grains' MSD value, what is left of the
+        // motion of <z> is a drift of the component's centre.
+        analysis::HoggFit drift;
+        std::string verdict = "undetermined";
+        if (m.determined) {
+            drift = fit_hogg_or_note(N, z, L, {options.first_revolution, true, m.D});
+            if (drift.points >= 10) {
+                verdict = std::abs(drift.drift) > 3.0 * drift.drift_stderr ? "segregating" : "diffusing";
+                text << fmt::format("    drift of <z> beyond diffusion at the MSD's D: {:.2e} +- {:.1e} m/rev ({:.1f} "
+                                    "standard errors): {}\n",
+                                    drift.drift, drift.drift_stderr, std::abs(drift.drift) / drift.drift_stderr,
+                                    verdict == "segregating" ? "segregating, not diffusing: its <z> moves by more "
+                                                               "than the grains' diffusion explains"
+                                                             : "consistent with diffusion alone");
+            }
+        }
+
+        const analysis::DiffusionFit fit = analysis::fit_diffusion(N, z, L);
+        fits.push_back(fit);
+        if (fit.determined)
+            text << fmt::format("    old estimator, Hogg pinned at L/4 from N = 0: D = {:.3e} +- {:.1e} m^2/rev; "
+                                "one-term: {:.3e} +- {:.1e}\n",
+                                fit.D, fit.D_stderr, fit.one_term_D, fit.one_term_D_stderr);
         components_json.push_back(toml::table{{"name", comp.name},
                                               {"grains", static_cast<std::int64_t>(comp.grains)},
                                               {"mass", comp.mass},
                                               {"start_side", comp.start_side},
+                                              {"msd", msd_json(m)},
+                                              {"hogg_free", hogg_json(hogg, options.first_revolution)},
+                                              {"drift", toml::table{{"velocity", drift.drift},
+                                                                    {"velocity_stderr", drift.drift_stderr},
+                                                                    {"D_held", m.D},
+                                                                    {"verdict", verdict}}},
                                               {"D", fit.D},
                                               {"D_stderr", fit.D_stderr},
                                               {"D_one_term", fit.one_term_D},
@@ -368,40 +523,96 @@ std::string analyze_drum_run(const fs::path& dir) {
     }
 
     // Concentration profiles of the component that started at z > 0 against
-    // the Hogg solution with its fitted D, at a quarter, half and all of the run.
+    // the Hogg solution with the grains' MSD D (the pinned Hogg D where the
+    // MSD has none), at a quarter, half and all of the run; and the profile
+    // collapse: while the mixing front is far from the caps, C(z, N) depends
+    // on z / sqrt(D N) alone, so the rms of C - C_Hogg over every sample
+    // after the start-up is one number for how well single-grain diffusion
+    // accounts for the spreading of the profile.
     std::size_t right = 0;
     for (std::size_t c = 0; c < n_components; ++c)
         if (info.components[c].start_side > 0) right = c;
-    if (!profiles.revolutions.empty()) {
+    if (!profiles.revolutions.empty() && !info.periodic_axis) {
+        const bool from_msd = msd[right].determined;
+        const double D_profile = from_msd ? msd[right].D : fits[right].D;
+        const std::string D_name = from_msd ? "the grains' MSD D" : "the pinned Hogg D";
         std::ofstream out = open_for_writing(dir / "profile_comparison.csv");
         out << "revolutions,z,measured,hogg\n";
         toml::array rms_json;
-        const double last = profiles.revolutions.back();
-        for (double fraction : {0.25, 0.5, 1.0}) {
-            const std::size_t k = nearest_sample(profiles.revolutions, fraction * last);
-            const double N = profiles.revolutions[k];
+        auto rms_at = [&](std::size_t k, bool write) {
             double sum = 0.0;
             std::size_t n = 0;
             for (std::size_t b = 0; b < profiles.bin_centre.size(); ++b) {
                 const double measured = profiles.concentration[k][right][b];
-                if (measured < 0.0) continue;  // empty bin
-                const double hogg = analysis::hogg_concentration(profiles.bin_centre[b], fits[right].D, N, L);
-                out << fmt::format("{},{},{},{}\n", N, profiles.bin_centre[b], measured, hogg);
+                if (measured < 0.0 || !std::isfinite(D_profile)) continue;  // empty bin
+                const double hogg =
+                    analysis::hogg_concentration(profiles.bin_centre[b], D_profile, profiles.revolutions[k], L);
+                if (write) out << fmt::format("{},{},{},{}\n", profiles.revolutions[k], profiles.bin_centre[b], measured, hogg);
                 sum += (measured - hogg) * (measured - hogg);
                 ++n;
             }
+            return std::pair{sum, n};
+        };
+        const double last = profiles.revolutions.back();
+        for (double fraction : {0.25, 0.5, 1.0}) {
+            const std::size_t k = nearest_sample(profiles.revolutions, fraction * last);
+            const auto [sum, n] = rms_at(k, true);
             const double rms = n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
-            rms_json.push_back(toml::table{{"revolutions", N}, {"rms_difference", rms}});
-            text << fmt::format("  C(z, N = {:.3g}) of {} against Hogg with its D: rms difference {:.3f}\n", N,
-                                info.components[right].name, rms);
+            rms_json.push_back(toml::table{{"revolutions", profiles.revolutions[k]}, {"rms_difference", rms}});
+            text << fmt::format("  C(z, N = {:.3g}) of {} against Hogg with {}: rms difference {:.3f}\n",
+                                profiles.revolutions[k], info.components[right].name, D_name, rms);
         }
         check_written(out, dir / "profile_comparison.csv");
         summary.insert("profile_comparison", rms_json);
+        double sum = 0.0;
+        std::size_t n = 0;
+        for (std::size_t k = 0; k < profiles.revolutions.size(); ++k)
+            if (profiles.revolutions[k] >= options.first_revolution) {
+                const auto [s_k, n_k] = rms_at(k, false);
+                sum += s_k, n += n_k;
+            }
+        const double collapse = n ? std::sqrt(sum / static_cast<double>(n)) : std::nan("");
+        text << fmt::format("  profile collapse of {} (C against z / sqrt(N), N >= {:.3g}) on Hogg with {}: rms {:.3f}\n",
+                            info.components[right].name, options.first_revolution, D_name, collapse);
+        summary.insert("profile_collapse", toml::table{{"component", info.components[right].name},
+                                                       {"D", D_profile},
+                                                       {"D_source", from_msd ? "msd" : "hogg_pinned"},
+                                                       {"rms", collapse}});
+    }
+
+    // Self mode: the two halves are one experiment (identical grains, the
+    // bed's centre fixed), so one Hogg fit of (<z>_right - <z>_left) / 2.
+    // Two components: the drift of <z>_1 + <z>_2, zero if the two kinds only
+    // exchange places; a steady drift means bed volume moves along the axis.
+    if (n_components == 2) {
+        std::vector<double> N, half_difference, sum;
+        const std::size_t left = 1 - right;
+        for (std::size_t k = 0; k < series.revolutions.size(); ++k)
+            if (series.revolutions[k] >= 0.0) {
+                N.push_back(series.revolutions[k]);
+                half_difference.push_back(0.5 * (series.mean_z[right][k] - series.mean_z[left][k]));
+                sum.push_back(series.mean_z[0][k] + series.mean_z[1][k]);
+            }
+        if (info.mode == "self") {
+            const analysis::HoggFit both = fit_hogg_or_note(N, half_difference, L, {options.first_revolution, false, -1.0});
+            text << "  both halves, (<z>_right - <z>_left)/2, Hogg amplitude free: " << describe_hogg(both) << "\n";
+            summary.insert("self_combined_hogg", hogg_json(both, options.first_revolution));
+        } else {
+            std::vector<double> Ns, sums;
+            for (std::size_t k = 0; k < N.size(); ++k)
+                if (N[k] >= options.first_revolution) Ns.push_back(N[k]), sums.push_back(sum[k]);
+            if (Ns.size() >= 3) {
+                const analysis::LineFit f = analysis::fit_line(Ns, sums);
+                text << fmt::format("  drift of <z>_1 + <z>_2 (bed volume moving along the axis): {:.2e} +- {:.1e} m/rev\n",
+                                    f.slope, f.slope_stderr);
+                summary.insert("sum_drift", toml::table{{"velocity", f.slope}, {"velocity_stderr", f.slope_stderr}});
+            }
+        }
     }
 
     // Where the axial motion happens: by depth below the free surface, from
     // the particle snapshots (tumble drum --snapshots).
-    if (const auto mobility = depth_mobility_of_run(dir, info)) {
+    if (const auto mobility = depth_mobility_of_run(frames, info)) {
         write_depth_mobility(dir / "depth_mobility.csv", *mobility, info);
         toml::array layers_json;
         text << fmt::format("  axial motion by depth below the free surface ({} snapshot intervals; "

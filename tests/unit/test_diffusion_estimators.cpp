@@ -57,8 +57,9 @@ AxialTracks walkers(std::size_t grains, double revolutions, double h, double hal
 }
 
 // 2000 walkers over 40 revolutions, sampled 8 times a revolution, in a
-// 12 cm bed with reflecting caps. The pooled MSD's slope has a statistical
-// error of about 1 % here, so 3 % tests the estimator, not the noise.
+// 12 cm bed with reflecting caps; the default blocks of 2 revolutions and
+// lags of 1-2 revolutions. The pooled MSD's slope has a statistical error
+// of about 1 % here, so 3 % tests the estimator, not the noise.
 TEST(AxialMsd, RecoversTheDiffusionCoefficientOfWalkersBetweenCaps) {
     const AxialTracks t = walkers(2000, 40.0, 0.125, 0.5 * drum_L, 1);
     MsdOptions o;
@@ -68,17 +69,16 @@ TEST(AxialMsd, RecoversTheDiffusionCoefficientOfWalkersBetweenCaps) {
     EXPECT_NEAR(e.D, true_D, 0.03 * true_D);
     EXPECT_LE(e.interval.lo, e.D);
     EXPECT_GE(e.interval.hi, e.D);
-    EXPECT_EQ(e.blocks, 40u);
+    EXPECT_EQ(e.blocks, 20u);
 }
 
-// Over 2-revolution blocks the walkers feel the caps: without the exclusion
+// Over the default 2-revolution blocks the walkers feel the caps: without the exclusion
 // (margin 0) D comes out about 10 % low; with the default margin of 3
 // displacement scales the bias is gone to within the 3 % tolerance (8000
 // walkers: statistical error about 1 %).
 TEST(AxialMsd, ExcludingGrainsNearTheCapsRemovesTheirBias) {
     const AxialTracks t = walkers(8000, 40.0, 0.125, 0.5 * drum_L, 2);
     MsdOptions o;
-    o.block = 2.0;
     o.half_length = 0.5 * drum_L;
     const MsdEstimate kept = estimate_axial_diffusion({axial_msd_blocks(t, o)}, o);
     o.cap_margin = 0.0;
@@ -110,7 +110,7 @@ TEST(AxialMsd, UnwrapsAPeriodicAxis) {
 }
 
 // Coverage of the 95 % block-bootstrap interval: 300 independent data sets
-// of 100 free walkers over 20 one-revolution blocks; the interval should
+// of 100 free walkers over 20 one-revolution blocks (lags 0.5-1); the interval should
 // hold the true D in 90-98 % of them (binomial spread of the count at 95 %:
 // +-1.3 %, so the band allows for the percentile interval's known slight
 // under-coverage with 20 units).
@@ -118,6 +118,8 @@ TEST(AxialMsd, BootstrapIntervalCoversTheTrueValue) {
     int covered = 0;
     const int sets = 300;
     MsdOptions o;
+    o.block = 1.0;
+    o.fit_from = 0.5;
     for (int k = 0; k < sets; ++k) {
         const MsdEstimate e =
             estimate_axial_diffusion({axial_msd_blocks(walkers(100, 20.0, 0.125, INFINITY, 100 + k), o)}, o);

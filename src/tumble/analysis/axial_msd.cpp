@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "tumble/core/error.hpp"
 
@@ -10,7 +11,13 @@ namespace tumble::analysis {
 
 namespace {
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+std::string fmt_revolutions(double N) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.3g", N);
+    return buffer;
 }
+}  // namespace
 
 AxialTracks axial_tracks(const std::vector<GrainFrame>& frames, std::int32_t tag, double period) {
     AxialTracks t;
@@ -115,7 +122,7 @@ MsdEstimate estimate_axial_diffusion(const std::vector<MsdBlocks>& runs, const M
     e.lag = all.lag;
     e.msd = weighted_msd(all, std::vector<double>(all.blocks(), 1.0));
     e.fit_hi = all.lag.empty() ? 0.0 : all.lag.back();
-    e.fit_lo = o.fit_from * e.fit_hi;
+    e.fit_lo = o.fit_from;
     e.D = msd_line_diffusion(e.lag, e.msd, e.fit_lo, e.fit_hi);
 
     Resampler resample(bootstrap_seed);
@@ -136,8 +143,11 @@ MsdEstimate estimate_axial_diffusion(const std::vector<MsdBlocks>& runs, const M
     e.interval = percentile_interval(std::move(replicates));
 
     if (e.blocks < 4)
-        e.note = "only " + std::to_string(e.blocks) + " blocks of " + std::to_string(e.fit_hi) +
-                 " revolutions; at least 4 are needed for an interval";
+        e.note = "only " + std::to_string(e.blocks) + " blocks of " + fmt_revolutions(e.fit_hi) +
+                 " revolutions; at least 4 are needed for an interval (run longer: --revolutions)";
+    else if (!(e.fit_hi > e.fit_lo))
+        e.note = "blocks of " + fmt_revolutions(e.fit_hi) + " revolutions hold no lag beyond " +
+                 fmt_revolutions(e.fit_lo) + " to fit";
     else if (!(e.D > 0.0))
         e.note = "the MSD does not grow with the lag";
     else if (!(0.5 * (e.interval.hi - e.interval.lo) <= 0.5 * e.D))

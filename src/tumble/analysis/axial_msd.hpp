@@ -43,8 +43,10 @@ struct AxialTracks {
 AxialTracks axial_tracks(const std::vector<GrainFrame>& frames, std::int32_t tag, double period = 0.0);
 
 struct MsdOptions {
-    double block = 1.0;       // revolutions per block (rounded to whole frame spacings)
-    double fit_from = 0.5;    // fit the lags from fit_from x block to block
+    double block = 2.0;       // revolutions per block (rounded to whole frame spacings)
+    double fit_from = 1.0;    // fit the lags from fit_from to block, revolutions: in the default drum the
+                              // MSD of the small grains has a plateau at 0.5-0.9 rev (a grain buried in
+                              // the bed between two passes through the flowing layer) and is linear from 1
     double half_length = std::numeric_limits<double>::infinity();  // m: caps at z = +-half_length
     double cap_margin = 3.0;  // see above
 };

@@ -9,7 +9,8 @@ namespace tumble::analysis {
 
 std::size_t Resampler::draw(std::size_t n) {
     // floor(u n / 2^64) for a uniform 64-bit u: bias below n / 2^64.
-    return static_cast<std::size_t>((static_cast<unsigned __int128>(rng_()) * n) >> 64);
+    __extension__ using u128 = unsigned __int128;
+    return static_cast<std::size_t>((static_cast<u128>(rng_()) * n) >> 64);
 }
 
 std::vector<double> Resampler::weights(std::size_t n) {
