@@ -97,7 +97,7 @@ DrumPlan load_plan(const io::CheckpointRecord& r) {
 // grain centre outside it has passed through the wall.
 HealthLimits drum_limits(const Scenario& s) {
     HealthLimits limits = default_health_limits(s);
-    limits.bounded = {true, true, true};
+    limits.bounded = {true, true, !s.domain.periodic[2]};  // a periodic axis wraps the grains
     limits.lo = s.domain.lo;
     limits.hi = s.domain.hi;
     limits.region = "the drum";
@@ -175,7 +175,8 @@ private:
             fmt::print("{} after {:.3g} s: rms grain speed {:.3g} m/s; fill fraction {:.3f}, solid fraction {:.3f}\n",
                        info.settled ? "settled" : "warning: NOT settled", info.settle_time,
                        rms_grain_speed(sim_.particles()), info.fill_fraction, info.solid_fraction);
-        sim_.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, info.omega, {0.0, 0.0, 0.0}});
+        sim_.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0},
+                                       drum_angular_velocity(info.omega, info.spin_up_time, 0.0), {0.0, 0.0, 0.0}});
         plan_.rotating = true;
         plan_.rotation_start_step = sim_.step_count();
         io::write_drum_run_info(dir_ / "drum_run.toml", info);
@@ -197,6 +198,7 @@ private:
         const std::int64_t done = sim_.step_count() - plan_.rotation_start_step;  // > 0 after a resume
         Progress progress(steps_ - done, sim_.particles().free_count(), talk() && progress_wanted());
         for (std::int64_t k = done + 1; k <= steps_; ++k) {
+            spin_up(k);
             sim_.step();
             if (k % sample_every_ == 0) sample();
             if (snapshot_every_ && k % snapshot_every_ == 0) snapshots_->write(sim_);
@@ -212,6 +214,16 @@ private:
         progress.finish();
         plan_.info.wall_seconds += progress.elapsed_seconds();
         return Checkpointer::Due::no;
+    }
+
+    // During the spin-up the drum's angular velocity is set before each step
+    // to its value at the step's middle (so the angle turned is exact for a
+    // linear ramp), and once more at full speed when the ramp has ended.
+    void spin_up(std::int64_t k) {
+        const double ramp = plan_.info.spin_up_time, t_before = static_cast<double>(k - 1) * sim_.dt();
+        if (!(ramp > 0.0) || t_before > ramp + sim_.dt()) return;
+        const double omega = drum_angular_velocity(plan_.info.omega, ramp, t_before + 0.5 * sim_.dt());
+        sim_.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, omega, {0.0, 0.0, 0.0}});
     }
 
     void sample() {
@@ -289,6 +301,8 @@ int drum_command(const DrumOptions& options) {
     info.wall_particles = setup.wall.particles.size();
     info.inner_radius = setup.wall.inner_radius;
     info.inner_length = setup.wall.inner_length;
+    info.periodic_axis = s.geometry.periodic_axis;
+    info.spin_up_time = s.spin_up_time;
     info.dt = sim.dt();
     info.threads = sim.threads();
     info.samples_per_revolution = s.samples_per_revolution;

@@ -8,6 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/sweep_command.hpp"
+#include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 
 namespace {
@@ -80,6 +81,15 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("--length", length, "Inner length of the drum, m (default 0.12)");
     drum_cmd->add_option("--diameter", diameter, "Inner diameter of the drum, m (default 0.08)");
     drum_cmd->add_option("--wall-radius", wall_radius, "Radius of the wall particles, m (default 0.003)");
+    std::optional<double> spin_up_seconds, spin_up_revolutions;
+    auto* spin_s = drum_cmd->add_option("--spin-up", spin_up_seconds,
+                                        "Linear spin-up from rest to full speed over this many seconds (default 0)");
+    drum_cmd->add_option("--spin-up-revolutions", spin_up_revolutions,
+                         "The spin-up's length in revolutions at full speed (omega T / 2 pi)")
+        ->excludes(spin_s);
+    bool periodic_axis = false;
+    drum_cmd->add_flag("--periodic-axis", periodic_axis,
+                       "No end caps: the axis is periodic, the drum's length its period");
     drum_cmd->add_option("--dt", dt, "Time step, s (default: chosen from the materials)");
     drum_cmd->add_flag("--allow-unsafe-dt", drum.allow_unsafe_dt,
                        "Accept a --dt above the safe maximum (experts and tests; the blow-up check still stops the run)");
@@ -177,6 +187,9 @@ int main(int argc, char** argv) {
             if (length) d.geometry.length = *length;
             if (diameter) d.geometry.diameter = *diameter;
             if (wall_radius) d.geometry.wall_radius = *wall_radius;
+            if (periodic_axis) d.geometry.periodic_axis = true;
+            if (spin_up_seconds) d.spin_up_time = *spin_up_seconds;
+            if (spin_up_revolutions) d.spin_up_time = 2.0 * tumble::pi * *spin_up_revolutions / d.omega();
             if (dt) d.dt = *dt;
             if (seed) d.seed = *seed;
             if (out) d.output = *out;

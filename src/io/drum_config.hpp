@@ -26,6 +26,10 @@ struct DrumSettings {
     std::uint64_t seed = 1;
     double speed = 5.0;                // in `speed_unit`
     SpeedUnit speed_unit = SpeedUnit::rad_per_s;
+    // Linear spin-up from rest to omega over this time, s (0: the drum
+    // starts at full speed); revolutions are counted at full speed from the
+    // start, N = omega t / 2 pi, so the ramp ends at N = omega T / 2 pi.
+    double spin_up_time = 0.0;
     double revolutions = 12.0;         // after the bed has settled (the MSD estimator needs 5 blocks of 2 after the first)
     int samples_per_revolution = 20;
     int profile_bins = 12;

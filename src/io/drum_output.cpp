@@ -49,6 +49,7 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                         {"grain_updates_per_second", info.grain_updates_per_second},
                         {"threads", info.threads},
                         {"periodic_axis", info.periodic_axis},
+                        {"spin_up_time", info.spin_up_time},
                         {"component", components}};
     std::ostringstream text;
     text << "# tumble drum run: what was run (read by `tumble analyze`)\n" << t << '\n';
@@ -85,6 +86,7 @@ DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
     info.grain_updates_per_second = num("grain_updates_per_second");
     info.threads = t["threads"].value_or(1);  // absent in runs of tumble before threads
     info.periodic_axis = t["periodic_axis"].value_or(false);  // absent before the periodic drum
+    info.spin_up_time = t["spin_up_time"].value_or(0.0);       // absent before the spin-up ramp
     const auto entries = r.tables(t, "", "component");
     for (std::size_t i = 0; i < entries.size(); ++i) {
         const std::string p = at("component", i);
@@ -273,7 +275,7 @@ analysis::MsdOptions msd_options_of_run(const std::vector<analysis::GrainFrame>&
     if (frames.size() < 2) return o;
     const double h = frames[1].revolutions - frames[0].revolutions;
     const double span = frames.back().revolutions - std::max(options.first_revolution, frames.front().revolutions);
-    o.block = std::floor(std::clamp(span / 5.0, 2.0, 4.0) / h + 1e-9) * h;
+    o.block = std::floor(std::clamp(span / 5.0, 2.0, 4.0) / h + 0.01) * h;
     return o;
 }
 
@@ -328,10 +330,17 @@ void write_axial_msd(const fs::path& file, const std::vector<analysis::GrainFram
     check_written(out, file);
 }
 
+// A Hogg fit, or an undetermined one with the reason: no samples, or a
+// periodic axis (the mean of a wrapped coordinate follows no Hogg law).
 analysis::HoggFit fit_hogg_or_note(const std::vector<double>& N, const std::vector<double>& z, double L,
-                                   const analysis::HoggFitOptions& o) {
-    return analysis::fit_hogg(N.empty() ? std::vector<double>{0.0} : N, z.empty() ? std::vector<double>{0.0} : z, L,
-                              o);
+                                   const analysis::HoggFitOptions& o, bool periodic_axis) {
+    if (N.empty() || periodic_axis) {
+        analysis::HoggFit none;
+        none.D = none.D_stderr = none.amplitude = std::nan("");
+        none.note = periodic_axis ? "not applicable on a periodic axis" : "no samples";
+        return none;
+    }
+    return analysis::fit_hogg(N, z, L, o);
 }
 
 std::string describe_hogg(const analysis::HoggFit& f) {
@@ -424,7 +433,8 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                                 std::isfinite(m.D) ? fmt::format(" (best estimate {:.3e} m^2/rev)", m.D) : "");
 
         // Hogg with the amplitude free and the start-up left out.
-        const analysis::HoggFit hogg = fit_hogg_or_note(N, z, L, {options.first_revolution, false, -1.0});
+        const analysis::HoggFit hogg =
+            fit_hogg_or_note(N, z, L, {options.first_revolution, false, -1.0}, info.periodic_axis);
         text << "    Hogg, amplitude free, N >= " << fmt::format("{:.3g}", options.first_revolution) << ": "
              << describe_hogg(hogg) << "\n";
 
@@ -432,8 +442,8 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         // motion of <z> is a drift of the component's centre.
         analysis::HoggFit drift;
         std::string verdict = "undetermined";
-        if (m.determined) {
-            drift = fit_hogg_or_note(N, z, L, {options.first_revolution, true, m.D});
+        if (m.determined && !info.periodic_axis) {
+            drift = fit_hogg_or_note(N, z, L, {options.first_revolution, true, m.D}, false);
             if (drift.points >= 10) {
                 verdict = std::abs(drift.drift) > 3.0 * drift.drift_stderr ? "segregating" : "diffusing";
                 text << fmt::format("    drift of <z> beyond diffusion at the MSD's D: {:.2e} +- {:.1e} m/rev ({:.1f} "
@@ -445,9 +455,10 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
             }
         }
 
-        const analysis::DiffusionFit fit = analysis::fit_diffusion(N, z, L);
+        const analysis::DiffusionFit fit = analysis::fit_diffusion(N.empty() ? std::vector<double>{0.0} : N,
+                                                                   z.empty() ? std::vector<double>{0.0} : z, L);
         fits.push_back(fit);
-        if (fit.determined)
+        if (fit.determined && !info.periodic_axis)
             text << fmt::format("    old estimator, Hogg pinned at L/4 from N = 0: D = {:.3e} +- {:.1e} m^2/rev; "
                                 "one-term: {:.3e} +- {:.1e}\n",
                                 fit.D, fit.D_stderr, fit.one_term_D, fit.one_term_D_stderr);
@@ -594,7 +605,8 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                 sum.push_back(series.mean_z[0][k] + series.mean_z[1][k]);
             }
         if (info.mode == "self") {
-            const analysis::HoggFit both = fit_hogg_or_note(N, half_difference, L, {options.first_revolution, false, -1.0});
+            const analysis::HoggFit both = fit_hogg_or_note(N, half_difference, L, {options.first_revolution, false, -1.0},
+                                                            info.periodic_axis);
             text << "  both halves, (<z>_right - <z>_left)/2, Hogg amplitude free: " << describe_hogg(both) << "\n";
             summary.insert("self_combined_hogg", hogg_json(both, options.first_revolution));
         } else {

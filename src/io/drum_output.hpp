@@ -48,6 +48,7 @@ struct DrumRunInfo {
     double grain_updates_per_second = 0.0;
     int threads = 1;               // of the time step (tumble drum --threads)
     bool periodic_axis = false;    // no end caps: the axis is periodic with period inner_length
+    double spin_up_time = 0.0;     // s: linear ramp from rest to omega (0: none)
     std::vector<DrumComponent> components;
 };
 
