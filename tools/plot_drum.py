@@ -230,16 +230,34 @@ class Run:
     def path(self, name):
         return os.path.join(self.dir, name)
 
-    def fit(self, index):
-        """(D, D_stderr, determined) of a component from summary.json, or None."""
-        if not self.summary:
-            return None
-        for c in self.summary.get("components", []):
+    def component_summary(self, index):
+        for c in (self.summary or {}).get("components", []):
             if c.get("name") == self.components[index]:
-                if c.get("D") is None:
-                    return None
-                return (float(c["D"]), c.get("D_stderr"), bool(c.get("determined", True)))
+                return c
         return None
+
+    def fit(self, index):
+        """(D, D_stderr, amplitude) of the free-amplitude Hogg fit of a component from
+        summary.json (before issue 14: the pinned fit, amplitude L/4), or None where
+        D was not determined: an undetermined value is never drawn."""
+        c = self.component_summary(index)
+        if c is None:
+            return None
+        h = c.get("hogg_free")
+        if h is not None:
+            if not h.get("determined") or h.get("D") is None:
+                return None
+            return (float(h["D"]), h.get("D_stderr"), float(h["amplitude"]))
+        if c.get("D") is None or not c.get("determined", True):
+            return None
+        return (float(c["D"]), c.get("D_stderr"), self.length / 4.0)
+
+    def msd(self, index):
+        """The grains' MSD estimate of a component (dict with D, D_lo, D_hi, fit lags),
+        or None where it was not determined."""
+        c = self.component_summary(index)
+        m = (c or {}).get("msd")
+        return m if m and m.get("determined") and m.get("D") is not None else None
 
     def label(self):
         return f"\u03c9 = {self.omega:g} rad/s ({self.omega * RPM_PER_RAD_S:.3g} rpm)"
@@ -314,12 +332,11 @@ def _plot_z(ax, run, colour_for, label_prefix="", marker_for=None):
         fit = run.fit(i)
         if fit is None:
             continue
-        d, d_err, determined = fit
-        curve = run.start_side[i] * hogg_mean_z(n_fine, d, run.length) * 1e3
-        err_text = f" \u00b1 {d_err:.2g}" if d_err is not None else ""
-        note = "" if determined else ", not determined"
+        d, d_err, amplitude = fit
+        curve = run.start_side[i] * amplitude * 4.0 / run.length * hogg_mean_z(n_fine, d, run.length) * 1e3
+        err_text = f" \u00b1 {1.96 * d_err:.2g} (95 %)" if d_err is not None else ""
         ax.plot(n_fine, curve, "-", color=colour, lw=1.2,
-                label=f"{label_prefix}{cname}: Hogg, D = {d:.3g}{err_text} m\u00b2/rev{note}")
+                label=f"{label_prefix}{cname}: Hogg, amplitude free, D = {d:.3g}{err_text} m\u00b2/rev")
     return drew_any
 
 
@@ -374,8 +391,9 @@ def fig_profiles(run, w):
     ax.set_ylim(-0.05, 1.05)
     ax.set_xlabel("z (mm)")
     ax.set_ylabel(f"concentration C(z, N) of {cname}")
-    fit = [run.fit(i) for i, c in enumerate(run.components) if c == cname][0]
-    d_text = f", D = {fit[0]:.3g} m\u00b2/rev" if fit else ""
+    collapse = (run.summary or {}).get("profile_collapse") or {}
+    d_text = f", D = {collapse['D']:.3g} m\u00b2/rev ({collapse.get('D_source', '')})" \
+        if collapse.get("D") is not None else ""
     ax.set_title(f"Axial concentration profile against the Hogg solution\n"
                  f"{run.mode} mode, {run.label()}{d_text}", fontsize=10)
     ax.legend(fontsize=7, ncol=2)
@@ -468,10 +486,75 @@ def fig_depth(run, w):
     w.save(fig, name)
 
 
+def fig_msd(run, w):
+    """The grains' axial mean squared displacement against lag (axial_msd.csv), with
+    the long-lag line of the fitted D and its 95 % interval."""
+    name = "fig_msd"
+    path = run.path("axial_msd.csv")
+    if not os.path.isfile(path):
+        w.skip(name, f"no {path} (the run has too few particle snapshots: tumble drum --snapshots)")
+        return
+    table = read_csv(path)
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    for i, cname in enumerate(run.components):
+        col = f"msd_{cname}"
+        if col not in table:
+            continue
+        colour = COLOURS[i % len(COLOURS)]
+        lag, msd = table["lag"], table[col]
+        m = run.msd(i)
+        label = f"{cname}" + ("" if m else ": D not determined")
+        ax.plot(lag, msd * 1e6, "o", ms=3, color=colour, label=label)
+        if m:
+            lo, hi = float(m["fit_lag_lo"]), float(m["fit_lag_hi"])
+            anchor = np.interp(lo, lag, msd)
+            x = np.array([lo, hi])
+            ax.plot(x, (anchor + 2.0 * m["D"] * (x - lo)) * 1e6, "-", color=colour, lw=2,
+                    label=f"{cname}: D = {m['D']:.3g} m\u00b2/rev, 95 % [{m['D_lo']:.3g}, {m['D_hi']:.3g}]"
+                          f" (lags {lo:.3g}-{hi:.3g} rev)")
+    ax.set_xlabel("lag (revolutions)")
+    ax.set_ylabel("axial mean squared displacement (mm\u00b2)")
+    ax.set_title(f"Grains' axial MSD, {run.mode} mode, {run.label()}", fontsize=10)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    w.save(fig, name)
+
+
+def fig_collapse(run, w):
+    """C(z, N) against z / sqrt(N) for every sample after the start-up: while the
+    mixing front is far from the caps the profiles fall on 1/2 (1 + erf(u / 2 sqrt(D)))."""
+    name = "fig_collapse"
+    collapse = (run.summary or {}).get("profile_collapse")
+    path = run.path("profiles.csv")
+    if not collapse or collapse.get("D") is None or not os.path.isfile(path):
+        w.skip(name, "no profile_collapse in summary.json or no profiles.csv")
+        return
+    p = read_csv(path)
+    index = run.components.index(collapse["component"])
+    first = float(collapse.get("first_revolution", 1.0))
+    sel = (p["component"] == index) & (p["revolutions"] >= first) & (p["concentration"] >= 0)
+    u = p["z"][sel] / np.sqrt(p["revolutions"][sel]) * 1e3
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    points = ax.scatter(u, p["concentration"][sel], c=p["revolutions"][sel], s=8, cmap="viridis")
+    fig.colorbar(points, ax=ax, label="revolutions N")
+    grid = np.linspace(u.min(), u.max(), 300) if len(u) else np.linspace(-1, 1, 3)
+    d = float(collapse["D"])
+    erf = np.vectorize(math.erf)
+    ax.plot(grid, 0.5 * (1.0 + erf(grid * 1e-3 / (2.0 * math.sqrt(d)))), "k-",
+            label=f"1/2 (1 + erf(u / 2\u221aD)), D = {d:.3g} m\u00b2/rev ({collapse.get('D_source', '')})")
+    ax.set_xlabel("u = z / \u221aN (mm per \u221arevolution)")
+    ax.set_ylabel(f"C(z, N) of {collapse['component']}")
+    ax.set_title(f"Profile collapse, N >= {first:g}: rms difference {collapse['rms']:.3f}\n"
+                 f"{run.mode} mode, {run.label()}", fontsize=10)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    w.save(fig, name)
+
+
 def do_run(args):
     run = Run(args.dir)
     w = Writer(args.out or os.path.join(args.dir, "figures"))
-    for make in (fig_setup, fig_z, fig_profiles, fig_energy, fig_depth):
+    for make in (fig_setup, fig_z, fig_profiles, fig_energy, fig_depth, fig_msd, fig_collapse):
         make(run, w)
     return w
 
@@ -500,12 +583,7 @@ def do_compare(args):
 # --------------------------------------------------------------------------- sweep
 
 def _sweep_components(table):
-    names = []
-    for col in table:
-        if col.startswith("D_") and not col.startswith("D_stderr_") \
-                and not col.startswith("D_one_term"):
-            names.append(col[2:])
-    return names
+    return [col[len("determined_"):] for col in table if col.startswith("determined_")]
 
 
 def _group(omega, values, errors):

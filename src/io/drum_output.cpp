@@ -15,9 +15,11 @@
 #include "io/output.hpp"
 #include "io/snapshots.hpp"
 #include "io/toml_reader.hpp"
+#include "tumble/analysis/bed_structure.hpp"
 #include "tumble/analysis/hogg.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
+#include "tumble/setup/paper_materials.hpp"
 
 namespace tumble::io {
 
@@ -206,7 +208,17 @@ analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_
     const CsvTable csv = read_csv_table(file);
     const std::vector<double> id = csv.numbers("id"), x = csv.numbers("x"), y = csv.numbers("y"),
                               z = csv.numbers("z"), radius = csv.numbers("radius"), tag = csv.numbers("tag"),
-                              kinematic = csv.numbers("kinematic");
+                              kinematic = csv.numbers("kinematic"), vx = csv.numbers("vx"), vy = csv.numbers("vy"),
+                              vz = csv.numbers("vz"), wx = csv.numbers("wx"), wy = csv.numbers("wy"),
+                              wz = csv.numbers("wz");
+    // Masses from the drum's materials (the paper's), by name.
+    const std::size_t material_column = csv.column("material");
+    const std::vector<Material> materials = paper::materials();
+    auto density = [&](const std::string& name) {
+        for (const Material& m : materials)
+            if (m.name == name) return m.rho;
+        throw Error(file.string() + ": unknown material \"" + name + "\" (a drum run uses the paper's materials)");
+    };
     std::vector<std::size_t> order(id.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
@@ -218,6 +230,9 @@ analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_
         frame.position.push_back({x[k], y[k], z[k]});
         frame.radius.push_back(radius[k]);
         frame.tag.push_back(static_cast<std::int32_t>(tag[k]));
+        frame.velocity.push_back({vx[k], vy[k], vz[k]});
+        frame.angular_velocity.push_back({wx[k], wy[k], wz[k]});
+        frame.mass.push_back(4.0 / 3.0 * tumble::pi * std::pow(radius[k], 3) * density(csv.rows[k][material_column]));
     }
     return frame;
 }
@@ -444,14 +459,21 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         std::string verdict = "undetermined";
         if (m.determined && !info.periodic_axis) {
             drift = fit_hogg_or_note(N, z, L, {options.first_revolution, true, m.D}, false);
+            // In the mirrored frame <z> starts at L/4 and mixing lowers it: a
+            // drift v > 0 carries the component back toward its own end
+            // (segregation), v < 0 mixes it faster than its grains' diffusion
+            // (axial convection, e.g. recirculation driven by the end caps).
             if (drift.points >= 10) {
-                verdict = std::abs(drift.drift) > 3.0 * drift.drift_stderr ? "segregating" : "diffusing";
+                const bool significant = std::abs(drift.drift) > 3.0 * drift.drift_stderr;
+                verdict = !significant ? "diffusing" : drift.drift > 0.0 ? "segregating" : "convecting";
+                const char* meaning =
+                    verdict == "diffusing"     ? "consistent with diffusion alone"
+                    : verdict == "segregating" ? "segregating: its <z> moves back toward its own end"
+                                               : "convecting: its <z> falls faster than its grains' diffusion explains";
                 text << fmt::format("    drift of <z> beyond diffusion at the MSD's D: {:.2e} +- {:.1e} m/rev ({:.1f} "
                                     "standard errors): {}\n",
                                     drift.drift, drift.drift_stderr, std::abs(drift.drift) / drift.drift_stderr,
-                                    verdict == "segregating" ? "segregating, not diffusing: its <z> moves by more "
-                                                               "than the grains' diffusion explains"
-                                                             : "consistent with diffusion alone");
+                                    meaning);
             }
         }
 
@@ -588,6 +610,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         summary.insert("profile_collapse", toml::table{{"component", info.components[right].name},
                                                        {"D", D_profile},
                                                        {"D_source", from_msd ? "msd" : "hogg_pinned"},
+                                                       {"first_revolution", options.first_revolution},
                                                        {"rms", collapse}});
     }
 
@@ -643,6 +666,62 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         }
         text << "\n";
         summary.insert("depth_mobility", layers_json);
+    }
+
+    // Segregation and energetics from the snapshots after the start-up
+    // (bed_structure.hpp): bed_structure.csv per snapshot and slice.
+    if (const auto steady = steady_frames(frames, options.first_revolution); !steady.empty()) {
+        std::vector<analysis::SpeciesEnergetics> energetics(n_components);
+        double mean_diameter = 0.0;
+        for (double r : steady.front().radius) mean_diameter += 2.0 * r / static_cast<double>(steady.front().radius.size());
+        std::ofstream out = open_for_writing(dir / "bed_structure.csv");
+        out << "revolutions,slice,z,relative_volume";
+        for (const DrumComponent& c : info.components) out << ",mean_distance_" << c.name;
+        out << '\n';
+        std::vector<double> distance_sum(n_components, 0.0), distance_count(n_components, 0.0);
+        double first_rms = 0.0, last_rms = 0.0;
+        for (std::size_t f = 0; f < steady.size(); ++f) {
+            // Cells of two mean grain diameters: a few grains of each kind.
+            analysis::add_energetics(steady[f], 2.0 * mean_diameter, energetics);
+            const analysis::AxialStructure a =
+                analysis::axial_structure(steady[f], static_cast<int>(n_components), L, info.profile_bins);
+            double rms = 0.0;
+            for (std::size_t s = 0; s < a.z.size(); ++s) {
+                out << fmt::format("{},{},{},{}", steady[f].revolutions, s, a.z[s], a.relative_volume[s]);
+                bool all_present = true;
+                for (std::size_t c = 0; c < n_components; ++c) {
+                    out << ',' << a.mean_distance[c][s];
+                    all_present = all_present && std::isfinite(a.mean_distance[c][s]);
+                }
+                out << '\n';
+                for (std::size_t c = 0; all_present && c < n_components; ++c)
+                    distance_sum[c] += a.mean_distance[c][s], distance_count[c] += 1.0;
+                rms += (a.relative_volume[s] - 1.0) * (a.relative_volume[s] - 1.0) / static_cast<double>(a.z.size());
+            }
+            (f == 0 ? first_rms : last_rms) = std::sqrt(rms);
+        }
+        check_written(out, dir / "bed_structure.csv");
+        text << fmt::format("  bed volume along the axis (bed_structure.csv): rms deviation from uniform {:.3f} at N = "
+                            "{:.3g}, {:.3f} at N = {:.3g}\n",
+                            first_rms, steady.front().revolutions, last_rms, steady.back().revolutions);
+        toml::array species_json;
+        text << "  where both kinds are present (cells of 2 grain diameters), per grain: fluctuation energy about the "
+                "local mean flow, granular temperature, rotational energy, mean distance from the slice's centroid\n";
+        for (std::size_t c = 0; c < n_components; ++c) {
+            const double distance = distance_count[c] > 0.0 ? distance_sum[c] / distance_count[c] : std::nan("");
+            text << fmt::format("    {}: {:.3g} J, {:.3g} m^2/s^2, {:.3g} J, {:.4g} m ({} grain-frames)\n",
+                                info.components[c].name, energetics[c].fluctuation(), energetics[c].temperature(),
+                                energetics[c].rotation(), distance, energetics[c].grains);
+            species_json.push_back(toml::table{{"name", info.components[c].name},
+                                               {"fluctuation_energy_per_grain", energetics[c].fluctuation()},
+                                               {"granular_temperature", energetics[c].temperature()},
+                                               {"rotational_energy_per_grain", energetics[c].rotation()},
+                                               {"mean_distance_from_centroid", distance},
+                                               {"grain_frames", static_cast<std::int64_t>(energetics[c].grains)}});
+        }
+        summary.insert("bed_structure", toml::table{{"volume_rms_first", first_rms},
+                                                    {"volume_rms_last", last_rms},
+                                                    {"species", species_json}});
     }
 
     {

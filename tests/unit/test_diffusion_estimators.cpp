@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tumble/analysis/axial_msd.hpp"
+#include "tumble/analysis/bed_structure.hpp"
 #include "tumble/analysis/bootstrap.hpp"
 #include "tumble/analysis/hogg.hpp"
 #include "tumble/core/constants.hpp"
@@ -194,6 +195,51 @@ TEST(Bootstrap, MeanIntervalNeedsThreeValuesAndHoldsTheMean) {
     EXPECT_GT(i.hi, 3.0);
     EXPECT_GE(i.lo, 1.0);
     EXPECT_LE(i.hi, 5.0);
+}
+
+}  // namespace
+}  // namespace tumble::analysis
+
+namespace tumble::analysis {
+namespace {
+
+// Four grains in one cell, two of each kind, moving with a common flow
+// (1, 0, 0) m/s plus +-0.1 m/s along y: the local mean flow is the common
+// one, so each grain's fluctuation energy is 1/2 m 0.01 J, its granular
+// temperature 0.01/3 m^2/s^2, its rotational energy 1/5 m R^2 w^2; a grain
+// alone in another cell (one kind only) is left out.
+TEST(BedStructure, FluctuationAboutTheLocalMeanFlow) {
+    GrainFrame f;
+    const double m = 2e-3, R = 1e-3;
+    auto add = [&](Vec3 x, Vec3 v, std::int32_t tag) {
+        f.id.push_back(static_cast<std::int64_t>(f.id.size()));
+        f.position.push_back(x);
+        f.velocity.push_back(v);
+        f.angular_velocity.push_back({0.0, 0.0, 10.0});
+        f.radius.push_back(R);
+        f.mass.push_back(m);
+        f.tag.push_back(tag);
+    };
+    for (std::int32_t tag : {0, 1})
+        for (double s : {-1.0, 1.0}) add({0.001, 0.002, 0.003}, {1.0, 0.1 * s, 0.0}, tag);
+    add({0.05, 0.05, 0.05}, {5.0, 0.0, 0.0}, 0);
+    std::vector<SpeciesEnergetics> e(2);
+    add_energetics(f, 0.01, e);
+    for (const SpeciesEnergetics& s : e) {
+        EXPECT_EQ(s.grains, 2u);
+        EXPECT_NEAR(s.fluctuation(), 0.5 * m * 0.01, 1e-15);
+        EXPECT_NEAR(s.temperature(), 0.01 / 3.0, 1e-15);
+        EXPECT_NEAR(s.rotation(), 0.2 * m * R * R * 100.0, 1e-18);
+    }
+    // Four grains in the slice of z = 0.003 m, one in that of z = 0.05 m, of
+    // four slices over 0.12 m: relative volumes 0, 0, 4 x 4/5, 4 x 1/5; the
+    // four grains' centroid is where they sit, so their distance from it is 0.
+    const AxialStructure a = axial_structure(f, 2, 0.12, 4);
+    EXPECT_NEAR(a.relative_volume[2], 3.2, 1e-12);
+    EXPECT_NEAR(a.relative_volume[3], 0.8, 1e-12);
+    EXPECT_EQ(a.relative_volume[0], 0.0);
+    EXPECT_NEAR(a.mean_distance[1][2], 0.0, 1e-15);
+    EXPECT_TRUE(std::isnan(a.mean_distance[1][3]));
 }
 
 }  // namespace

@@ -23,6 +23,9 @@ GrainFrame grain_frame(const ParticleStore& p, double revolutions) {
         f.position.push_back(p.position[i]);
         f.radius.push_back(p.radius[i]);
         f.tag.push_back(p.tag[i]);
+        f.velocity.push_back(p.velocity[i]);
+        f.angular_velocity.push_back(p.angular_velocity[i]);
+        f.mass.push_back(p.mass[i]);
     }
     return f;
 }

@@ -29,6 +29,10 @@ struct GrainFrame {
     std::vector<Vec3> position;       // m
     std::vector<double> radius;       // m
     std::vector<std::int32_t> tag;    // component
+    // Filled where known (empty otherwise): for the energetics (bed_structure.hpp).
+    std::vector<Vec3> velocity;          // m/s
+    std::vector<Vec3> angular_velocity;  // rad/s
+    std::vector<double> mass;            // kg
 };
 
 GrainFrame grain_frame(const ParticleStore& p, double revolutions);
