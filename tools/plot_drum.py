@@ -533,12 +533,15 @@ def fig_collapse(run, w):
     index = run.components.index(collapse["component"])
     first = float(collapse.get("first_revolution", 1.0))
     sel = (p["component"] == index) & (p["revolutions"] >= first) & (p["concentration"] >= 0)
+    d = float(collapse["D"])
+    if not np.any(sel) or not d > 0:
+        w.skip(name, f"no profiles after N = {first:g} or no positive D")
+        return
     u = p["z"][sel] / np.sqrt(p["revolutions"][sel]) * 1e3
     fig, ax = plt.subplots(figsize=(7.5, 5))
     points = ax.scatter(u, p["concentration"][sel], c=p["revolutions"][sel], s=8, cmap="viridis")
     fig.colorbar(points, ax=ax, label="revolutions N")
-    grid = np.linspace(u.min(), u.max(), 300) if len(u) else np.linspace(-1, 1, 3)
-    d = float(collapse["D"])
+    grid = np.linspace(u.min(), u.max(), 300)
     erf = np.vectorize(math.erf)
     ax.plot(grid, 0.5 * (1.0 + erf(grid * 1e-3 / (2.0 * math.sqrt(d)))), "k-",
             label=f"1/2 (1 + erf(u / 2\u221aD)), D = {d:.3g} m\u00b2/rev ({collapse.get('D_source', '')})")
@@ -583,38 +586,61 @@ def do_compare(args):
 # --------------------------------------------------------------------------- sweep
 
 def _sweep_components(table):
-    return [col[len("determined_"):] for col in table if col.startswith("determined_")]
+    return [col[len("D_stderr_"):] for col in table if col.startswith("D_stderr_")]
 
 
-def _group(omega, values, errors):
-    """Per distinct omega: mean over seeds, error bar (std over seeds, or the fit error
-    when only one seed has a value), the seed values."""
+def _mean_interval(v, rng):
+    """95 % bootstrap percentile interval of the mean of independent values (seeds);
+    None from fewer than 3 (two values say nothing about a spread)."""
+    if len(v) < 3:
+        return None
+    means = rng.choice(v, size=(2000, len(v)), replace=True).mean(axis=1)
+    return float(np.percentile(means, 2.5)), float(np.percentile(means, 97.5))
+
+
+def _group(x, values, lo=None, hi=None):
+    """Per distinct x: the mean over seeds of the finite values, its 95 % interval
+    (bootstrap over seeds from 3 seeds on; the seed's own interval lo-hi with one
+    seed; none with two), the seed values. NaN values (not determined) are left out."""
     out = []
-    keys = sorted(set(np.round(omega[np.isfinite(omega)], 9)))
+    rng = np.random.default_rng(20261130)
+    keys = sorted(set(np.round(x[np.isfinite(x)], 9)))
     for key in keys:
-        sel = (np.round(omega, 9) == key) & np.isfinite(values)
+        sel = (np.round(x, 9) == key) & np.isfinite(values)
         v = values[sel]
         if len(v) == 0:
             continue
-        if len(v) > 1:
-            spread = float(np.std(v, ddof=1))
-        else:
-            e = errors[sel] if errors is not None else np.array([math.nan])
-            spread = float(e[0]) if np.isfinite(e[0]) else 0.0
-        out.append((key, float(np.mean(v)), spread, v))
+        interval = _mean_interval(v, rng)
+        if interval is None and len(v) == 1 and lo is not None and hi is not None \
+                and np.isfinite(lo[sel][0]) and np.isfinite(hi[sel][0]):
+            interval = (float(lo[sel][0]), float(hi[sel][0]))
+        out.append((key, float(np.mean(v)), interval, v))
     return out
 
 
-def _plot_grouped(ax, x, values, errors, colour, label, marker="o"):
-    groups = _group(x, values, errors)
+def _plot_grouped(ax, x, values, colour, label, marker="o", lo=None, hi=None):
+    groups = _group(x, values, lo, hi)
     if not groups:
         return False
     gx = np.array([g[0] for g in groups])
-    ax.errorbar(gx, [g[1] for g in groups], yerr=[g[2] for g in groups], fmt=marker + "-",
-                color=colour, capsize=3, ms=5, lw=1.2, label=label)
+    gy = np.array([g[1] for g in groups])
+    below = [g[1] - g[2][0] if g[2] else 0.0 for g in groups]
+    above = [g[2][1] - g[1] if g[2] else 0.0 for g in groups]
+    ax.errorbar(gx, gy, yerr=[below, above], fmt=marker + "-", color=colour, capsize=3, ms=5, lw=1.2,
+                label=label + " (95 % interval)")
     for g in groups:
         ax.plot(np.full(len(g[3]), g[0]), g[3], marker, color=colour, alpha=0.25, ms=3)
     return True
+
+
+def _d_columns(table, c):
+    """D of a component and its 95 % interval per row: the grains' MSD estimate where
+    the table has it (issue 14), else the old pinned Hogg fit +- 1.96 standard errors."""
+    if f"D_msd_{c}" in table and np.any(np.isfinite(table[f"D_msd_{c}"])):
+        return table[f"D_msd_{c}"], table[f"D_msd_lo_{c}"], table[f"D_msd_hi_{c}"]
+    d = table[f"D_{c}"]
+    e = table.get(f"D_stderr_{c}", np.full(len(d), math.nan))
+    return d, d - 1.96 * e, d + 1.96 * e
 
 
 def _d_axis(ax):
@@ -629,22 +655,8 @@ def _rpm_axis(ax):
     sec.set_xlabel("rotation speed (rpm)")
 
 
-def _self_d(table, rows, comps):
-    """Per row: the mean D of the self-mode tagged halves, and its error."""
-    ds = np.array([table[f"D_{c}"][rows] for c in comps])
-    errs = np.array([table[f"D_stderr_{c}"][rows] if f"D_stderr_{c}" in table
-                     else np.full(rows.sum(), math.nan) for c in comps])
-    with np.errstate(invalid="ignore"):
-        count = np.sum(np.isfinite(ds), axis=0)
-        mean = np.where(count > 0, np.nansum(np.where(np.isfinite(ds), ds, 0), axis=0)
-                        / np.maximum(count, 1), math.nan)
-        err = np.sqrt(np.nansum(np.where(np.isfinite(errs), errs ** 2, 0), axis=0)) \
-            / np.maximum(count, 1)
-    return mean, err
-
-
 def _components_with_data(table, rows, comps):
-    return [c for c in comps if np.any(np.isfinite(table[f"D_{c}"][rows]))]
+    return [c for c in comps if np.any(np.isfinite(_d_columns(table, c)[0][rows]))]
 
 
 def do_sweep(args):
@@ -663,16 +675,15 @@ def do_sweep(args):
     self_comps = _components_with_data(table, self_rows, comps) if self_rows.any() else []
     two_comps = _components_with_data(table, two_rows, comps) if two_rows.any() else []
 
-    def errors_of(c, rows):
-        col = f"D_stderr_{c}"
-        return table[col][rows] if col in table else None
+    def plot_d(ax, x, rows, c, colour, label, marker):
+        d, lo, hi = _d_columns(table, c)
+        _plot_grouped(ax, x[rows], d[rows], colour, label, marker, lo[rows], hi[rows])
 
     # Fig. 3: self-diffusion
     if self_comps:
-        d, e = _self_d(table, self_rows, self_comps)
         fig, ax = plt.subplots(figsize=(7, 5))
-        _plot_grouped(ax, omega[self_rows], d, e, "tab:blue",
-                      f"self-diffusion ({' and '.join(self_comps)} averaged), mean over seeds")
+        for i, c in enumerate(self_comps):
+            plot_d(ax, omega, self_rows, c, COLOURS[i % len(COLOURS)], f"started {c}, mean over seeds", "os"[i % 2])
         ax.set_xlabel("rotation speed \u03c9 (rad/s)")
         ax.set_ylabel("self-diffusion coefficient D (m\u00b2/rev)")
         _rpm_axis(ax)
@@ -688,8 +699,7 @@ def do_sweep(args):
     if two_comps:
         fig, ax = plt.subplots(figsize=(7, 5))
         for i, c in enumerate(two_comps):
-            _plot_grouped(ax, omega[two_rows], table[f"D_{c}"][two_rows], errors_of(c, two_rows),
-                          COLOURS[i % len(COLOURS)], f"{c}, mean over seeds", "os^v"[i % 4])
+            plot_d(ax, omega, two_rows, c, COLOURS[i % len(COLOURS)], f"{c}, mean over seeds", "os^v"[i % 4])
         ax.set_xlabel("rotation speed \u03c9 (rad/s)")
         ax.set_ylabel("diffusion coefficient D (m\u00b2/rev)")
         _rpm_axis(ax)
@@ -710,11 +720,11 @@ def do_sweep(args):
     if present:
         fig, ax = plt.subplots(figsize=(7, 5))
         for label, col, colour in present:
-            _plot_grouped(ax, omega[two_rows], table[col][two_rows], None, colour,
+            _plot_grouped(ax, omega[two_rows], table[col][two_rows], colour,
                           f"{label}: material 2 / material 1, mean over seeds")
             ref_col = f"{col}_ref"
             if ref_col in table:
-                groups = _group(omega[two_rows], table[ref_col][two_rows], None)
+                groups = _group(omega[two_rows], table[ref_col][two_rows])
                 if groups:
                     gx = [g[0] for g in groups]
                     gy = [g[1] for g in groups]
@@ -739,12 +749,10 @@ def do_sweep(args):
     if "froude" in table and (self_comps or two_comps):
         froude = table["froude"]
         fig, ax = plt.subplots(figsize=(7, 5))
-        if self_comps:
-            d, e = _self_d(table, self_rows, self_comps)
-            _plot_grouped(ax, froude[self_rows], d, e, "tab:blue", "self-diffusion", "D")
+        for i, c in enumerate(self_comps):
+            plot_d(ax, froude, self_rows, c, "tab:blue", f"self-diffusion: started {c}", "Dd"[i % 2])
         for i, c in enumerate(two_comps):
-            _plot_grouped(ax, froude[two_rows], table[f"D_{c}"][two_rows], errors_of(c, two_rows),
-                          COLOURS[(i + 1) % len(COLOURS)], f"two-component: {c}", "os^v"[i % 4])
+            plot_d(ax, froude, two_rows, c, COLOURS[(i + 1) % len(COLOURS)], f"two-component: {c}", "os^v"[i % 4])
         ax.set_xlabel("Froude number Fr = \u03c9\u00b2R/g")
         ax.set_ylabel("diffusion coefficient D (m\u00b2/rev)")
         _d_axis(ax)
@@ -762,7 +770,7 @@ def do_sweep(args):
         fig, ax = plt.subplots(figsize=(7, 5))
         for i, c in enumerate(share_comps):
             rows = np.isfinite(table[f"surface_share_{c}"])
-            _plot_grouped(ax, omega[rows], table[f"surface_share_{c}"][rows], None,
+            _plot_grouped(ax, omega[rows], table[f"surface_share_{c}"][rows],
                           COLOURS[i % len(COLOURS)], f"{c}, mean over seeds", "os^v"[i % 4])
         ax.set_xlabel("rotation speed \u03c9 (rad/s)")
         ax.set_ylabel("share of axial <\u0394z\u00b2> in the top grain layer")
