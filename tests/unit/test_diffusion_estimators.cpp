@@ -242,5 +242,39 @@ TEST(BedStructure, FluctuationAboutTheLocalMeanFlow) {
     EXPECT_TRUE(std::isnan(a.mean_distance[1][3]));
 }
 
+
+// A bed filling a circular segment of the circle grain centres can reach
+// (R = 39 mm: inner radius 40 mm less the 1 mm grain radius), its chord 10 mm
+// below the axis and inclined by 30 degrees (raised on the +x side), grains
+// on a 1 mm grid, moving along the surface at 0.1 (d0 - depth)/d0 m/s
+// downhill: the surface angle per slice is 30 degrees (to the grid's 1.5)
+// and the flowing layer d0 = 5 mm deep (to half a bin, 0.5 mm, the
+// profile's resolution).
+TEST(BedStructure, SurfacePerSliceAndFlowingLayerOfASyntheticBed) {
+    const double R = 0.039, h = 0.01, theta = 30.0 * pi / 180.0, d0 = 0.005;
+    const Vec3 up{-std::sin(theta), std::cos(theta), 0.0};  // normal from the bed toward the axis
+    Vec3 downhill{-up.y, up.x, 0.0};
+    if (downhill.y > 0.0) downhill = -1.0 * downhill;
+    GrainFrame f;
+    for (double z = -0.055; z < 0.06; z += 0.002)
+        for (double x = -R; x <= R; x += 0.001)
+            for (double y = -R; y <= R; y += 0.001) {
+                const Vec3 p{x, y, z};
+                const double depth = -h - dot(Vec3{x, y, 0.0}, up);
+                if (x * x + y * y > R * R || depth < 0.0) continue;
+                f.id.push_back(static_cast<std::int64_t>(f.id.size()));
+                f.position.push_back(p);
+                f.radius.push_back(1e-3);
+                f.tag.push_back(0);
+                f.velocity.push_back((0.1 * (d0 - depth) / d0) * downhill);
+                f.angular_velocity.push_back({});
+                f.mass.push_back(1e-5);
+            }
+    for (double angle : surface_angle_by_slice(f, 0.04, 0.12, 6)) EXPECT_NEAR(angle, 30.0, 1.5);
+    FlowProfile flow(0.5e-3, 0.03);
+    flow.add(f, 0.04);
+    EXPECT_NEAR(flow.thickness(), d0, 0.5e-3);
+}
+
 }  // namespace
 }  // namespace tumble::analysis

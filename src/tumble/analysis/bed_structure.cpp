@@ -86,4 +86,56 @@ AxialStructure axial_structure(const GrainFrame& f, int components, double lengt
     return a;
 }
 
+std::vector<double> surface_angle_by_slice(const GrainFrame& f, double inner_radius, double length, int slices) {
+    std::vector<GrainFrame> slice(static_cast<std::size_t>(slices));
+    const double width = length / slices;
+    for (std::size_t k = 0; k < f.id.size(); ++k) {
+        const int s = std::clamp(static_cast<int>(std::floor((f.position[k].z + 0.5 * length) / width)), 0, slices - 1);
+        GrainFrame& g = slice[static_cast<std::size_t>(s)];
+        g.id.push_back(f.id[k]);
+        g.position.push_back(f.position[k]);
+        g.radius.push_back(f.radius[k]);
+        g.tag.push_back(f.tag[k]);
+    }
+    std::vector<double> angle;
+    for (const GrainFrame& g : slice) {
+        if (g.id.size() < 10) {
+            angle.push_back(std::numeric_limits<double>::quiet_NaN());
+            continue;
+        }
+        const FreeSurface s = find_free_surface(g, inner_radius);
+        angle.push_back(std::atan2(-s.up.x, s.up.y) * 180.0 / pi);
+    }
+    return angle;
+}
+
+FlowProfile::FlowProfile(double bin, double depth_max)
+    : bin_(bin), sum_(static_cast<std::size_t>(std::ceil(depth_max / bin)), 0.0), count_(sum_.size(), 0.0) {}
+
+void FlowProfile::add(const GrainFrame& f, double inner_radius) {
+    if (f.velocity.size() != f.id.size()) throw Error("flow profile: the frame has no velocities");
+    const FreeSurface s = find_free_surface(f, inner_radius);
+    // Along the surface in the cross-section, pointing downhill (gravity -y).
+    Vec3 downhill{-s.up.y, s.up.x, 0.0};
+    if (downhill.y > 0.0) downhill = -1.0 * downhill;
+    for (std::size_t k = 0; k < f.id.size(); ++k) {
+        const double d = std::max(s.depth(f.position[k]), 0.0);
+        const auto b = std::min(static_cast<std::size_t>(d / bin_), sum_.size() - 1);
+        sum_[b] += dot(f.velocity[k], downhill);
+        count_[b] += 1.0;
+    }
+}
+
+double FlowProfile::velocity(std::size_t k) const {
+    return count_[k] > 0.0 ? sum_[k] / count_[k] : std::numeric_limits<double>::quiet_NaN();
+}
+
+double FlowProfile::thickness() const {
+    for (std::size_t k = 1; k < bins(); ++k) {
+        const double above = velocity(k - 1), here = velocity(k);
+        if (above > 0.0 && here <= 0.0) return depth(k - 1) + bin_ * above / (above - here);
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace tumble::analysis

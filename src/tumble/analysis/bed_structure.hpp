@@ -51,4 +51,33 @@ struct AxialStructure {
 // Slices of equal width over [-length/2, length/2].
 AxialStructure axial_structure(const GrainFrame& frame, int components, double length, int slices);
 
+// Where the motion happens (item 5). The free surface per axial slice:
+// find_free_surface() (depth_mobility.hpp) on the grains of each slice, and
+// its inclination, degrees: the angle of the surface's normal from the
+// vertical, positive when the surface is raised on the +x side (toward
+// which the bottom of a drum turning about +z moves). NaN for a slice with
+// fewer than 10 grains.
+std::vector<double> surface_angle_by_slice(const GrainFrame& frame, double inner_radius, double length, int slices);
+
+// The flowing layer. In the cross-section, a grain's velocity along the
+// free surface, downhill positive, against its depth below the surface:
+// the surface layer flows down, the bed beneath turns up with the wall;
+// the flowing layer's thickness is the depth where the mean velocity
+// changes sign (linear between bin centres). Depth bins of `bin` metres
+// from the surface down to `depth_max` (grains above the surface count in
+// the first bin, deeper ones in the last).
+class FlowProfile {
+public:
+    FlowProfile(double bin, double depth_max);
+    // Adds a frame with velocities; throws tumble::Error without them.
+    void add(const GrainFrame& frame, double inner_radius);
+    std::size_t bins() const { return count_.size(); }
+    double depth(std::size_t k) const { return (static_cast<double>(k) + 0.5) * bin_; }  // m, bin centre
+    double velocity(std::size_t k) const;  // m/s, mean downhill velocity; NaN if empty
+    double thickness() const;              // m; NaN if the velocity never changes sign
+private:
+    double bin_;
+    std::vector<double> sum_, count_;
+};
+
 }  // namespace tumble::analysis
