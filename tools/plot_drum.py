@@ -554,10 +554,53 @@ def fig_collapse(run, w):
     w.save(fig, name)
 
 
+def fig_bed_structure(run, w):
+    """Segregation and the free surface along the axis (bed_structure.csv): the bed's
+    grain volume per slice relative to a uniform bed at several N; per slice, over the
+    snapshots, each kind's mean distance from the slice's centroid and the surface angle."""
+    name = "fig_bed_structure"
+    path = run.path("bed_structure.csv")
+    if not os.path.isfile(path):
+        w.skip(name, f"no {path} (tumble analyze, needs snapshots after the start-up)")
+        return
+    t = read_csv(path)
+    n_values = sorted(set(np.round(t["revolutions"], 9)))
+    fig, (volume, radial, angle) = plt.subplots(1, 3, figsize=(14, 4.2))
+    cmap = plt.get_cmap("viridis")
+    for k, n in enumerate(n_values[:: max(1, len(n_values) // 6)]):
+        sel = np.round(t["revolutions"], 9) == n
+        volume.plot(t["z"][sel] * 1e3, t["relative_volume"][sel], "-o", ms=3,
+                    color=cmap(k / 6.0), label=f"N = {n:.3g}")
+    volume.axhline(1.0, color="0.6", lw=0.8)
+    volume.set_xlabel("z (mm)")
+    volume.set_ylabel("grain volume / uniform bed")
+    volume.set_title("bed volume along the axis", fontsize=9)
+    volume.legend(fontsize=7)
+    slices = sorted(set(t["slice"]))
+    z = np.array([np.mean(t["z"][t["slice"] == s]) for s in slices]) * 1e3
+    for i, cname in enumerate(run.components):
+        col = f"mean_distance_{cname}"
+        if col in t:
+            radial.plot(z, [np.nanmean(t[col][t["slice"] == s]) * 1e3 for s in slices], "-o", ms=3,
+                        color=COLOURS[i % len(COLOURS)], label=cname)
+    radial.set_xlabel("z (mm)")
+    radial.set_ylabel("mean distance from the slice's centroid (mm)")
+    radial.set_title("radial composition (lower: nearer the core)", fontsize=9)
+    radial.legend(fontsize=7)
+    if "surface_angle" in t:
+        angle.plot(z, [np.nanmean(t["surface_angle"][t["slice"] == s]) for s in slices], "-o", ms=3, color="0.3")
+    angle.set_xlabel("z (mm)")
+    angle.set_ylabel("free-surface inclination (degrees)")
+    angle.set_title("free surface per axial slice", fontsize=9)
+    fig.suptitle(f"Bed structure after the start-up, {run.mode} mode, {run.label()}", fontsize=10)
+    fig.tight_layout()
+    w.save(fig, name)
+
+
 def do_run(args):
     run = Run(args.dir)
     w = Writer(args.out or os.path.join(args.dir, "figures"))
-    for make in (fig_setup, fig_z, fig_profiles, fig_energy, fig_depth, fig_msd, fig_collapse):
+    for make in (fig_setup, fig_z, fig_profiles, fig_energy, fig_depth, fig_msd, fig_collapse, fig_bed_structure):
         make(run, w)
     return w
 
