@@ -632,6 +632,18 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                                                             info.periodic_axis);
             text << "  both halves, (<z>_right - <z>_left)/2, Hogg amplitude free: " << describe_hogg(both) << "\n";
             summary.insert("self_combined_hogg", hogg_json(both, options.first_revolution));
+            // The grains are identical: the grains' D and the halves' mixing
+            // should be one number. Compared by their 95 % intervals.
+            if (both.determined && msd[0].determined && msd[1].determined) {
+                const double lo = both.D - 1.96 * both.D_stderr, hi = both.D + 1.96 * both.D_stderr;
+                const bool agree = lo <= std::min(msd[0].interval.hi, msd[1].interval.hi) &&
+                                   hi >= std::max(msd[0].interval.lo, msd[1].interval.lo);
+                text << (agree ? "  the grains' MSD D of both halves and this Hogg D agree within their 95 % intervals\n"
+                               : "  the grains' MSD D and this Hogg D DISAGREE beyond their 95 % intervals: <z> moves by "
+                                 "more than single-grain diffusion (see the drift lines above: convecting or "
+                                 "segregating)\n");
+                summary.insert("self_msd_hogg_agree", agree);
+            }
         } else {
             std::vector<double> Ns, sums;
             for (std::size_t k = 0; k < N.size(); ++k)
