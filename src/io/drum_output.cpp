@@ -679,6 +679,31 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         text << "\n";
         summary.insert("depth_mobility", layers_json);
     }
+    // The same over windows of one revolution after the start-up, by each
+    // grain's mean depth over the window.
+    if (const auto steady = steady_frames(frames, options.first_revolution); steady.size() > 2) {
+        const double h = steady[1].revolutions - steady[0].revolutions;
+        const auto span = static_cast<std::size_t>(std::llround(1.0 / h));  // frame spacings per revolution
+        if (steady.size() > span) {
+            analysis::DepthMobility long_lag(static_cast<int>(n_components), depth_layers);
+            for (std::size_t f = 0; f + span < steady.size(); ++f) long_lag.add_window(&steady[f], span + 1, info.inner_radius);
+            write_depth_mobility(dir / "depth_mobility_long.csv", long_lag, info);
+            toml::array long_json;
+            text << fmt::format("  over one revolution, by mean depth ({} windows; depth_mobility_long.csv): share of "
+                                "<dz^2> of the grains whose mean depth is under 1 grain diameter",
+                                long_lag.intervals());
+            for (std::size_t c = 0; c < n_components; ++c) {
+                const int k = static_cast<int>(c);
+                text << fmt::format("{} {}: {:.2f} (holding {:.2f})", c ? "," : "", info.components[c].name,
+                                    long_lag.share(k, 0), long_lag.occupancy(k, 0));
+                long_json.push_back(toml::table{{"name", info.components[c].name},
+                                                {"surface_share", long_lag.share(k, 0)},
+                                                {"surface_occupancy", long_lag.occupancy(k, 0)}});
+            }
+            text << "\n";
+            summary.insert("depth_mobility_long", long_json);
+        }
+    }
 
     // Segregation and energetics from the snapshots after the start-up
     // (bed_structure.hpp): bed_structure.csv per snapshot and slice.

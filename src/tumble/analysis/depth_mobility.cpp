@@ -61,19 +61,36 @@ DepthMobility::DepthMobility(int components, int layers)
 }
 
 void DepthMobility::add(const GrainFrame& before, const GrainFrame& after, double inner_radius) {
+    const FreeSurface surface = find_free_surface(before, inner_radius);
+    std::vector<double> depth(before.id.size());
+    for (std::size_t k = 0; k < depth.size(); ++k) depth[k] = surface.depth(before.position[k]) / surface.mean_diameter;
+    record(before, after, depth);
+}
+
+void DepthMobility::add_window(const GrainFrame* frames, std::size_t count, double inner_radius) {
+    if (count < 2) throw Error("depth mobility: a window needs at least two frames");
+    std::vector<double> depth(frames[0].id.size(), 0.0);
+    for (std::size_t f = 0; f < count; ++f) {
+        if (frames[f].id != frames[0].id) throw Error("depth mobility: the frames hold different grains");
+        const FreeSurface surface = find_free_surface(frames[f], inner_radius);
+        for (std::size_t k = 0; k < depth.size(); ++k)
+            depth[k] += surface.depth(frames[f].position[k]) / surface.mean_diameter / static_cast<double>(count);
+    }
+    record(frames[0], frames[count - 1], depth);
+}
+
+void DepthMobility::record(const GrainFrame& before, const GrainFrame& after, const std::vector<double>& depth) {
     const double dN = after.revolutions - before.revolutions;
     if (!(dN > 0.0))
         throw Error("depth mobility: the second frame (N = " + std::to_string(after.revolutions) +
                     ") must come after the first (N = " + std::to_string(before.revolutions) + ")");
     if (before.id != after.id) throw Error("depth mobility: the two frames hold different grains");
-    const FreeSurface surface = find_free_surface(before, inner_radius);
     for (std::size_t k = 0; k < before.id.size(); ++k) {
         const int c = before.tag[k];
         if (c < 0 || c >= components_)
             throw Error("depth mobility: grain " + std::to_string(before.id[k]) + " has tag " + std::to_string(c) +
                         ", expected 0 .. " + std::to_string(components_ - 1));
-        const double depth = surface.depth(before.position[k]) / surface.mean_diameter;
-        const int layer = static_cast<int>(std::clamp(std::floor(depth), 0.0, layers_ - 1.0));
+        const int layer = static_cast<int>(std::clamp(std::floor(depth[k]), 0.0, layers_ - 1.0));
         const double dz = after.position[k].z - before.position[k].z;
         const auto slot = static_cast<std::size_t>(c * layers_ + layer);
         ++samples_[slot];

@@ -63,6 +63,12 @@ public:
     // Adds the interval from `before` to `after` (the same grains; throws
     // tumble::Error otherwise, or if after.revolutions <= before.revolutions).
     void add(const GrainFrame& before, const GrainFrame& after, double inner_radius);
+    // Adds the window frames[0 .. count-1] (the same grains, in time order):
+    // each grain's axial displacement from the first frame to the last,
+    // attributed to its mean depth over the window's frames. For lags of a
+    // revolution or more, over which a grain passes through several depths:
+    // where the grains that move far along the axis spend their time.
+    void add_window(const GrainFrame* frames, std::size_t count, double inner_radius);
 
     int components() const { return components_; }
     int layers() const { return layers_; }
@@ -78,6 +84,8 @@ public:
     double occupancy(int component, int layer) const;
 
 private:
+    // Accumulates dz^2 / dN of each grain at its depth (mean grain diameters).
+    void record(const GrainFrame& before, const GrainFrame& after, const std::vector<double>& depth);
     template <class T>
     const T& at(const std::vector<T>& v, int component, int layer) const {
         return v.at(static_cast<std::size_t>(component * layers_ + layer));
