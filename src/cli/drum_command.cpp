@@ -216,14 +216,10 @@ private:
         return Checkpointer::Due::no;
     }
 
-    // During the spin-up the drum's angular velocity is set before each step
-    // to its value at the step's middle (so the angle turned is exact for a
-    // linear ramp), and once more at full speed when the ramp has ended.
+    // The spin-up ramp (spin_up_setting in setup/drum.hpp).
     void spin_up(std::int64_t k) {
-        const double ramp = plan_.info.spin_up_time, t_before = static_cast<double>(k - 1) * sim_.dt();
-        if (!(ramp > 0.0) || t_before > ramp + sim_.dt()) return;
-        const double omega = drum_angular_velocity(plan_.info.omega, ramp, t_before + 0.5 * sim_.dt());
-        sim_.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, omega, {0.0, 0.0, 0.0}});
+        const double omega = spin_up_setting(plan_.info.omega, plan_.info.spin_up_time, sim_.dt(), k);
+        if (omega >= 0.0) sim_.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, omega, {0.0, 0.0, 0.0}});
     }
 
     void sample() {

@@ -79,10 +79,9 @@ TEST(SpinUp, RampReachesFullSpeedAtTheStatedTime) {
     EXPECT_DOUBLE_EQ(drum_angular_velocity(omega, 0.0, 0.0), omega);  // no ramp: full speed at once
 }
 
-// Driven the way tumble drum drives it (the drum's angular velocity set
-// before each step to its value at the step's middle, once more after the
-// ramp): the wall turns at omega after T, and the angle turned is that of
-// the linear ramp, omega (t - T/2), to the accuracy of the last step.
+// Driven as tumble drum drives it (spin_up_setting before each step): the
+// wall turns at omega after T, and the angle turned is that of the linear
+// ramp, omega (t - T/2), to the accuracy of the last step.
 TEST(SpinUp, WallTurnsAtFullSpeedAfterTheRampWithTheRampsAngle) {
     DrumSetup setup = build_drum_scenario(DrumGeometry{}, "self", 20, 3);
     Simulation sim(setup.scenario);
@@ -99,12 +98,8 @@ TEST(SpinUp, WallTurnsAtFullSpeedAfterTheRampWithTheRampsAngle) {
     };
     const Vec3 start = wall_position().first;
     for (std::int64_t k = 1; k <= steps; ++k) {
-        const double t_before = static_cast<double>(k - 1) * sim.dt();
-        if (t_before <= T + sim.dt())
-            sim.set_motion(0, RigidMotion{{0.0, 0.0, 0.0},
-                                          {0.0, 0.0, 1.0},
-                                          drum_angular_velocity(omega, T, t_before + 0.5 * sim.dt()),
-                                          {0.0, 0.0, 0.0}});
+        if (const double w = spin_up_setting(omega, T, sim.dt(), k); w >= 0.0)
+            sim.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, w, {0.0, 0.0, 0.0}});
         sim.step();
     }
     const auto [x, v] = wall_position();

@@ -400,6 +400,12 @@ double drum_angular_velocity(double omega, double ramp, double t) {
     return ramp > 0.0 ? omega * std::clamp(t / ramp, 0.0, 1.0) : omega;
 }
 
+double spin_up_setting(double omega, double ramp, double dt, std::int64_t k) {
+    const double t_before = static_cast<double>(k - 1) * dt;
+    if (!(ramp > 0.0) || t_before > ramp + dt) return -1.0;
+    return drum_angular_velocity(omega, ramp, t_before + 0.5 * dt);
+}
+
 std::size_t equal_mass_count(std::size_t total, double m1, double m2) {
     if (!(m1 > 0.0) || !(m2 > 0.0)) throw Error("equal_mass_count: masses must be positive");
     // n1 m1 = (total - n1) m2 at n1 = total m2 / (m1 + m2); take the nearer

@@ -109,6 +109,14 @@ std::size_t equal_mass_count(std::size_t total, double m1, double m2);
 // omega min(1, t / ramp), rad/s.
 double drum_angular_velocity(double omega, double ramp, double t);
 
+// How a run drives the spin-up: before step k (k = 1 the first step after
+// the start of rotation, time step dt) the drum's angular velocity is set to
+// its value at the step's middle, so a linear ramp turns the drum by exactly
+// omega t^2 / 2T; once more at full speed after the ramp's end, then never
+// again. Returns the value to set before step k, or a negative number when
+// nothing is to be set.
+double spin_up_setting(double omega, double ramp, double dt, std::int64_t k);
+
 struct DrumSetup {
     Scenario scenario;
     DrumWall wall;
