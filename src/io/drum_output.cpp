@@ -438,7 +438,9 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         msd.push_back(msd_blocks.empty() ? analysis::MsdEstimate{}
                                          : analysis::estimate_axial_diffusion({msd_blocks[c]}, msd_opts));
         analysis::MsdEstimate& m = msd.back();
-        if (msd_blocks.empty()) m.note = "no particle snapshots during the rotation (tumble drum --snapshots)";
+        if (msd_blocks.empty())
+            m.note = "fewer than three particle snapshots after the start-up (N >= " +
+                     fmt::format("{:.3g}", options.first_revolution) + "; tumble drum --snapshots, --revolutions)";
         if (m.determined)
             text << fmt::format("    D = {:.3e} m^2/rev, 95 % interval [{:.3e}, {:.3e}] (grains' axial MSD, lags "
                                 "{:.3g}-{:.3g} rev, {} blocks)\n",
