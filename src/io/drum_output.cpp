@@ -390,6 +390,98 @@ toml::table hogg_json(const analysis::HoggFit& f, double first_revolution) {
                        {"points", static_cast<std::int64_t>(f.points)}};
 }
 
+// Segregation, energetics, the free surface per slice and the flowing layer
+// from the snapshots after the start-up (bed_structure.hpp):
+// bed_structure.csv, flow_profile.csv, and their summary in `text` and
+// `summary`.
+void analyze_bed_structure(const fs::path& dir, const std::vector<analysis::GrainFrame>& frames,
+                           const DrumRunInfo& info, const AnalyzeOptions& options, std::ostringstream& text,
+                           toml::table& summary) {
+    const std::vector<analysis::GrainFrame> steady = steady_frames(frames, options.first_revolution);
+    if (steady.empty()) return;
+    std::vector<analysis::SpeciesEnergetics> energetics(info.components.size());
+    double mean_diameter = 0.0;
+    for (double r : steady.front().radius) mean_diameter += 2.0 * r / static_cast<double>(steady.front().radius.size());
+    std::ofstream out = open_for_writing(dir / "bed_structure.csv");
+    out << "revolutions,slice,z,relative_volume,surface_angle";
+    for (const DrumComponent& c : info.components) out << ",mean_distance_" << c.name;
+    out << '\n';
+    std::vector<double> distance_sum(info.components.size(), 0.0), distance_count(info.components.size(), 0.0);
+    double first_rms = 0.0, last_rms = 0.0;
+    // Depth bins of half a mean grain diameter down to 12 diameters.
+    analysis::FlowProfile flow(0.5 * mean_diameter, 12.0 * mean_diameter);
+    std::vector<double> angle_sum(static_cast<std::size_t>(info.profile_bins), 0.0),
+        angle_count(angle_sum.size(), 0.0);
+    for (std::size_t f = 0; f < steady.size(); ++f) {
+        flow.add(steady[f], info.inner_radius);
+        const std::vector<double> angle =
+            analysis::surface_angle_by_slice(steady[f], info.inner_radius, info.inner_length, info.profile_bins);
+        // Cells of two mean grain diameters: a few grains of each kind.
+        analysis::add_energetics(steady[f], 2.0 * mean_diameter, energetics);
+        const analysis::AxialStructure a =
+            analysis::axial_structure(steady[f], static_cast<int>(info.components.size()), info.inner_length, info.profile_bins);
+        double rms = 0.0;
+        for (std::size_t s = 0; s < a.z.size(); ++s) {
+            out << fmt::format("{},{},{},{},{}", steady[f].revolutions, s, a.z[s], a.relative_volume[s], angle[s]);
+            if (std::isfinite(angle[s])) angle_sum[s] += angle[s], angle_count[s] += 1.0;
+            bool all_present = true;
+            for (std::size_t c = 0; c < info.components.size(); ++c) {
+                out << ',' << a.mean_distance[c][s];
+                all_present = all_present && std::isfinite(a.mean_distance[c][s]);
+            }
+            out << '\n';
+            for (std::size_t c = 0; all_present && c < info.components.size(); ++c)
+                distance_sum[c] += a.mean_distance[c][s], distance_count[c] += 1.0;
+            rms += (a.relative_volume[s] - 1.0) * (a.relative_volume[s] - 1.0) / static_cast<double>(a.z.size());
+        }
+        (f == 0 ? first_rms : last_rms) = std::sqrt(rms);
+    }
+    check_written(out, dir / "bed_structure.csv");
+    {
+        std::ofstream profile = open_for_writing(dir / "flow_profile.csv");
+        profile << "depth,depth_diameters,downhill_velocity\n";
+        for (std::size_t k = 0; k < flow.bins(); ++k)
+            profile << fmt::format("{},{},{}\n", flow.depth(k), flow.depth(k) / mean_diameter, flow.velocity(k));
+        check_written(profile, dir / "flow_profile.csv");
+    }
+    toml::array angles_json;
+    std::string angles_text;
+    for (std::size_t k = 0; k < angle_sum.size(); ++k) {
+        const double mean = angle_count[k] > 0.0 ? angle_sum[k] / angle_count[k] : std::nan("");
+        angles_json.push_back(mean);
+        angles_text += fmt::format("{}{:.1f}", k ? " " : "", mean);
+    }
+    text << fmt::format("  free surface per axial slice (mean over the snapshots, degrees, from z = -L/2): {}\n",
+                        angles_text);
+    text << fmt::format("  flowing layer (mean downhill velocity along the surface changes sign; flow_profile.csv): "
+                        "{:.3g} m = {:.2g} mean grain diameters deep\n",
+                        flow.thickness(), flow.thickness() / mean_diameter);
+    text << fmt::format("  bed volume along the axis (bed_structure.csv): rms deviation from uniform {:.3f} at N = "
+                        "{:.3g}, {:.3f} at N = {:.3g}\n",
+                        first_rms, steady.front().revolutions, last_rms, steady.back().revolutions);
+    toml::array species_json;
+    text << "  where both kinds are present (cells of 2 grain diameters), per grain: fluctuation energy about the "
+            "local mean flow, granular temperature, rotational energy, mean distance from the slice's centroid\n";
+    for (std::size_t c = 0; c < info.components.size(); ++c) {
+        const double distance = distance_count[c] > 0.0 ? distance_sum[c] / distance_count[c] : std::nan("");
+        text << fmt::format("    {}: {:.3g} J, {:.3g} m^2/s^2, {:.3g} J, {:.4g} m ({} grain-frames)\n",
+                            info.components[c].name, energetics[c].fluctuation(), energetics[c].temperature(),
+                            energetics[c].rotation(), distance, energetics[c].grains);
+        species_json.push_back(toml::table{{"name", info.components[c].name},
+                                           {"fluctuation_energy_per_grain", energetics[c].fluctuation()},
+                                           {"granular_temperature", energetics[c].temperature()},
+                                           {"rotational_energy_per_grain", energetics[c].rotation()},
+                                           {"mean_distance_from_centroid", distance},
+                                           {"grain_frames", static_cast<std::int64_t>(energetics[c].grains)}});
+    }
+    summary.insert("bed_structure", toml::table{{"volume_rms_first", first_rms},
+                                                {"surface_angle_by_slice", angles_json},
+                                                {"flowing_layer_thickness", flow.thickness()},
+                                                {"flowing_layer_thickness_diameters", flow.thickness() / mean_diameter},
+                                                {"volume_rms_last", last_rms},
+                                                {"species", species_json}});
+}
+
 }  // namespace
 
 std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options) {
@@ -707,91 +799,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         }
     }
 
-    // Segregation and energetics from the snapshots after the start-up
-    // (bed_structure.hpp): bed_structure.csv per snapshot and slice.
-    if (const auto steady = steady_frames(frames, options.first_revolution); !steady.empty()) {
-        std::vector<analysis::SpeciesEnergetics> energetics(n_components);
-        double mean_diameter = 0.0;
-        for (double r : steady.front().radius) mean_diameter += 2.0 * r / static_cast<double>(steady.front().radius.size());
-        std::ofstream out = open_for_writing(dir / "bed_structure.csv");
-        out << "revolutions,slice,z,relative_volume,surface_angle";
-        for (const DrumComponent& c : info.components) out << ",mean_distance_" << c.name;
-        out << '\n';
-        std::vector<double> distance_sum(n_components, 0.0), distance_count(n_components, 0.0);
-        double first_rms = 0.0, last_rms = 0.0;
-        // Depth bins of half a mean grain diameter down to 12 diameters.
-        analysis::FlowProfile flow(0.5 * mean_diameter, 12.0 * mean_diameter);
-        std::vector<double> angle_sum(static_cast<std::size_t>(info.profile_bins), 0.0),
-            angle_count(angle_sum.size(), 0.0);
-        for (std::size_t f = 0; f < steady.size(); ++f) {
-            flow.add(steady[f], info.inner_radius);
-            const std::vector<double> angle =
-                analysis::surface_angle_by_slice(steady[f], info.inner_radius, L, info.profile_bins);
-            // Cells of two mean grain diameters: a few grains of each kind.
-            analysis::add_energetics(steady[f], 2.0 * mean_diameter, energetics);
-            const analysis::AxialStructure a =
-                analysis::axial_structure(steady[f], static_cast<int>(n_components), L, info.profile_bins);
-            double rms = 0.0;
-            for (std::size_t s = 0; s < a.z.size(); ++s) {
-                out << fmt::format("{},{},{},{},{}", steady[f].revolutions, s, a.z[s], a.relative_volume[s], angle[s]);
-                if (std::isfinite(angle[s])) angle_sum[s] += angle[s], angle_count[s] += 1.0;
-                bool all_present = true;
-                for (std::size_t c = 0; c < n_components; ++c) {
-                    out << ',' << a.mean_distance[c][s];
-                    all_present = all_present && std::isfinite(a.mean_distance[c][s]);
-                }
-                out << '\n';
-                for (std::size_t c = 0; all_present && c < n_components; ++c)
-                    distance_sum[c] += a.mean_distance[c][s], distance_count[c] += 1.0;
-                rms += (a.relative_volume[s] - 1.0) * (a.relative_volume[s] - 1.0) / static_cast<double>(a.z.size());
-            }
-            (f == 0 ? first_rms : last_rms) = std::sqrt(rms);
-        }
-        check_written(out, dir / "bed_structure.csv");
-        {
-            std::ofstream profile = open_for_writing(dir / "flow_profile.csv");
-            profile << "depth,depth_diameters,downhill_velocity\n";
-            for (std::size_t k = 0; k < flow.bins(); ++k)
-                profile << fmt::format("{},{},{}\n", flow.depth(k), flow.depth(k) / mean_diameter, flow.velocity(k));
-            check_written(profile, dir / "flow_profile.csv");
-        }
-        toml::array angles_json;
-        std::string angles_text;
-        for (std::size_t k = 0; k < angle_sum.size(); ++k) {
-            const double mean = angle_count[k] > 0.0 ? angle_sum[k] / angle_count[k] : std::nan("");
-            angles_json.push_back(mean);
-            angles_text += fmt::format("{}{:.1f}", k ? " " : "", mean);
-        }
-        text << fmt::format("  free surface per axial slice (mean over the snapshots, degrees, from z = -L/2): {}\n",
-                            angles_text);
-        text << fmt::format("  flowing layer (mean downhill velocity along the surface changes sign; flow_profile.csv): "
-                            "{:.3g} m = {:.2g} mean grain diameters deep\n",
-                            flow.thickness(), flow.thickness() / mean_diameter);
-        text << fmt::format("  bed volume along the axis (bed_structure.csv): rms deviation from uniform {:.3f} at N = "
-                            "{:.3g}, {:.3f} at N = {:.3g}\n",
-                            first_rms, steady.front().revolutions, last_rms, steady.back().revolutions);
-        toml::array species_json;
-        text << "  where both kinds are present (cells of 2 grain diameters), per grain: fluctuation energy about the "
-                "local mean flow, granular temperature, rotational energy, mean distance from the slice's centroid\n";
-        for (std::size_t c = 0; c < n_components; ++c) {
-            const double distance = distance_count[c] > 0.0 ? distance_sum[c] / distance_count[c] : std::nan("");
-            text << fmt::format("    {}: {:.3g} J, {:.3g} m^2/s^2, {:.3g} J, {:.4g} m ({} grain-frames)\n",
-                                info.components[c].name, energetics[c].fluctuation(), energetics[c].temperature(),
-                                energetics[c].rotation(), distance, energetics[c].grains);
-            species_json.push_back(toml::table{{"name", info.components[c].name},
-                                               {"fluctuation_energy_per_grain", energetics[c].fluctuation()},
-                                               {"granular_temperature", energetics[c].temperature()},
-                                               {"rotational_energy_per_grain", energetics[c].rotation()},
-                                               {"mean_distance_from_centroid", distance},
-                                               {"grain_frames", static_cast<std::int64_t>(energetics[c].grains)}});
-        }
-        summary.insert("bed_structure", toml::table{{"volume_rms_first", first_rms},
-                                                    {"surface_angle_by_slice", angles_json},
-                                                    {"flowing_layer_thickness", flow.thickness()},
-                                                    {"flowing_layer_thickness_diameters", flow.thickness() / mean_diameter},
-                                                    {"volume_rms_last", last_rms},
-                                                    {"species", species_json}});
-    }
+    analyze_bed_structure(dir, frames, info, options, text, summary);
 
     {
         // JSON has no NaN or infinity: an undefined number is null.
