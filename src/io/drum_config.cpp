@@ -66,7 +66,8 @@ DrumSettings load_drum_settings(const std::filesystem::path& file) {
     r.only_keys(root, "", {"drum", "fill", "rotation", "measure", "settle", "time_step", "output"});
     if (const toml::table* t = r.table(root, "drum", false)) {
         r.only_keys(*t, "drum", {"length", "diameter", "wall_radius", "periodic_axis"});
-        if (const toml::node* n = t->get("periodic_axis")) s.geometry.periodic_axis = r.boolean(*n, "drum.periodic_axis");
+        if (const toml::node* n = t->get("periodic_axis"))
+            s.geometry.periodic_axis = r.boolean(*n, "drum.periodic_axis");
         s.geometry.length = r.number(*t, "drum", "length", Bound::positive, s.geometry.length);
         s.geometry.diameter = r.number(*t, "drum", "diameter", Bound::positive, s.geometry.diameter);
         s.geometry.wall_radius = r.number(*t, "drum", "wall_radius", Bound::positive, s.geometry.wall_radius);

@@ -30,10 +30,11 @@ struct DrumSettings {
     // starts at full speed); revolutions are counted at full speed from the
     // start, N = omega t / 2 pi, so the ramp ends at N = omega T / 2 pi.
     double spin_up_time = 0.0;
-    double revolutions = 12.0;         // after the bed has settled (the MSD estimator needs 5 blocks of 2 after the first)
+    double revolutions = 12.0;         // after the bed has settled (the MSD's D needs 5 blocks of 2 after N = 1)
     int samples_per_revolution = 20;
     int profile_bins = 12;
-    int snapshots_per_revolution = 8;  // per-particle snapshots (snapshots/NNNNNN.csv, 000000 at N = 0; the axial MSD needs them); 0: none
+    int snapshots_per_revolution = 8;  // per-particle snapshots (snapshots/NNNNNN.csv, 000000 at N = 0;
+                                       // the grains' axial MSD needs them); 0: none
     double settle_speed = 0.01;        // m/s: settled when the rms grain speed is below this
     double settle_max_time = 3.0;      // s: give up settling (with a warning) after this
     double dt = 0.0;                   // s; 0: chosen from the materials

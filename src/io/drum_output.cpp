@@ -419,7 +419,8 @@ void analyze_bed_structure(const fs::path& dir, const std::vector<analysis::Grai
         // Cells of two mean grain diameters: a few grains of each kind.
         analysis::add_energetics(steady[f], 2.0 * mean_diameter, energetics);
         const analysis::AxialStructure a =
-            analysis::axial_structure(steady[f], static_cast<int>(info.components.size()), info.inner_length, info.profile_bins);
+            analysis::axial_structure(steady[f], static_cast<int>(info.components.size()), info.inner_length,
+                                      info.profile_bins);
         double rms = 0.0;
         for (std::size_t s = 0; s < a.z.size(); ++s) {
             out << fmt::format("{},{},{},{},{}", steady[f].revolutions, s, a.z[s], a.relative_volume[s], angle[s]);
@@ -674,7 +675,8 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                 if (measured < 0.0 || !std::isfinite(D_profile)) continue;  // empty bin
                 const double hogg =
                     analysis::hogg_concentration(profiles.bin_centre[b], D_profile, profiles.revolutions[k], L);
-                if (write) out << fmt::format("{},{},{},{}\n", profiles.revolutions[k], profiles.bin_centre[b], measured, hogg);
+                if (write)
+                    out << fmt::format("{},{},{},{}\n", profiles.revolutions[k], profiles.bin_centre[b], measured, hogg);
                 sum += (measured - hogg) * (measured - hogg);
                 ++n;
             }
@@ -780,7 +782,8 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         const auto span = static_cast<std::size_t>(std::llround(1.0 / h));  // frame spacings per revolution
         if (steady.size() > span) {
             analysis::DepthMobility long_lag(static_cast<int>(n_components), depth_layers);
-            for (std::size_t f = 0; f + span < steady.size(); ++f) long_lag.add_window(&steady[f], span + 1, info.inner_radius);
+            for (std::size_t f = 0; f + span < steady.size(); ++f)
+                long_lag.add_window(&steady[f], span + 1, info.inner_radius);
             write_depth_mobility(dir / "depth_mobility_long.csv", long_lag, info);
             toml::array long_json;
             text << fmt::format("  over one revolution, by mean depth ({} windows; depth_mobility_long.csv): share of "
