@@ -257,7 +257,8 @@ constexpr int depth_layers = 8;
 std::optional<analysis::DepthMobility> depth_mobility_of_run(const std::vector<analysis::GrainFrame>& frames,
                                                              const DrumRunInfo& info) {
     if (frames.size() < 2) return std::nullopt;
-    analysis::DepthMobility mobility(static_cast<int>(info.components.size()), depth_layers);
+    analysis::DepthMobility mobility(static_cast<int>(info.components.size()), depth_layers,
+                                     info.periodic_axis ? info.inner_length : 0.0);
     for (std::size_t k = 1; k < frames.size(); ++k) mobility.add(frames[k - 1], frames[k], info.inner_radius);
     return mobility;
 }
@@ -740,7 +741,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                                  "segregating)\n");
                 summary.insert("self_msd_hogg_agree", agree);
             }
-        } else {
+        } else if (!info.periodic_axis) {  // wrapped coordinates have no meaningful sum
             std::vector<double> Ns, sums;
             for (std::size_t k = 0; k < N.size(); ++k)
                 if (N[k] >= options.first_revolution) Ns.push_back(N[k]), sums.push_back(sum[k]);
@@ -781,7 +782,8 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         const double h = steady[1].revolutions - steady[0].revolutions;
         const auto span = static_cast<std::size_t>(std::llround(1.0 / h));  // frame spacings per revolution
         if (steady.size() > span) {
-            analysis::DepthMobility long_lag(static_cast<int>(n_components), depth_layers);
+            analysis::DepthMobility long_lag(static_cast<int>(n_components), depth_layers,
+                                             info.periodic_axis ? info.inner_length : 0.0);
             for (std::size_t f = 0; f + span < steady.size(); ++f)
                 long_lag.add_window(&steady[f], span + 1, info.inner_radius);
             write_depth_mobility(dir / "depth_mobility_long.csv", long_lag, info);

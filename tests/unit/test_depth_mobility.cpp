@@ -111,6 +111,20 @@ TEST(DepthMobility, WindowAttributesTheDisplacementToTheMeanDepth) {
     EXPECT_NEAR(m.msd_per_revolution(0, 0) * static_cast<double>(m.samples(0, 0)), 4e-6, 1e-15);
 }
 
+// On a periodic axis (period 0.12 m) a grain that goes from z = 0.059 m
+// to -0.059 m has moved +2 mm through the period's end, not -118 mm.
+TEST(DepthMobility, TakesTheNearestImageOnAPeriodicAxis) {
+    GrainFrame before = segment_bed({0.0, 1.0, 0.0}, 0.0);
+    before.revolutions = 1.0;
+    for (Vec3& x : before.position) x.z = 0.059;
+    GrainFrame after = before;
+    after.revolutions = 2.0;
+    for (Vec3& x : after.position) x.z = -0.059;
+    DepthMobility m(1, 4, 0.12);
+    m.add(before, after, R_drum);
+    for (int layer = 0; layer < 4; ++layer) EXPECT_NEAR(m.msd_per_revolution(0, layer), 4e-6, 1e-15);
+}
+
 TEST(DepthMobility, RefusesMismatchedFramesAndBackwardTime) {
     GrainFrame before = segment_bed({0.0, 1.0, 0.0}, 0.0);
     GrainFrame after = before;

@@ -52,9 +52,10 @@ FreeSurface find_free_surface(const GrainFrame& frame, double inner_radius) {
     return s;
 }
 
-DepthMobility::DepthMobility(int components, int layers)
+DepthMobility::DepthMobility(int components, int layers, double period)
     : components_(components),
       layers_(layers),
+      period_(period),
       samples_(static_cast<std::size_t>(std::max(0, components * layers))),
       sum_dz2_per_revolution_(samples_.size()) {
     if (components < 1 || layers < 1) throw Error("depth mobility: need at least one component and one layer");
@@ -91,7 +92,8 @@ void DepthMobility::record(const GrainFrame& before, const GrainFrame& after, co
             throw Error("depth mobility: grain " + std::to_string(before.id[k]) + " has tag " + std::to_string(c) +
                         ", expected 0 .. " + std::to_string(components_ - 1));
         const int layer = static_cast<int>(std::clamp(std::floor(depth[k]), 0.0, layers_ - 1.0));
-        const double dz = after.position[k].z - before.position[k].z;
+        double dz = after.position[k].z - before.position[k].z;
+        if (period_ > 0.0) dz -= period_ * std::round(dz / period_);
         const auto slot = static_cast<std::size_t>(c * layers_ + layer);
         ++samples_[slot];
         sum_dz2_per_revolution_[slot] += dz * dz / dN;

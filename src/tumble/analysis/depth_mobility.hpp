@@ -58,7 +58,10 @@ FreeSurface find_free_surface(const GrainFrame& frame, double inner_radius);
 // layer everything deeper.
 class DepthMobility {
 public:
-    DepthMobility(int components, int layers);
+    // period > 0: the axis is periodic with this period (m); a displacement
+    // is taken to the nearest image (grains move far less than period / 2
+    // between the frames compared).
+    DepthMobility(int components, int layers, double period = 0.0);
 
     // Adds the interval from `before` to `after` (the same grains; throws
     // tumble::Error otherwise, or if after.revolutions <= before.revolutions).
@@ -91,6 +94,7 @@ private:
         return v.at(static_cast<std::size_t>(component * layers_ + layer));
     }
     int components_, layers_;
+    double period_;
     std::size_t intervals_ = 0;
     std::vector<std::size_t> samples_;
     std::vector<double> sum_dz2_per_revolution_;
