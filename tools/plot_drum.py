@@ -230,16 +230,34 @@ class Run:
     def path(self, name):
         return os.path.join(self.dir, name)
 
-    def fit(self, index):
-        """(D, D_stderr, determined) of a component from summary.json, or None."""
-        if not self.summary:
-            return None
-        for c in self.summary.get("components", []):
+    def component_summary(self, index):
+        for c in (self.summary or {}).get("components", []):
             if c.get("name") == self.components[index]:
-                if c.get("D") is None:
-                    return None
-                return (float(c["D"]), c.get("D_stderr"), bool(c.get("determined", True)))
+                return c
         return None
+
+    def fit(self, index):
+        """(D, D_stderr, amplitude) of the free-amplitude Hogg fit of a component from
+        summary.json (before issue 14: the pinned fit, amplitude L/4), or None where
+        D was not determined: an undetermined value is never drawn."""
+        c = self.component_summary(index)
+        if c is None:
+            return None
+        h = c.get("hogg_free")
+        if h is not None:
+            if not h.get("determined") or h.get("D") is None:
+                return None
+            return (float(h["D"]), h.get("D_stderr"), float(h["amplitude"]))
+        if c.get("D") is None or not c.get("determined", True):
+            return None
+        return (float(c["D"]), c.get("D_stderr"), self.length / 4.0)
+
+    def msd(self, index):
+        """The grains' MSD estimate of a component (dict with D, D_lo, D_hi, fit lags),
+        or None where it was not determined."""
+        c = self.component_summary(index)
+        m = (c or {}).get("msd")
+        return m if m and m.get("determined") and m.get("D") is not None else None
 
     def label(self):
         return f"\u03c9 = {self.omega:g} rad/s ({self.omega * RPM_PER_RAD_S:.3g} rpm)"
@@ -314,12 +332,11 @@ def _plot_z(ax, run, colour_for, label_prefix="", marker_for=None):
         fit = run.fit(i)
         if fit is None:
             continue
-        d, d_err, determined = fit
-        curve = run.start_side[i] * hogg_mean_z(n_fine, d, run.length) * 1e3
-        err_text = f" \u00b1 {d_err:.2g}" if d_err is not None else ""
-        note = "" if determined else ", not determined"
+        d, d_err, amplitude = fit
+        curve = run.start_side[i] * amplitude * 4.0 / run.length * hogg_mean_z(n_fine, d, run.length) * 1e3
+        err_text = f" \u00b1 {1.96 * d_err:.2g} (95 %)" if d_err is not None else ""
         ax.plot(n_fine, curve, "-", color=colour, lw=1.2,
-                label=f"{label_prefix}{cname}: Hogg, D = {d:.3g}{err_text} m\u00b2/rev{note}")
+                label=f"{label_prefix}{cname}: Hogg, amplitude free, D = {d:.3g}{err_text} m\u00b2/rev")
     return drew_any
 
 
@@ -374,8 +391,9 @@ def fig_profiles(run, w):
     ax.set_ylim(-0.05, 1.05)
     ax.set_xlabel("z (mm)")
     ax.set_ylabel(f"concentration C(z, N) of {cname}")
-    fit = [run.fit(i) for i, c in enumerate(run.components) if c == cname][0]
-    d_text = f", D = {fit[0]:.3g} m\u00b2/rev" if fit else ""
+    collapse = (run.summary or {}).get("profile_collapse") or {}
+    d_text = f", D = {collapse['D']:.3g} m\u00b2/rev ({collapse.get('D_source', '')})" \
+        if collapse.get("D") is not None else ""
     ax.set_title(f"Axial concentration profile against the Hogg solution\n"
                  f"{run.mode} mode, {run.label()}{d_text}", fontsize=10)
     ax.legend(fontsize=7, ncol=2)
@@ -468,10 +486,121 @@ def fig_depth(run, w):
     w.save(fig, name)
 
 
+def fig_msd(run, w):
+    """The grains' axial mean squared displacement against lag (axial_msd.csv), with
+    the long-lag line of the fitted D and its 95 % interval."""
+    name = "fig_msd"
+    path = run.path("axial_msd.csv")
+    if not os.path.isfile(path):
+        w.skip(name, f"no {path} (the run has too few particle snapshots: tumble drum --snapshots)")
+        return
+    table = read_csv(path)
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    for i, cname in enumerate(run.components):
+        col = f"msd_{cname}"
+        if col not in table:
+            continue
+        colour = COLOURS[i % len(COLOURS)]
+        lag, msd = table["lag"], table[col]
+        m = run.msd(i)
+        label = f"{cname}" + ("" if m else ": D not determined")
+        ax.plot(lag, msd * 1e6, "o", ms=3, color=colour, label=label)
+        if m:
+            lo, hi = float(m["fit_lag_lo"]), float(m["fit_lag_hi"])
+            anchor = np.interp(lo, lag, msd)
+            x = np.array([lo, hi])
+            ax.plot(x, (anchor + 2.0 * m["D"] * (x - lo)) * 1e6, "-", color=colour, lw=2,
+                    label=f"{cname}: D = {m['D']:.3g} m\u00b2/rev, 95 % [{m['D_lo']:.3g}, {m['D_hi']:.3g}]"
+                          f" (lags {lo:.3g}-{hi:.3g} rev)")
+    ax.set_xlabel("lag (revolutions)")
+    ax.set_ylabel("axial mean squared displacement (mm\u00b2)")
+    ax.set_title(f"Grains' axial MSD, {run.mode} mode, {run.label()}", fontsize=10)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    w.save(fig, name)
+
+
+def fig_collapse(run, w):
+    """C(z, N) against z / sqrt(N) for every sample after the start-up: while the
+    mixing front is far from the caps the profiles fall on 1/2 (1 + erf(u / 2 sqrt(D)))."""
+    name = "fig_collapse"
+    collapse = (run.summary or {}).get("profile_collapse")
+    path = run.path("profiles.csv")
+    if not collapse or collapse.get("D") is None or not os.path.isfile(path):
+        w.skip(name, "no profile_collapse in summary.json or no profiles.csv")
+        return
+    p = read_csv(path)
+    index = run.components.index(collapse["component"])
+    first = float(collapse.get("first_revolution", 1.0))
+    sel = (p["component"] == index) & (p["revolutions"] >= first) & (p["concentration"] >= 0)
+    d = float(collapse["D"])
+    if not np.any(sel) or not d > 0:
+        w.skip(name, f"no profiles after N = {first:g} or no positive D")
+        return
+    u = p["z"][sel] / np.sqrt(p["revolutions"][sel]) * 1e3
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    points = ax.scatter(u, p["concentration"][sel], c=p["revolutions"][sel], s=8, cmap="viridis")
+    fig.colorbar(points, ax=ax, label="revolutions N")
+    grid = np.linspace(u.min(), u.max(), 300)
+    erf = np.vectorize(math.erf)
+    ax.plot(grid, 0.5 * (1.0 + erf(grid * 1e-3 / (2.0 * math.sqrt(d)))), "k-",
+            label=f"1/2 (1 + erf(u / 2\u221aD)), D = {d:.3g} m\u00b2/rev ({collapse.get('D_source', '')})")
+    ax.set_xlabel("u = z / \u221aN (mm per \u221arevolution)")
+    ax.set_ylabel(f"C(z, N) of {collapse['component']}")
+    ax.set_title(f"Profile collapse, N >= {first:g}: rms difference {collapse['rms']:.3f}\n"
+                 f"{run.mode} mode, {run.label()}", fontsize=10)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    w.save(fig, name)
+
+
+def fig_bed_structure(run, w):
+    """Segregation and the free surface along the axis (bed_structure.csv): the bed's
+    grain volume per slice relative to a uniform bed at several N; per slice, over the
+    snapshots, each kind's mean distance from the slice's centroid and the surface angle."""
+    name = "fig_bed_structure"
+    path = run.path("bed_structure.csv")
+    if not os.path.isfile(path):
+        w.skip(name, f"no {path} (tumble analyze, needs snapshots after the start-up)")
+        return
+    t = read_csv(path)
+    n_values = sorted(set(np.round(t["revolutions"], 9)))
+    fig, (volume, radial, angle) = plt.subplots(1, 3, figsize=(14, 4.2))
+    cmap = plt.get_cmap("viridis")
+    for k, n in enumerate(n_values[:: max(1, len(n_values) // 6)]):
+        sel = np.round(t["revolutions"], 9) == n
+        volume.plot(t["z"][sel] * 1e3, t["relative_volume"][sel], "-o", ms=3,
+                    color=cmap(k / 6.0), label=f"N = {n:.3g}")
+    volume.axhline(1.0, color="0.6", lw=0.8)
+    volume.set_xlabel("z (mm)")
+    volume.set_ylabel("grain volume / uniform bed")
+    volume.set_title("bed volume along the axis", fontsize=9)
+    volume.legend(fontsize=7)
+    slices = sorted(set(t["slice"]))
+    z = np.array([np.mean(t["z"][t["slice"] == s]) for s in slices]) * 1e3
+    for i, cname in enumerate(run.components):
+        col = f"mean_distance_{cname}"
+        if col in t:
+            radial.plot(z, [np.nanmean(t[col][t["slice"] == s]) * 1e3 for s in slices], "-o", ms=3,
+                        color=COLOURS[i % len(COLOURS)], label=cname)
+    radial.set_xlabel("z (mm)")
+    radial.set_ylabel("mean distance from the slice's centroid (mm)")
+    radial.set_title("radial composition (lower: nearer the core)", fontsize=9)
+    radial.legend(fontsize=7)
+    if "surface_angle" in t:
+        angle.plot(z, [np.nanmean(t["surface_angle"][t["slice"] == s]) for s in slices], "-o", ms=3, color="0.3")
+    angle.set_xlabel("z (mm)")
+    angle.set_ylabel("free-surface inclination (degrees)")
+    angle.set_title("free surface per axial slice", fontsize=9)
+    fig.suptitle(f"Bed structure after the start-up, {run.mode} mode, {run.label()}", fontsize=10)
+    fig.tight_layout()
+    w.save(fig, name)
+
+
 def do_run(args):
     run = Run(args.dir)
     w = Writer(args.out or os.path.join(args.dir, "figures"))
-    for make in (fig_setup, fig_z, fig_profiles, fig_energy, fig_depth):
+    for make in (fig_setup, fig_z, fig_profiles, fig_energy, fig_depth, fig_msd, fig_collapse, fig_bed_structure):
         make(run, w)
     return w
 
@@ -500,43 +629,61 @@ def do_compare(args):
 # --------------------------------------------------------------------------- sweep
 
 def _sweep_components(table):
-    names = []
-    for col in table:
-        if col.startswith("D_") and not col.startswith("D_stderr_") \
-                and not col.startswith("D_one_term"):
-            names.append(col[2:])
-    return names
+    return [col[len("D_stderr_"):] for col in table if col.startswith("D_stderr_")]
 
 
-def _group(omega, values, errors):
-    """Per distinct omega: mean over seeds, error bar (std over seeds, or the fit error
-    when only one seed has a value), the seed values."""
+def _mean_interval(v, rng):
+    """95 % bootstrap percentile interval of the mean of independent values (seeds);
+    None from fewer than 3 (two values say nothing about a spread)."""
+    if len(v) < 3:
+        return None
+    means = rng.choice(v, size=(2000, len(v)), replace=True).mean(axis=1)
+    return float(np.percentile(means, 2.5)), float(np.percentile(means, 97.5))
+
+
+def _group(x, values, lo=None, hi=None):
+    """Per distinct x: the mean over seeds of the finite values, its 95 % interval
+    (bootstrap over seeds from 3 seeds on; the seed's own interval lo-hi with one
+    seed; none with two), the seed values. NaN values (not determined) are left out."""
     out = []
-    keys = sorted(set(np.round(omega[np.isfinite(omega)], 9)))
+    rng = np.random.default_rng(20261130)
+    keys = sorted(set(np.round(x[np.isfinite(x)], 9)))
     for key in keys:
-        sel = (np.round(omega, 9) == key) & np.isfinite(values)
+        sel = (np.round(x, 9) == key) & np.isfinite(values)
         v = values[sel]
         if len(v) == 0:
             continue
-        if len(v) > 1:
-            spread = float(np.std(v, ddof=1))
-        else:
-            e = errors[sel] if errors is not None else np.array([math.nan])
-            spread = float(e[0]) if np.isfinite(e[0]) else 0.0
-        out.append((key, float(np.mean(v)), spread, v))
+        interval = _mean_interval(v, rng)
+        if interval is None and len(v) == 1 and lo is not None and hi is not None \
+                and np.isfinite(lo[sel][0]) and np.isfinite(hi[sel][0]):
+            interval = (float(lo[sel][0]), float(hi[sel][0]))
+        out.append((key, float(np.mean(v)), interval, v))
     return out
 
 
-def _plot_grouped(ax, x, values, errors, colour, label, marker="o"):
-    groups = _group(x, values, errors)
+def _plot_grouped(ax, x, values, colour, label, marker="o", lo=None, hi=None):
+    groups = _group(x, values, lo, hi)
     if not groups:
         return False
     gx = np.array([g[0] for g in groups])
-    ax.errorbar(gx, [g[1] for g in groups], yerr=[g[2] for g in groups], fmt=marker + "-",
-                color=colour, capsize=3, ms=5, lw=1.2, label=label)
+    gy = np.array([g[1] for g in groups])
+    below = [g[1] - g[2][0] if g[2] else 0.0 for g in groups]
+    above = [g[2][1] - g[1] if g[2] else 0.0 for g in groups]
+    ax.errorbar(gx, gy, yerr=[below, above], fmt=marker + "-", color=colour, capsize=3, ms=5, lw=1.2,
+                label=label + " (95 % interval)")
     for g in groups:
         ax.plot(np.full(len(g[3]), g[0]), g[3], marker, color=colour, alpha=0.25, ms=3)
     return True
+
+
+def _d_columns(table, c):
+    """D of a component and its 95 % interval per row: the grains' MSD estimate where
+    the table has it (issue 14), else the old pinned Hogg fit +- 1.96 standard errors."""
+    if f"D_msd_{c}" in table and np.any(np.isfinite(table[f"D_msd_{c}"])):
+        return table[f"D_msd_{c}"], table[f"D_msd_lo_{c}"], table[f"D_msd_hi_{c}"]
+    d = table[f"D_{c}"]
+    e = table.get(f"D_stderr_{c}", np.full(len(d), math.nan))
+    return d, d - 1.96 * e, d + 1.96 * e
 
 
 def _d_axis(ax):
@@ -551,22 +698,8 @@ def _rpm_axis(ax):
     sec.set_xlabel("rotation speed (rpm)")
 
 
-def _self_d(table, rows, comps):
-    """Per row: the mean D of the self-mode tagged halves, and its error."""
-    ds = np.array([table[f"D_{c}"][rows] for c in comps])
-    errs = np.array([table[f"D_stderr_{c}"][rows] if f"D_stderr_{c}" in table
-                     else np.full(rows.sum(), math.nan) for c in comps])
-    with np.errstate(invalid="ignore"):
-        count = np.sum(np.isfinite(ds), axis=0)
-        mean = np.where(count > 0, np.nansum(np.where(np.isfinite(ds), ds, 0), axis=0)
-                        / np.maximum(count, 1), math.nan)
-        err = np.sqrt(np.nansum(np.where(np.isfinite(errs), errs ** 2, 0), axis=0)) \
-            / np.maximum(count, 1)
-    return mean, err
-
-
 def _components_with_data(table, rows, comps):
-    return [c for c in comps if np.any(np.isfinite(table[f"D_{c}"][rows]))]
+    return [c for c in comps if np.any(np.isfinite(_d_columns(table, c)[0][rows]))]
 
 
 def do_sweep(args):
@@ -585,16 +718,15 @@ def do_sweep(args):
     self_comps = _components_with_data(table, self_rows, comps) if self_rows.any() else []
     two_comps = _components_with_data(table, two_rows, comps) if two_rows.any() else []
 
-    def errors_of(c, rows):
-        col = f"D_stderr_{c}"
-        return table[col][rows] if col in table else None
+    def plot_d(ax, x, rows, c, colour, label, marker):
+        d, lo, hi = _d_columns(table, c)
+        _plot_grouped(ax, x[rows], d[rows], colour, label, marker, lo[rows], hi[rows])
 
     # Fig. 3: self-diffusion
     if self_comps:
-        d, e = _self_d(table, self_rows, self_comps)
         fig, ax = plt.subplots(figsize=(7, 5))
-        _plot_grouped(ax, omega[self_rows], d, e, "tab:blue",
-                      f"self-diffusion ({' and '.join(self_comps)} averaged), mean over seeds")
+        for i, c in enumerate(self_comps):
+            plot_d(ax, omega, self_rows, c, COLOURS[i % len(COLOURS)], f"started {c}, mean over seeds", "os"[i % 2])
         ax.set_xlabel("rotation speed \u03c9 (rad/s)")
         ax.set_ylabel("self-diffusion coefficient D (m\u00b2/rev)")
         _rpm_axis(ax)
@@ -610,8 +742,7 @@ def do_sweep(args):
     if two_comps:
         fig, ax = plt.subplots(figsize=(7, 5))
         for i, c in enumerate(two_comps):
-            _plot_grouped(ax, omega[two_rows], table[f"D_{c}"][two_rows], errors_of(c, two_rows),
-                          COLOURS[i % len(COLOURS)], f"{c}, mean over seeds", "os^v"[i % 4])
+            plot_d(ax, omega, two_rows, c, COLOURS[i % len(COLOURS)], f"{c}, mean over seeds", "os^v"[i % 4])
         ax.set_xlabel("rotation speed \u03c9 (rad/s)")
         ax.set_ylabel("diffusion coefficient D (m\u00b2/rev)")
         _rpm_axis(ax)
@@ -632,11 +763,11 @@ def do_sweep(args):
     if present:
         fig, ax = plt.subplots(figsize=(7, 5))
         for label, col, colour in present:
-            _plot_grouped(ax, omega[two_rows], table[col][two_rows], None, colour,
+            _plot_grouped(ax, omega[two_rows], table[col][two_rows], colour,
                           f"{label}: material 2 / material 1, mean over seeds")
             ref_col = f"{col}_ref"
             if ref_col in table:
-                groups = _group(omega[two_rows], table[ref_col][two_rows], None)
+                groups = _group(omega[two_rows], table[ref_col][two_rows])
                 if groups:
                     gx = [g[0] for g in groups]
                     gy = [g[1] for g in groups]
@@ -661,12 +792,10 @@ def do_sweep(args):
     if "froude" in table and (self_comps or two_comps):
         froude = table["froude"]
         fig, ax = plt.subplots(figsize=(7, 5))
-        if self_comps:
-            d, e = _self_d(table, self_rows, self_comps)
-            _plot_grouped(ax, froude[self_rows], d, e, "tab:blue", "self-diffusion", "D")
+        for i, c in enumerate(self_comps):
+            plot_d(ax, froude, self_rows, c, "tab:blue", f"self-diffusion: started {c}", "Dd"[i % 2])
         for i, c in enumerate(two_comps):
-            _plot_grouped(ax, froude[two_rows], table[f"D_{c}"][two_rows], errors_of(c, two_rows),
-                          COLOURS[(i + 1) % len(COLOURS)], f"two-component: {c}", "os^v"[i % 4])
+            plot_d(ax, froude, two_rows, c, COLOURS[(i + 1) % len(COLOURS)], f"two-component: {c}", "os^v"[i % 4])
         ax.set_xlabel("Froude number Fr = \u03c9\u00b2R/g")
         ax.set_ylabel("diffusion coefficient D (m\u00b2/rev)")
         _d_axis(ax)
@@ -684,7 +813,7 @@ def do_sweep(args):
         fig, ax = plt.subplots(figsize=(7, 5))
         for i, c in enumerate(share_comps):
             rows = np.isfinite(table[f"surface_share_{c}"])
-            _plot_grouped(ax, omega[rows], table[f"surface_share_{c}"][rows], None,
+            _plot_grouped(ax, omega[rows], table[f"surface_share_{c}"][rows],
                           COLOURS[i % len(COLOURS)], f"{c}, mean over seeds", "os^v"[i % 4])
         ax.set_xlabel("rotation speed \u03c9 (rad/s)")
         ax.set_ylabel("share of axial <\u0394z\u00b2> in the top grain layer")

@@ -61,7 +61,8 @@ int resume_run(io::Checkpoint checkpoint, const std::filesystem::path& directory
 int resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet);
 
 // Re-analyse a drum run directory: summary.json, summary.txt.
-int analyze_command(const std::string& directory);
+// first_revolution: the start-up left out of the fits (io::AnalyzeOptions).
+int analyze_command(const std::string& directory, double first_revolution = 1.0);
 
 // The figures (tools/plot_drum.py MODE INPUTS... [--out OUT]); mode "run"
 // (a drum run directory), "compare" (several) or "sweep" (a sweep table).

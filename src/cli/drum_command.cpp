@@ -98,7 +98,7 @@ DrumPlan load_plan(const io::CheckpointRecord& r) {
 // grain centre outside it has passed through the wall.
 HealthLimits drum_limits(const Scenario& s) {
     HealthLimits limits = default_health_limits(s);
-    limits.bounded = {true, true, true};
+    limits.bounded = {true, true, !s.domain.periodic[2]};  // a periodic axis wraps the grains
     limits.lo = s.domain.lo;
     limits.hi = s.domain.hi;
     limits.region = "the drum";
@@ -176,7 +176,8 @@ private:
             fmt::print("{} after {:.3g} s: rms grain speed {:.3g} m/s; fill fraction {:.3f}, solid fraction {:.3f}\n",
                        info.settled ? "settled" : "warning: NOT settled", info.settle_time,
                        rms_grain_speed(sim_.particles()), info.fill_fraction, info.solid_fraction);
-        sim_.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, info.omega, {0.0, 0.0, 0.0}});
+        sim_.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0},
+                                       drum_angular_velocity(info.omega, info.spin_up_time, 0.0), {0.0, 0.0, 0.0}});
         plan_.rotating = true;
         plan_.rotation_start_step = sim_.step_count();
         io::write_drum_run_info(dir_ / "drum_run.toml", info);
@@ -198,6 +199,7 @@ private:
         const std::int64_t done = sim_.step_count() - plan_.rotation_start_step;  // > 0 after a resume
         Progress progress(steps_ - done, sim_.particles().free_count(), talk() && progress_wanted());
         for (std::int64_t k = done + 1; k <= steps_; ++k) {
+            spin_up(k);
             sim_.step();
             if (k % sample_every_ == 0) sample();
             if (snapshot_every_ && k % snapshot_every_ == 0) snapshots_->write(sim_);
@@ -212,6 +214,12 @@ private:
         progress.finish();
         plan_.info.wall_seconds += progress.elapsed_seconds();
         return Checkpointer::Due::no;
+    }
+
+    // The spin-up ramp (spin_up_setting in setup/drum.hpp).
+    void spin_up(std::int64_t k) {
+        const double omega = spin_up_setting(plan_.info.omega, plan_.info.spin_up_time, sim_.dt(), k);
+        if (omega >= 0.0) sim_.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, omega, {0.0, 0.0, 0.0}});
     }
 
     void sample() {
@@ -300,6 +308,8 @@ int drum_command(const DrumOptions& options) {
     info.wall_particles = setup.wall.particles.size();
     info.inner_radius = setup.wall.inner_radius;
     info.inner_length = setup.wall.inner_length;
+    info.periodic_axis = s.geometry.periodic_axis;
+    info.spin_up_time = s.spin_up_time;
     info.dt = sim.dt();
     info.threads = sim.threads();
     for (const ShearModelEntry& e : shear_models)
@@ -356,14 +366,14 @@ int resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
     return loop.run(checkpoint.record.numbers("snapshot_times"));
 }
 
-int analyze_command(const std::string& directory) {
+int analyze_command(const std::string& directory, double first_revolution) {
     const io::RunLock lock(directory);
     // A stopped or interrupted run: its series end early, and a summary of
     // them would look like that of a finished run (tumble sweep takes it so).
     if (io::resumable(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0))))
         throw Error(directory + ": the run is unfinished (its newest checkpoint is not at its end); finish it with "
                                 "tumble resume " + directory + ", which analyses it");
-    fmt::print("{}", io::analyze_drum_run(directory));
+    fmt::print("{}", io::analyze_drum_run(directory, {first_revolution}));
     return 0;
 }
 

@@ -13,6 +13,7 @@
 #include "cli/commands.hpp"
 #include "cli/sweep_command.hpp"
 #include "tumble/contact/contact_law.hpp"
+#include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 
 namespace {
@@ -103,7 +104,7 @@ int main(int argc, char** argv) {
     std::optional<std::string> mode, out, shear, friction_normal;
     CLI::App* drum_cmd = app.add_subcommand(
         "drum", "The paper's rotating-drum diffusion experiment (defaults: the paper's set-up, two components, "
-                "5 rad/s, 5 revolutions; see docs/DRUM.md)");
+                "5 rad/s, 12 revolutions; see docs/DRUM.md)");
     drum_cmd->add_option("--config", drum_config, "Drum settings file (TOML; examples/drum_*.toml)");
     drum_cmd->add_option("--mode", mode, "two-component or self");
     auto* grains_opt = drum_cmd->add_option("--grains", grains, "Total number of grains (default 1000)")
@@ -117,10 +118,19 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("--revolutions", revolutions, "Revolutions after settling");
     drum_cmd->add_option("--samples", samples, "Samples per revolution (default 20)");
     drum_cmd->add_option("--bins", bins, "Axial bins of the concentration profile (default 12)");
-    drum_cmd->add_option("--snapshots", snapshots, "Particle snapshots per revolution (default 4; 0: none)");
+    drum_cmd->add_option("--snapshots", snapshots, "Particle snapshots per revolution (default 8; 0: none)");
     drum_cmd->add_option("--length", length, "Inner length of the drum, m (default 0.12)");
     drum_cmd->add_option("--diameter", diameter, "Inner diameter of the drum, m (default 0.08)");
     drum_cmd->add_option("--wall-radius", wall_radius, "Radius of the wall particles, m (default 0.003)");
+    std::optional<double> spin_up_seconds, spin_up_revolutions;
+    auto* spin_s = drum_cmd->add_option("--spin-up", spin_up_seconds,
+                                        "Linear spin-up from rest to full speed over this many seconds (default 0)");
+    drum_cmd->add_option("--spin-up-revolutions", spin_up_revolutions,
+                         "The spin-up's length in revolutions at full speed (omega T / 2 pi)")
+        ->excludes(spin_s);
+    bool periodic_axis = false;
+    drum_cmd->add_flag("--periodic-axis", periodic_axis,
+                       "No end caps: the axis is periodic, the drum's length its period");
     drum_cmd->add_option("--dt", dt, "Time step, s (default: chosen from the materials)");
     drum_cmd->add_option("--shear", shear, "Reading of the friction limit: paper (default), coulomb or spring (docs/MODEL.md)")
         ->check(CLI::IsMember(keywords(tumble::shear_models)));
@@ -154,6 +164,9 @@ int main(int argc, char** argv) {
     std::string analyze_dir;
     CLI::App* analyze_cmd = app.add_subcommand("analyze", "Analyse a drum run directory again (summary.json, summary.txt)");
     analyze_cmd->add_option("directory", analyze_dir, "Run directory of tumble drum")->required();
+    double first_revolution = 1.0;
+    analyze_cmd->add_option("--first-revolution", first_revolution,
+                            "Leave the start-up out of the fits: use revolutions N >= this (default 1)");
 
     std::vector<std::string> plot_inputs;
     std::string plot_out;
@@ -201,7 +214,7 @@ int main(int argc, char** argv) {
     try {
         if (run_cmd->parsed()) return run_command(run);
         if (bench_cmd->parsed()) return bench_command(bench);
-        if (analyze_cmd->parsed()) return analyze_command(analyze_dir);
+        if (analyze_cmd->parsed()) return analyze_command(analyze_dir, first_revolution);
         if (plot_cmd->parsed()) return plot_command(plot_compare ? "compare" : "run", plot_inputs, plot_out);
         if (sweep_cmd->parsed()) return sweep_command(sweep);
         if (render_cmd->parsed()) return render_command(render);
@@ -223,6 +236,9 @@ int main(int argc, char** argv) {
             if (length) d.geometry.length = *length;
             if (diameter) d.geometry.diameter = *diameter;
             if (wall_radius) d.geometry.wall_radius = *wall_radius;
+            if (periodic_axis) d.geometry.periodic_axis = true;
+            if (spin_up_seconds) d.spin_up_time = *spin_up_seconds;
+            if (spin_up_revolutions) d.spin_up_time = 2.0 * tumble::pi * *spin_up_revolutions / d.omega();
             if (dt) d.dt = *dt;
             if (shear) d.shear = tumble::find_keyword(tumble::shear_models, *shear)->model;
             if (friction_normal) d.friction_normal = tumble::find_keyword(tumble::friction_normals, *friction_normal)->choice;

@@ -53,6 +53,7 @@ void check_drum_settings(const DrumSettings& s, const std::string& source) {
     if (!(s.settle_speed > 0.0)) fail("settle_speed", "must be > 0");
     if (!(s.settle_max_time > 0.0)) fail("settle_max_time", "must be > 0");
     if (!(s.dt >= 0.0)) fail("dt", "must be >= 0 (0: automatic)");
+    if (!(s.spin_up_time >= 0.0) || !std::isfinite(s.spin_up_time)) fail("spin_up_time", "must be >= 0 s (0: none)");
     for (auto [key, value] : {std::pair{"length", s.geometry.length}, std::pair{"diameter", s.geometry.diameter},
                               std::pair{"wall_radius", s.geometry.wall_radius}})
         if (!(value > 0.0) || !std::isfinite(value)) fail(key, "must be > 0, got " + show(value));
@@ -64,7 +65,9 @@ DrumSettings load_drum_settings(const std::filesystem::path& file) {
     DrumSettings s;
     r.only_keys(root, "", {"drum", "fill", "rotation", "measure", "settle", "time_step", "model", "output"});
     if (const toml::table* t = r.table(root, "drum", false)) {
-        r.only_keys(*t, "drum", {"length", "diameter", "wall_radius"});
+        r.only_keys(*t, "drum", {"length", "diameter", "wall_radius", "periodic_axis"});
+        if (const toml::node* n = t->get("periodic_axis"))
+            s.geometry.periodic_axis = r.boolean(*n, "drum.periodic_axis");
         s.geometry.length = r.number(*t, "drum", "length", Bound::positive, s.geometry.length);
         s.geometry.diameter = r.number(*t, "drum", "diameter", Bound::positive, s.geometry.diameter);
         s.geometry.wall_radius = r.number(*t, "drum", "wall_radius", Bound::positive, s.geometry.wall_radius);
@@ -84,7 +87,8 @@ DrumSettings load_drum_settings(const std::filesystem::path& file) {
             s.seed = static_cast<std::uint64_t>(r.integer(*n, "fill.seed", 0, INT64_MAX));
     }
     if (const toml::table* t = r.table(root, "rotation", false)) {
-        r.only_keys(*t, "rotation", {"omega", "rpm", "froude", "revolutions"});
+        r.only_keys(*t, "rotation", {"omega", "rpm", "froude", "revolutions", "spin_up_time"});
+        s.spin_up_time = r.number(*t, "rotation", "spin_up_time", Bound::non_negative, s.spin_up_time);
         int given = 0;
         for (auto [key, unit] : {std::pair{"omega", SpeedUnit::rad_per_s}, std::pair{"rpm", SpeedUnit::rpm},
                                  std::pair{"froude", SpeedUnit::froude}})

@@ -27,10 +27,15 @@ struct DrumSettings {
     std::uint64_t seed = 1;
     double speed = 5.0;                // in `speed_unit`
     SpeedUnit speed_unit = SpeedUnit::rad_per_s;
-    double revolutions = 5.0;          // after the bed has settled
+    // Linear spin-up from rest to omega over this time, s (0: the drum
+    // starts at full speed); revolutions are counted at full speed from the
+    // start, N = omega t / 2 pi, so the ramp ends at N = omega T / 2 pi.
+    double spin_up_time = 0.0;
+    double revolutions = 12.0;         // after the bed has settled (the MSD's D needs 5 blocks of 2 after N = 1)
     int samples_per_revolution = 20;
     int profile_bins = 12;
-    int snapshots_per_revolution = 4;  // per-particle snapshots (snapshots/NNNNNN.csv, 000000 at N = 0); 0: none
+    int snapshots_per_revolution = 8;  // per-particle snapshots (snapshots/NNNNNN.csv, 000000 at N = 0;
+                                       // the grains' axial MSD needs them); 0: none
     double settle_speed = 0.01;        // m/s: settled when the rms grain speed is below this
     double settle_max_time = 3.0;      // s: give up settling (with a warning) after this
     double dt = 0.0;                   // s; 0: chosen from the materials

@@ -15,9 +15,11 @@
 #include "io/output.hpp"
 #include "io/snapshots.hpp"
 #include "io/toml_reader.hpp"
+#include "tumble/analysis/bed_structure.hpp"
 #include "tumble/analysis/hogg.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
+#include "tumble/setup/paper_materials.hpp"
 
 namespace tumble::io {
 
@@ -50,6 +52,8 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                         {"threads", info.threads},
                         {"shear_model", info.shear_model},
                         {"friction_normal", info.friction_normal},
+                        {"periodic_axis", info.periodic_axis},
+                        {"spin_up_time", info.spin_up_time},
                         {"component", components}};
     std::ostringstream text;
     text << "# tumble drum run: what was run (read by `tumble analyze`)\n" << t << '\n';
@@ -89,6 +93,8 @@ DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
     // then with the slip reset to zero at the limit.
     info.shear_model = t["shear_model"].value_or(std::string("paper"));
     info.friction_normal = t["friction_normal"].value_or(std::string("net"));
+    info.periodic_axis = t["periodic_axis"].value_or(false);  // absent before the periodic drum
+    info.spin_up_time = t["spin_up_time"].value_or(0.0);       // absent before the spin-up ramp
     const auto entries = r.tables(t, "", "component");
     for (std::size_t i = 0; i < entries.size(); ++i) {
         const std::string p = at("component", i);
@@ -208,7 +214,17 @@ analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_
     const CsvTable csv = read_csv_table(file);
     const std::vector<double> id = csv.numbers("id"), x = csv.numbers("x"), y = csv.numbers("y"),
                               z = csv.numbers("z"), radius = csv.numbers("radius"), tag = csv.numbers("tag"),
-                              kinematic = csv.numbers("kinematic");
+                              kinematic = csv.numbers("kinematic"), vx = csv.numbers("vx"), vy = csv.numbers("vy"),
+                              vz = csv.numbers("vz"), wx = csv.numbers("wx"), wy = csv.numbers("wy"),
+                              wz = csv.numbers("wz");
+    // Masses from the drum's materials (the paper's), by name.
+    const std::size_t material_column = csv.column("material");
+    const std::vector<Material> materials = paper::materials();
+    auto density = [&](const std::string& name) {
+        for (const Material& m : materials)
+            if (m.name == name) return m.rho;
+        throw Error(file.string() + ": unknown material \"" + name + "\" (a drum run uses the paper's materials)");
+    };
     std::vector<std::size_t> order(id.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
@@ -220,8 +236,20 @@ analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_
         frame.position.push_back({x[k], y[k], z[k]});
         frame.radius.push_back(radius[k]);
         frame.tag.push_back(static_cast<std::int32_t>(tag[k]));
+        frame.velocity.push_back({vx[k], vy[k], vz[k]});
+        frame.angular_velocity.push_back({wx[k], wy[k], wz[k]});
+        frame.mass.push_back(4.0 / 3.0 * tumble::pi * std::pow(radius[k], 3) * density(csv.rows[k][material_column]));
     }
     return frame;
+}
+
+std::vector<analysis::GrainFrame> read_rotation_frames(const fs::path& dir, const DrumRunInfo& info) {
+    std::vector<analysis::GrainFrame> frames;
+    for (const fs::path& file : list_snapshot_csv(dir)) {
+        analysis::GrainFrame frame = read_snapshot_grains(file, info.settle_time, info.omega);
+        if (frame.revolutions >= -1e-9) frames.push_back(std::move(frame));  // from the start of rotation
+    }
+    return frames;
 }
 
 namespace {
@@ -232,18 +260,12 @@ constexpr int depth_layers = 8;
 
 // The axial displacements by depth between consecutive particle snapshots
 // taken during the rotation; none without two such snapshots.
-std::optional<analysis::DepthMobility> depth_mobility_of_run(const fs::path& dir, const DrumRunInfo& info) {
-    std::optional<analysis::DepthMobility> mobility;
-    std::optional<analysis::GrainFrame> before;
-    for (const fs::path& file : list_snapshot_csv(dir)) {
-        analysis::GrainFrame after = read_snapshot_grains(file, info.settle_time, info.omega);
-        if (after.revolutions < -1e-9) continue;  // before the rotation
-        if (before) {
-            if (!mobility) mobility.emplace(static_cast<int>(info.components.size()), depth_layers);
-            mobility->add(*before, after, info.inner_radius);
-        }
-        before = std::move(after);
-    }
+std::optional<analysis::DepthMobility> depth_mobility_of_run(const std::vector<analysis::GrainFrame>& frames,
+                                                             const DrumRunInfo& info) {
+    if (frames.size() < 2) return std::nullopt;
+    analysis::DepthMobility mobility(static_cast<int>(info.components.size()), depth_layers,
+                                     info.periodic_axis ? info.inner_length : 0.0);
+    for (std::size_t k = 1; k < frames.size(); ++k) mobility.add(frames[k - 1], frames[k], info.inner_radius);
     return mobility;
 }
 
@@ -264,9 +286,213 @@ void write_depth_mobility(const fs::path& file, const analysis::DepthMobility& m
     check_written(out, file);
 }
 
+
+// The MSD's blocks: a fifth of the rotation after the start-up (so 5
+// blocks), at least 2 revolutions (the lags fitted run from 1 revolution to
+// the block's length), at most 4, in whole frame spacings.
+analysis::MsdOptions msd_options_of_run(const std::vector<analysis::GrainFrame>& frames, const DrumRunInfo& info,
+                                        const AnalyzeOptions& options) {
+    analysis::MsdOptions o;
+    o.half_length = info.periodic_axis ? INFINITY : 0.5 * info.inner_length;
+    if (frames.size() < 2) return o;
+    const double h = frames[1].revolutions - frames[0].revolutions;
+    const double span = frames.back().revolutions - std::max(options.first_revolution, frames.front().revolutions);
+    o.block = std::floor(std::clamp(span / 5.0, 2.0, 4.0) / h + 0.01) * h;
+    return o;
+}
+
+// The frames after the start-up.
+std::vector<analysis::GrainFrame> steady_frames(const std::vector<analysis::GrainFrame>& frames, double first) {
+    std::vector<analysis::GrainFrame> out;
+    for (const analysis::GrainFrame& f : frames)
+        if (f.revolutions >= first - 1e-9) out.push_back(f);
+    return out;
+}
+
+// Per component, the MSD's blocks (none without two frames after the start-up).
+std::vector<analysis::MsdBlocks> axial_msd_of_run(const std::vector<analysis::GrainFrame>& frames,
+                                                  const DrumRunInfo& info, const AnalyzeOptions& options) {
+    const std::vector<analysis::GrainFrame> steady = steady_frames(frames, options.first_revolution);
+    std::vector<analysis::MsdBlocks> out;
+    if (steady.size() < 3) return out;
+    const analysis::MsdOptions o = msd_options_of_run(frames, info, options);
+    for (std::size_t c = 0; c < info.components.size(); ++c)
+        out.push_back(analysis::axial_msd_blocks(
+            analysis::axial_tracks(steady, static_cast<std::int32_t>(c), info.periodic_axis ? info.inner_length : 0.0),
+            o));
+    return out;
+}
+
+// axial_msd.csv: the MSD against lag from one snapshot spacing to 4
+// revolutions (or the rotation after the start-up), every window pooled.
+void write_axial_msd(const fs::path& file, const std::vector<analysis::GrainFrame>& frames, const DrumRunInfo& info,
+                     const AnalyzeOptions& options) {
+    const std::vector<analysis::GrainFrame> steady = steady_frames(frames, options.first_revolution);
+    if (steady.size() < 3) return;
+    analysis::MsdOptions o = msd_options_of_run(frames, info, options);
+    o.block = std::min(4.0, steady.back().revolutions - steady.front().revolutions);
+    std::vector<std::vector<double>> msd;
+    std::vector<double> lag;
+    for (std::size_t c = 0; c < info.components.size(); ++c) {
+        const analysis::MsdBlocks b = analysis::axial_msd_blocks(
+            analysis::axial_tracks(steady, static_cast<std::int32_t>(c), info.periodic_axis ? info.inner_length : 0.0),
+            o);
+        lag = b.lag;
+        msd.push_back(analysis::weighted_msd(b, std::vector<double>(b.blocks(), 1.0)));
+    }
+    std::ofstream out = open_for_writing(file);
+    out << "lag";
+    for (const DrumComponent& c : info.components) out << ",msd_" << c.name;
+    out << '\n';
+    for (std::size_t l = 0; l < lag.size(); ++l) {
+        out << lag[l];
+        for (const auto& m : msd) out << ',' << m[l];
+        out << '\n';
+    }
+    check_written(out, file);
+}
+
+// A Hogg fit, or an undetermined one with the reason: no samples, or a
+// periodic axis (the mean of a wrapped coordinate follows no Hogg law).
+analysis::HoggFit fit_hogg_or_note(const std::vector<double>& N, const std::vector<double>& z, double L,
+                                   const analysis::HoggFitOptions& o, bool periodic_axis) {
+    if (N.empty() || periodic_axis) {
+        analysis::HoggFit none;
+        none.D = none.D_stderr = none.amplitude = std::nan("");
+        none.note = periodic_axis ? "not applicable on a periodic axis" : "no samples";
+        return none;
+    }
+    return analysis::fit_hogg(N, z, L, o);
+}
+
+std::string describe_hogg(const analysis::HoggFit& f) {
+    if (!f.determined)
+        return fmt::format("D not determined: {}{}", f.note,
+                           std::isfinite(f.D) ? fmt::format(" (best estimate {:.3e} m^2/rev)", f.D) : "");
+    return fmt::format("D = {:.3e} +- {:.1e} m^2/rev (95 %: [{:.3e}, {:.3e}]), fitted <z>(0) = {:.4g} m", f.D,
+                       f.D_stderr, f.D - 1.96 * f.D_stderr, f.D + 1.96 * f.D_stderr, f.amplitude);
+}
+
+toml::table msd_json(const analysis::MsdEstimate& m) {
+    return toml::table{{"D", m.D},
+                       {"D_lo", m.interval.lo},
+                       {"D_hi", m.interval.hi},
+                       {"determined", m.determined},
+                       {"note", m.note},
+                       {"fit_lag_lo", m.fit_lo},
+                       {"fit_lag_hi", m.fit_hi},
+                       {"blocks", static_cast<std::int64_t>(m.blocks)}};
+}
+
+// The 95 % interval of a Hogg fit: +-1.96 standard errors.
+toml::table hogg_json(const analysis::HoggFit& f, double first_revolution) {
+    return toml::table{{"D", f.D},
+                       {"D_stderr", f.D_stderr},
+                       {"D_lo", f.D - 1.96 * f.D_stderr},
+                       {"D_hi", f.D + 1.96 * f.D_stderr},
+                       {"amplitude", f.amplitude},
+                       {"first_revolution", first_revolution},
+                       {"determined", f.determined},
+                       {"note", f.note},
+                       {"points", static_cast<std::int64_t>(f.points)}};
+}
+
+// Segregation, energetics, the free surface per slice and the flowing layer
+// from the snapshots after the start-up (bed_structure.hpp):
+// bed_structure.csv, flow_profile.csv, and their summary in `text` and
+// `summary`.
+void analyze_bed_structure(const fs::path& dir, const std::vector<analysis::GrainFrame>& frames,
+                           const DrumRunInfo& info, const AnalyzeOptions& options, std::ostringstream& text,
+                           toml::table& summary) {
+    const std::vector<analysis::GrainFrame> steady = steady_frames(frames, options.first_revolution);
+    if (steady.empty()) return;
+    std::vector<analysis::SpeciesEnergetics> energetics(info.components.size());
+    double mean_diameter = 0.0;
+    for (double r : steady.front().radius) mean_diameter += 2.0 * r / static_cast<double>(steady.front().radius.size());
+    std::ofstream out = open_for_writing(dir / "bed_structure.csv");
+    out << "revolutions,slice,z,relative_volume,surface_angle";
+    for (const DrumComponent& c : info.components) out << ",mean_distance_" << c.name;
+    out << '\n';
+    std::vector<double> distance_sum(info.components.size(), 0.0), distance_count(info.components.size(), 0.0);
+    double first_rms = 0.0, last_rms = 0.0;
+    // Depth bins of half a mean grain diameter down to 12 diameters.
+    analysis::FlowProfile flow(0.5 * mean_diameter, 12.0 * mean_diameter);
+    std::vector<double> angle_sum(static_cast<std::size_t>(info.profile_bins), 0.0),
+        angle_count(angle_sum.size(), 0.0);
+    for (std::size_t f = 0; f < steady.size(); ++f) {
+        flow.add(steady[f], info.inner_radius);
+        const std::vector<double> angle =
+            analysis::surface_angle_by_slice(steady[f], info.inner_radius, info.inner_length, info.profile_bins);
+        // Cells of two mean grain diameters: a few grains of each kind.
+        analysis::add_energetics(steady[f], 2.0 * mean_diameter, energetics);
+        const analysis::AxialStructure a =
+            analysis::axial_structure(steady[f], static_cast<int>(info.components.size()), info.inner_length,
+                                      info.profile_bins);
+        double rms = 0.0;
+        for (std::size_t s = 0; s < a.z.size(); ++s) {
+            out << fmt::format("{},{},{},{},{}", steady[f].revolutions, s, a.z[s], a.relative_volume[s], angle[s]);
+            if (std::isfinite(angle[s])) angle_sum[s] += angle[s], angle_count[s] += 1.0;
+            bool all_present = true;
+            for (std::size_t c = 0; c < info.components.size(); ++c) {
+                out << ',' << a.mean_distance[c][s];
+                all_present = all_present && std::isfinite(a.mean_distance[c][s]);
+            }
+            out << '\n';
+            for (std::size_t c = 0; all_present && c < info.components.size(); ++c)
+                distance_sum[c] += a.mean_distance[c][s], distance_count[c] += 1.0;
+            rms += (a.relative_volume[s] - 1.0) * (a.relative_volume[s] - 1.0) / static_cast<double>(a.z.size());
+        }
+        (f == 0 ? first_rms : last_rms) = std::sqrt(rms);
+    }
+    check_written(out, dir / "bed_structure.csv");
+    {
+        std::ofstream profile = open_for_writing(dir / "flow_profile.csv");
+        profile << "depth,depth_diameters,downhill_velocity\n";
+        for (std::size_t k = 0; k < flow.bins(); ++k)
+            profile << fmt::format("{},{},{}\n", flow.depth(k), flow.depth(k) / mean_diameter, flow.velocity(k));
+        check_written(profile, dir / "flow_profile.csv");
+    }
+    toml::array angles_json;
+    std::string angles_text;
+    for (std::size_t k = 0; k < angle_sum.size(); ++k) {
+        const double mean = angle_count[k] > 0.0 ? angle_sum[k] / angle_count[k] : std::nan("");
+        angles_json.push_back(mean);
+        angles_text += fmt::format("{}{:.1f}", k ? " " : "", mean);
+    }
+    text << fmt::format("  free surface per axial slice (mean over the snapshots, degrees, from z = -L/2): {}\n",
+                        angles_text);
+    text << fmt::format("  flowing layer (mean downhill velocity along the surface changes sign; flow_profile.csv): "
+                        "{:.3g} m = {:.2g} mean grain diameters deep\n",
+                        flow.thickness(), flow.thickness() / mean_diameter);
+    text << fmt::format("  bed volume along the axis (bed_structure.csv): rms deviation from uniform {:.3f} at N = "
+                        "{:.3g}, {:.3f} at N = {:.3g}\n",
+                        first_rms, steady.front().revolutions, last_rms, steady.back().revolutions);
+    toml::array species_json;
+    text << "  where both kinds are present (cells of 2 grain diameters), per grain: fluctuation energy about the "
+            "local mean flow, granular temperature, rotational energy, mean distance from the slice's centroid\n";
+    for (std::size_t c = 0; c < info.components.size(); ++c) {
+        const double distance = distance_count[c] > 0.0 ? distance_sum[c] / distance_count[c] : std::nan("");
+        text << fmt::format("    {}: {:.3g} J, {:.3g} m^2/s^2, {:.3g} J, {:.4g} m ({} grain-frames)\n",
+                            info.components[c].name, energetics[c].fluctuation(), energetics[c].temperature(),
+                            energetics[c].rotation(), distance, energetics[c].grains);
+        species_json.push_back(toml::table{{"name", info.components[c].name},
+                                           {"fluctuation_energy_per_grain", energetics[c].fluctuation()},
+                                           {"granular_temperature", energetics[c].temperature()},
+                                           {"rotational_energy_per_grain", energetics[c].rotation()},
+                                           {"mean_distance_from_centroid", distance},
+                                           {"grain_frames", static_cast<std::int64_t>(energetics[c].grains)}});
+    }
+    summary.insert("bed_structure", toml::table{{"volume_rms_first", first_rms},
+                                                {"surface_angle_by_slice", angles_json},
+                                                {"flowing_layer_thickness", flow.thickness()},
+                                                {"flowing_layer_thickness_diameters", flow.thickness() / mean_diameter},
+                                                {"volume_rms_last", last_rms},
+                                                {"species", species_json}});
+}
+
 }  // namespace
 
-std::string analyze_drum_run(const fs::path& dir) {
+std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options) {
     const DrumRunInfo info = read_drum_run_info(dir / "drum_run.toml");
     const std::size_t n_components = info.components.size();
     const DrumSeries series = read_drum_series(dir / "drum_series.csv", n_components);
@@ -289,8 +515,14 @@ std::string analyze_drum_run(const fs::path& dir) {
                         info.settled ? fmt::format("settled in {:.3g} s", info.settle_time)
                                      : fmt::format("NOT settled after {:.3g} s", info.settle_time));
 
+    const std::vector<analysis::GrainFrame> frames = read_rotation_frames(dir, info);
+    const std::vector<analysis::MsdBlocks> msd_blocks = axial_msd_of_run(frames, info, options);
+    const analysis::MsdOptions msd_opts = msd_options_of_run(frames, info, options);
+    write_axial_msd(dir / "axial_msd.csv", frames, info, options);
+
     toml::array components_json;
     std::vector<analysis::DiffusionFit> fits;
+    std::vector<analysis::MsdEstimate> msd;
     for (std::size_t c = 0; c < n_components; ++c) {
         const DrumComponent& comp = info.components[c];
         // The Hogg solution describes the component that starts at z > 0;
@@ -301,19 +533,71 @@ std::string analyze_drum_run(const fs::path& dir) {
                 N.push_back(series.revolutions[k]);
                 z.push_back(comp.start_side * series.mean_z[c][k]);
             }
-        const analysis::DiffusionFit fit = analysis::fit_diffusion(N, z, L);
-        fits.push_back(fit);
         text << fmt::format("  {} ({} grains, started at z {} 0): <z>(0) = {:.4g} m (L/4 = {:.4g} m)\n", comp.name,
                             comp.grains, comp.start_side > 0 ? ">" : "<", z.empty() ? 0.0 : z.front(), L / 4.0);
-        if (fit.determined)
-            text << fmt::format("    D = {:.3e} +- {:.1e} m^2/rev (full Hogg series); one-term: {:.3e} +- {:.1e}\n",
-                                fit.D, fit.D_stderr, fit.one_term_D, fit.one_term_D_stderr);
+
+        // The grains' axial MSD: the headline D.
+        msd.push_back(msd_blocks.empty() ? analysis::MsdEstimate{}
+                                         : analysis::estimate_axial_diffusion({msd_blocks[c]}, msd_opts));
+        analysis::MsdEstimate& m = msd.back();
+        if (msd_blocks.empty())
+            m.note = "fewer than three particle snapshots after the start-up (N >= " +
+                     fmt::format("{:.3g}", options.first_revolution) + "; tumble drum --snapshots, --revolutions)";
+        if (m.determined)
+            text << fmt::format("    D = {:.3e} m^2/rev, 95 % interval [{:.3e}, {:.3e}] (grains' axial MSD, lags "
+                                "{:.3g}-{:.3g} rev, {} blocks)\n",
+                                m.D, m.interval.lo, m.interval.hi, m.fit_lo, m.fit_hi, m.blocks);
         else
-            text << fmt::format("    D not determined: {} (best estimate {:.3e} m^2/rev)\n", fit.note, fit.D);
+            text << fmt::format("    D (grains' axial MSD) not determined: {}{}\n", m.note,
+                                std::isfinite(m.D) ? fmt::format(" (best estimate {:.3e} m^2/rev)", m.D) : "");
+
+        // Hogg with the amplitude free and the start-up left out.
+        const analysis::HoggFit hogg =
+            fit_hogg_or_note(N, z, L, {options.first_revolution, false, -1.0}, info.periodic_axis);
+        text << "    Hogg, amplitude free, N >= " << fmt::format("{:.3g}", options.first_revolution) << ": "
+             << describe_hogg(hogg) << "\n";
+
+        // Drift: with D held at the grains' MSD value, what is left of the
+        // motion of <z> is a drift of the component's centre.
+        analysis::HoggFit drift;
+        std::string verdict = "undetermined";
+        if (m.determined && !info.periodic_axis) {
+            drift = fit_hogg_or_note(N, z, L, {options.first_revolution, true, m.D}, false);
+            // In the mirrored frame <z> starts at L/4 and mixing lowers it: a
+            // drift v > 0 carries the component back toward its own end
+            // (segregation), v < 0 mixes it faster than its grains' diffusion
+            // (axial convection, e.g. recirculation driven by the end caps).
+            if (drift.points >= 10) {
+                const bool significant = std::abs(drift.drift) > 3.0 * drift.drift_stderr;
+                verdict = !significant ? "diffusing" : drift.drift > 0.0 ? "segregating" : "convecting";
+                const char* meaning =
+                    verdict == "diffusing"     ? "consistent with diffusion alone"
+                    : verdict == "segregating" ? "segregating: its <z> moves back toward its own end"
+                                               : "convecting: its <z> falls faster than its grains' diffusion explains";
+                text << fmt::format("    drift of <z> beyond diffusion at the MSD's D: {:.2e} +- {:.1e} m/rev ({:.1f} "
+                                    "standard errors): {}\n",
+                                    drift.drift, drift.drift_stderr, std::abs(drift.drift) / drift.drift_stderr,
+                                    meaning);
+            }
+        }
+
+        const analysis::DiffusionFit fit = analysis::fit_diffusion(N.empty() ? std::vector<double>{0.0} : N,
+                                                                   z.empty() ? std::vector<double>{0.0} : z, L);
+        fits.push_back(fit);
+        if (fit.determined && !info.periodic_axis)
+            text << fmt::format("    old estimator, Hogg pinned at L/4 from N = 0: D = {:.3e} +- {:.1e} m^2/rev; "
+                                "one-term: {:.3e} +- {:.1e}\n",
+                                fit.D, fit.D_stderr, fit.one_term_D, fit.one_term_D_stderr);
         components_json.push_back(toml::table{{"name", comp.name},
                                               {"grains", static_cast<std::int64_t>(comp.grains)},
                                               {"mass", comp.mass},
                                               {"start_side", comp.start_side},
+                                              {"msd", msd_json(m)},
+                                              {"hogg_free", hogg_json(hogg, options.first_revolution)},
+                                              {"drift", toml::table{{"velocity", drift.drift},
+                                                                    {"velocity_stderr", drift.drift_stderr},
+                                                                    {"D_held", m.D},
+                                                                    {"verdict", verdict}}},
                                               {"D", fit.D},
                                               {"D_stderr", fit.D_stderr},
                                               {"D_one_term", fit.one_term_D},
@@ -378,40 +662,111 @@ std::string analyze_drum_run(const fs::path& dir) {
     }
 
     // Concentration profiles of the component that started at z > 0 against
-    // the Hogg solution with its fitted D, at a quarter, half and all of the run.
+    // the Hogg solution with the grains' MSD D (the pinned Hogg D where the
+    // MSD has none), at a quarter, half and all of the run; and the profile
+    // collapse: while the mixing front is far from the caps, C(z, N) depends
+    // on z / sqrt(D N) alone, so the rms of C - C_Hogg over every sample
+    // after the start-up is one number for how well single-grain diffusion
+    // accounts for the spreading of the profile.
     std::size_t right = 0;
     for (std::size_t c = 0; c < n_components; ++c)
         if (info.components[c].start_side > 0) right = c;
-    if (!profiles.revolutions.empty()) {
+    if (!profiles.revolutions.empty() && !info.periodic_axis) {
+        const bool from_msd = msd[right].determined;
+        const double D_profile = from_msd ? msd[right].D : fits[right].D;
+        const std::string D_name = from_msd ? "the grains' MSD D" : "the pinned Hogg D";
         std::ofstream out = open_for_writing(dir / "profile_comparison.csv");
         out << "revolutions,z,measured,hogg\n";
         toml::array rms_json;
-        const double last = profiles.revolutions.back();
-        for (double fraction : {0.25, 0.5, 1.0}) {
-            const std::size_t k = nearest_sample(profiles.revolutions, fraction * last);
-            const double N = profiles.revolutions[k];
+        auto rms_at = [&](std::size_t k, bool write) {
             double sum = 0.0;
             std::size_t n = 0;
             for (std::size_t b = 0; b < profiles.bin_centre.size(); ++b) {
                 const double measured = profiles.concentration[k][right][b];
-                if (measured < 0.0) continue;  // empty bin
-                const double hogg = analysis::hogg_concentration(profiles.bin_centre[b], fits[right].D, N, L);
-                out << fmt::format("{},{},{},{}\n", N, profiles.bin_centre[b], measured, hogg);
+                if (measured < 0.0 || !std::isfinite(D_profile)) continue;  // empty bin
+                const double hogg =
+                    analysis::hogg_concentration(profiles.bin_centre[b], D_profile, profiles.revolutions[k], L);
+                if (write)
+                    out << fmt::format("{},{},{},{}\n", profiles.revolutions[k], profiles.bin_centre[b], measured, hogg);
                 sum += (measured - hogg) * (measured - hogg);
                 ++n;
             }
+            return std::pair{sum, n};
+        };
+        const double last = profiles.revolutions.back();
+        for (double fraction : {0.25, 0.5, 1.0}) {
+            const std::size_t k = nearest_sample(profiles.revolutions, fraction * last);
+            const auto [sum, n] = rms_at(k, true);
             const double rms = n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
-            rms_json.push_back(toml::table{{"revolutions", N}, {"rms_difference", rms}});
-            text << fmt::format("  C(z, N = {:.3g}) of {} against Hogg with its D: rms difference {:.3f}\n", N,
-                                info.components[right].name, rms);
+            rms_json.push_back(toml::table{{"revolutions", profiles.revolutions[k]}, {"rms_difference", rms}});
+            text << fmt::format("  C(z, N = {:.3g}) of {} against Hogg with {}: rms difference {:.3f}\n",
+                                profiles.revolutions[k], info.components[right].name, D_name, rms);
         }
         check_written(out, dir / "profile_comparison.csv");
         summary.insert("profile_comparison", rms_json);
+        double sum = 0.0;
+        std::size_t n = 0;
+        for (std::size_t k = 0; k < profiles.revolutions.size(); ++k)
+            if (profiles.revolutions[k] >= options.first_revolution) {
+                const auto [s_k, n_k] = rms_at(k, false);
+                sum += s_k, n += n_k;
+            }
+        const double collapse = n ? std::sqrt(sum / static_cast<double>(n)) : std::nan("");
+        text << fmt::format("  profile collapse of {} (C against z / sqrt(N), N >= {:.3g}) on Hogg with {}: rms {:.3f}\n",
+                            info.components[right].name, options.first_revolution, D_name, collapse);
+        summary.insert("profile_collapse", toml::table{{"component", info.components[right].name},
+                                                       {"D", D_profile},
+                                                       {"D_source", from_msd ? "msd" : "hogg_pinned"},
+                                                       {"first_revolution", options.first_revolution},
+                                                       {"rms", collapse}});
+    }
+
+    // Self mode: the two halves are one experiment (identical grains, the
+    // bed's centre fixed), so one Hogg fit of (<z>_right - <z>_left) / 2.
+    // Two components: the drift of <z>_1 + <z>_2, zero if the two kinds only
+    // exchange places; a steady drift means bed volume moves along the axis.
+    if (n_components == 2) {
+        std::vector<double> N, half_difference, sum;
+        const std::size_t left = 1 - right;
+        for (std::size_t k = 0; k < series.revolutions.size(); ++k)
+            if (series.revolutions[k] >= 0.0) {
+                N.push_back(series.revolutions[k]);
+                half_difference.push_back(0.5 * (series.mean_z[right][k] - series.mean_z[left][k]));
+                sum.push_back(series.mean_z[0][k] + series.mean_z[1][k]);
+            }
+        if (info.mode == "self") {
+            const analysis::HoggFit both = fit_hogg_or_note(N, half_difference, L, {options.first_revolution, false, -1.0},
+                                                            info.periodic_axis);
+            text << "  both halves, (<z>_right - <z>_left)/2, Hogg amplitude free: " << describe_hogg(both) << "\n";
+            summary.insert("self_combined_hogg", hogg_json(both, options.first_revolution));
+            // The grains are identical: the grains' D and the halves' mixing
+            // should be one number. Compared by their 95 % intervals.
+            if (both.determined && msd[0].determined && msd[1].determined) {
+                const double lo = both.D - 1.96 * both.D_stderr, hi = both.D + 1.96 * both.D_stderr;
+                const bool agree = lo <= std::min(msd[0].interval.hi, msd[1].interval.hi) &&
+                                   hi >= std::max(msd[0].interval.lo, msd[1].interval.lo);
+                text << (agree ? "  the grains' MSD D of both halves and this Hogg D agree within their 95 % intervals\n"
+                               : "  the grains' MSD D and this Hogg D DISAGREE beyond their 95 % intervals: <z> moves by "
+                                 "more than single-grain diffusion (see the drift lines above: convecting or "
+                                 "segregating)\n");
+                summary.insert("self_msd_hogg_agree", agree);
+            }
+        } else if (!info.periodic_axis) {  // wrapped coordinates have no meaningful sum
+            std::vector<double> Ns, sums;
+            for (std::size_t k = 0; k < N.size(); ++k)
+                if (N[k] >= options.first_revolution) Ns.push_back(N[k]), sums.push_back(sum[k]);
+            if (Ns.size() >= 3) {
+                const analysis::LineFit f = analysis::fit_line(Ns, sums);
+                text << fmt::format("  drift of <z>_1 + <z>_2 (bed volume moving along the axis): {:.2e} +- {:.1e} m/rev\n",
+                                    f.slope, f.slope_stderr);
+                summary.insert("sum_drift", toml::table{{"velocity", f.slope}, {"velocity_stderr", f.slope_stderr}});
+            }
+        }
     }
 
     // Where the axial motion happens: by depth below the free surface, from
     // the particle snapshots (tumble drum --snapshots).
-    if (const auto mobility = depth_mobility_of_run(dir, info)) {
+    if (const auto mobility = depth_mobility_of_run(frames, info)) {
         write_depth_mobility(dir / "depth_mobility.csv", *mobility, info);
         toml::array layers_json;
         text << fmt::format("  axial motion by depth below the free surface ({} snapshot intervals; "
@@ -431,6 +786,35 @@ std::string analyze_drum_run(const fs::path& dir) {
         text << "\n";
         summary.insert("depth_mobility", layers_json);
     }
+    // The same over windows of one revolution after the start-up, by each
+    // grain's mean depth over the window.
+    if (const auto steady = steady_frames(frames, options.first_revolution); steady.size() > 2) {
+        const double h = steady[1].revolutions - steady[0].revolutions;
+        const auto span = static_cast<std::size_t>(std::llround(1.0 / h));  // frame spacings per revolution
+        if (steady.size() > span) {
+            analysis::DepthMobility long_lag(static_cast<int>(n_components), depth_layers,
+                                             info.periodic_axis ? info.inner_length : 0.0);
+            for (std::size_t f = 0; f + span < steady.size(); ++f)
+                long_lag.add_window(&steady[f], span + 1, info.inner_radius);
+            write_depth_mobility(dir / "depth_mobility_long.csv", long_lag, info);
+            toml::array long_json;
+            text << fmt::format("  over one revolution, by mean depth ({} windows; depth_mobility_long.csv): share of "
+                                "<dz^2> of the grains whose mean depth is under 1 grain diameter",
+                                long_lag.intervals());
+            for (std::size_t c = 0; c < n_components; ++c) {
+                const int k = static_cast<int>(c);
+                text << fmt::format("{} {}: {:.2f} (holding {:.2f})", c ? "," : "", info.components[c].name,
+                                    long_lag.share(k, 0), long_lag.occupancy(k, 0));
+                long_json.push_back(toml::table{{"name", info.components[c].name},
+                                                {"surface_share", long_lag.share(k, 0)},
+                                                {"surface_occupancy", long_lag.occupancy(k, 0)}});
+            }
+            text << "\n";
+            summary.insert("depth_mobility_long", long_json);
+        }
+    }
+
+    analyze_bed_structure(dir, frames, info, options, text, summary);
 
     {
         // JSON has no NaN or infinity: an undefined number is null.

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "tumble/analysis/axial_msd.hpp"
 #include "tumble/analysis/depth_mobility.hpp"
 #include "tumble/analysis/drum_measure.hpp"
 
@@ -48,6 +49,8 @@ struct DrumRunInfo {
     int threads = 1;               // of the time step (tumble drum --threads)
     std::string shear_model = "paper";    // keyword of the shear model (contact_law.hpp)
     std::string friction_normal = "net";  // keyword of the normal force that limits friction
+    bool periodic_axis = false;    // no end caps: the axis is periodic with period inner_length
+    double spin_up_time = 0.0;     // s: linear ramp from rest to omega (0: none)
     std::vector<DrumComponent> components;
 };
 
@@ -88,8 +91,20 @@ DrumProfiles read_drum_profiles(const std::filesystem::path& file, std::size_t c
 // sorted by id, at N = omega (t - rotation_start) / 2 pi revolutions.
 analysis::GrainFrame read_snapshot_grains(const std::filesystem::path& file, double rotation_start, double omega);
 
-// Fits D per component, the kinetic-energy ratios and the profile comparison;
-// writes summary.json and summary.txt into `directory` and returns the text.
-std::string analyze_drum_run(const std::filesystem::path& directory);
+// The particle snapshots taken during the rotation (N >= 0), in time order.
+std::vector<analysis::GrainFrame> read_rotation_frames(const std::filesystem::path& directory, const DrumRunInfo& info);
+
+struct AnalyzeOptions {
+    // The start-up left out of the fits: revolutions N >= this (the bed
+    // spins up and reaches its steady flow within the first revolution at
+    // the default speed; more at high speed).
+    double first_revolution = 1.0;
+};
+
+// Fits D per component (grains' axial MSD, free-amplitude Hogg, drift), the
+// kinetic-energy ratios and the profile comparison; writes summary.json,
+// summary.txt, axial_msd.csv and the other analysis files into `directory`
+// and returns the text.
+std::string analyze_drum_run(const std::filesystem::path& directory, const AnalyzeOptions& options = {});
 
 }  // namespace tumble::io

@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "io/toml_reader.hpp"
+#include "tumble/analysis/bootstrap.hpp"
 #include "tumble/core/error.hpp"
 
 extern char** environ;
@@ -611,8 +612,18 @@ PointResult read_point_result(const SweepPoint& p) {
                 const Json* name = c.find("name");
                 if (!name || name->type != Json::Type::string) throw Error(file.string() + ": a component without a name");
                 const Json* det = c.find("determined");
-                r.components[name->string] = {num(c, "D"), num(c, "D_stderr"), num(c, "D_one_term"),
-                                              det && det->type == Json::Type::boolean && det->boolean, nan};
+                PointResult::Component k{num(c, "D"), num(c, "D_stderr"), num(c, "D_one_term"),
+                                         det && det->type == Json::Type::boolean && det->boolean, nan};
+                // The estimators of issue 14, where determined.
+                auto determined = [](const Json* o) {
+                    const Json* d = o ? o->find("determined") : nullptr;
+                    return d && d->type == Json::Type::boolean && d->boolean;
+                };
+                if (const Json* m = c.find("msd"); determined(m))
+                    k.msd_D = num(*m, "D"), k.msd_lo = num(*m, "D_lo"), k.msd_hi = num(*m, "D_hi");
+                if (const Json* h = c.find("hogg_free"); determined(h))
+                    k.hogg_D = num(*h, "D"), k.hogg_lo = num(*h, "D_lo"), k.hogg_hi = num(*h, "D_hi");
+                r.components[name->string] = k;
             }
         else
             throw Error(file.string() + ": no \"components\" array");
@@ -649,7 +660,9 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
         std::ostringstream out;
         out << "mode,shear_model,friction_normal,omega,froude,seed,revolutions,grains";
         for (const std::string& c : components)
-            out << fmt::format(",D_{0},D_stderr_{0},D_one_term_{0},determined_{0},surface_share_{0}", c);
+            out << fmt::format(",D_{0},D_stderr_{0},D_one_term_{0},determined_{0},surface_share_{0},D_msd_{0},D_msd_lo_{0},"
+                               "D_msd_hi_{0},D_hogg_free_{0},D_hogg_free_lo_{0},D_hogg_free_hi_{0}",
+                               c);
         out << ",ke_ratio_total,ke_ratio_total_ref,ke_ratio_per_grain,ke_ratio_per_grain_ref,angle_of_repose,"
                "grain_updates_per_second,status\n";
         for (const PointResult& r : results) {
@@ -661,10 +674,12 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
             for (const std::string& c : components) {
                 const PointResult::Component* k = ok ? component(r, c) : nullptr;
                 if (k)
-                    out << fmt::format(",{},{},{},{},{}", cell(k->D), cell(k->D_stderr), cell(k->D_one_term),
-                                       k->determined ? "true" : "false", cell(k->surface_share));
+                    out << fmt::format(",{},{},{},{},{},{},{},{},{},{},{}", cell(k->D), cell(k->D_stderr),
+                                       cell(k->D_one_term), k->determined ? "true" : "false", cell(k->surface_share),
+                                       cell(k->msd_D), cell(k->msd_lo), cell(k->msd_hi), cell(k->hogg_D),
+                                       cell(k->hogg_lo), cell(k->hogg_hi));
                 else
-                    out << ",,,,,";
+                    out << ",,,,,,,,,,,";
             }
             for (double v : {r.ke_ratio_total, r.ke_ratio_total_ref, r.ke_ratio_per_grain, r.ke_ratio_per_grain_ref,
                              r.angle_of_repose, r.grain_updates_per_second})
@@ -683,6 +698,14 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
         using Get = std::function<double(const PointResult&)>;
         std::vector<std::pair<std::string, Get>> quantities;
         for (const std::string& c : components) {
+            quantities.emplace_back("D_msd_" + c, [c, component](const PointResult& r) {
+                const auto* k = component(r, c);
+                return k ? k->msd_D : nan;
+            });
+            quantities.emplace_back("D_hogg_free_" + c, [c, component](const PointResult& r) {
+                const auto* k = component(r, c);
+                return k ? k->hogg_D : nan;
+            });
             quantities.emplace_back("D_" + c, [c, component](const PointResult& r) {
                 const auto* k = component(r, c);
                 return k && k->determined ? k->D : nan;
@@ -707,7 +730,7 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
 
         std::ostringstream out;
         out << "mode,omega,froude,seeds,finished";
-        for (const auto& [name, get] : quantities) out << fmt::format(",{0}_mean,{0}_std,{0}_n", name);
+        for (const auto& [name, get] : quantities) out << fmt::format(",{0}_mean,{0}_std,{0}_n,{0}_lo,{0}_hi", name);
         out << '\n';
         std::vector<bool> done(results.size(), false);
         for (std::size_t i = 0; i < results.size(); ++i) {
@@ -739,7 +762,10 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
                     for (double x : v) ss += (x - mean) * (x - mean);
                     sd = std::sqrt(ss / static_cast<double>(v.size() - 1));
                 }
-                out << fmt::format(",{},{},{}", cell(mean), cell(sd), v.size());
+                // The seed is the statistical unit: the interval of the mean
+                // over seeds (none from fewer than 3).
+                const analysis::Interval ci = analysis::bootstrap_mean_interval(v);
+                out << fmt::format(",{},{},{},{},{}", cell(mean), cell(sd), v.size(), cell(ci.lo), cell(ci.hi));
             }
             out << '\n';
         }

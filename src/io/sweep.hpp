@@ -9,6 +9,7 @@
 #pragma once
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -34,7 +35,7 @@ struct SweepSettings {
     std::size_t grains_two_component = 1000;
     std::size_t grains_self = 458;
     int samples_per_revolution = 20;
-    int snapshots_per_revolution = 0;  // per point; 0: none (a sweep keeps its directories small)
+    int snapshots_per_revolution = 8;  // per point (the grains' axial MSD needs them; about 1.5 MB each); 0: none
     double diameter = 0.08;            // m: only to turn froude into omega (the drum's default diameter)
     std::string shear = "paper";            // shear model of every point (tumble drum --shear)
     std::string friction_normal = "net";    // tumble drum --friction-normal
@@ -182,13 +183,18 @@ struct PointResult {
     SweepPoint point;
     PointState state = PointState::pending;
     std::string note;  // why there are no numbers (failed, unreadable summary.json)
-    // Per component name: D, D_stderr, D_one_term, determined, and the share
-    // of its axial <dz^2> in the top grain layer, less than a mean grain
-    // diameter below the free surface (NaN: null / absent).
+    // Per component name: D, D_stderr, D_one_term, determined (the pinned
+    // Hogg fit of tumble before issue 14), and the share of its axial <dz^2>
+    // in the top grain layer, less than a mean grain diameter below the free
+    // surface; the grains' MSD D with its 95 % interval and the
+    // free-amplitude Hogg D with its interval, NaN where not determined
+    // (NaN: null / absent).
     struct Component {
         double D, D_stderr, D_one_term;
         bool determined;
         double surface_share;
+        double msd_D = NAN, msd_lo = NAN, msd_hi = NAN;
+        double hogg_D = NAN, hogg_lo = NAN, hogg_hi = NAN;
     };
     std::map<std::string, Component> components;
     double ke_ratio_total, ke_ratio_total_ref, ke_ratio_per_grain, ke_ratio_per_grain_ref;
@@ -200,8 +206,9 @@ struct PointResult {
 PointResult read_point_result(const SweepPoint& p);
 
 // Writes DIR/sweep.csv (one row per point, plan order) and
-// DIR/sweep_summary.csv (mean, standard deviation and count over seeds per
-// mode and omega). Returns the number of points without results.
+// DIR/sweep_summary.csv (mean, standard deviation, count, and the 95 %
+// bootstrap interval of the mean with the seed as the unit, from 3 seeds
+// on, over seeds per mode and omega). Returns the number of points without results.
 std::size_t write_sweep_tables(const std::filesystem::path& directory, const std::vector<PointResult>& results);
 
 }  // namespace tumble::io

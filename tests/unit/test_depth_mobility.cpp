@@ -89,6 +89,42 @@ TEST(DepthMobility, AttributesDisplacementsToTheStartingLayer) {
     EXPECT_GT(m.occupancy(0, 3), 0.5);
 }
 
+// A window of three frames: the bed's grains stay put in the cross-section,
+// and one grain in the top layer goes 2 mm along the axis over the window
+// (1 revolution): it counts at its mean depth, in layer 0, with
+// dz^2 / dN = 4e-6 m^2/rev; nothing else moves.
+TEST(DepthMobility, WindowAttributesTheDisplacementToTheMeanDepth) {
+    GrainFrame first = segment_bed({0.0, 1.0, 0.0}, 0.0);
+    const FreeSurface s = find_free_surface(first, R_drum);
+    std::size_t mover = 0;
+    while (s.depth(first.position[mover]) >= 0.9 * s.mean_diameter) ++mover;
+    ASSERT_LT(mover, first.id.size());
+    std::vector<GrainFrame> window(3, first);
+    for (std::size_t f = 0; f < 3; ++f) {
+        window[f].revolutions = 2.0 + 0.5 * static_cast<double>(f);
+        window[f].position[mover].z += 1e-3 * static_cast<double>(f);
+    }
+    DepthMobility m(1, 4);
+    m.add_window(window.data(), window.size(), R_drum);
+    EXPECT_EQ(m.intervals(), 1u);
+    EXPECT_DOUBLE_EQ(m.share(0, 0), 1.0);
+    EXPECT_NEAR(m.msd_per_revolution(0, 0) * static_cast<double>(m.samples(0, 0)), 4e-6, 1e-15);
+}
+
+// On a periodic axis (period 0.12 m) a grain that goes from z = 0.059 m
+// to -0.059 m has moved +2 mm through the period's end, not -118 mm.
+TEST(DepthMobility, TakesTheNearestImageOnAPeriodicAxis) {
+    GrainFrame before = segment_bed({0.0, 1.0, 0.0}, 0.0);
+    before.revolutions = 1.0;
+    for (Vec3& x : before.position) x.z = 0.059;
+    GrainFrame after = before;
+    after.revolutions = 2.0;
+    for (Vec3& x : after.position) x.z = -0.059;
+    DepthMobility m(1, 4, 0.12);
+    m.add(before, after, R_drum);
+    for (int layer = 0; layer < 4; ++layer) EXPECT_NEAR(m.msd_per_revolution(0, layer), 4e-6, 1e-15);
+}
+
 TEST(DepthMobility, RefusesMismatchedFramesAndBackwardTime) {
     GrainFrame before = segment_bed({0.0, 1.0, 0.0}, 0.0);
     GrainFrame after = before;

@@ -114,7 +114,7 @@ TEST_F(Sweep, DefaultsAndExamples) {
     EXPECT_EQ(s.seeds, (std::vector<std::uint64_t>{1}));
     EXPECT_EQ(s.grains_self, 458u);
     EXPECT_EQ(s.grains_two_component, 1000u);
-    EXPECT_EQ(s.snapshots_per_revolution, 0);
+    EXPECT_EQ(s.snapshots_per_revolution, 8);  // the grains' axial MSD needs them
     const SweepSettings paper = load_sweep_settings(fs::path(TUMBLE_SOURCE_DIR) / "examples/sweep_paper.toml");
     EXPECT_EQ(expand_sweep(paper, "d").size(), 24u);
     const SweepSettings tiny = load_sweep_settings(fs::path(TUMBLE_SOURCE_DIR) / "examples/sweep_tiny.toml");
@@ -181,7 +181,7 @@ TEST(SweepPoints, NamesAndOrder) {
     const auto args = drum_arguments(points[1]);
     const std::vector<std::string> expected{"drum",  "-q",         "--mode",    "two-component", "--omega", "5",
                                             "--seed", "1",         "--revolutions", "5",         "--grains", "200",
-                                            "--samples", "20",     "--snapshots", "0",           "--shear",
+                                            "--samples", "20",     "--snapshots", "8",           "--shear",
                                             "paper", "--friction-normal", "net",              "--out",
                                             (fs::path("out") / "points" / "two-component_omega5.000_seed1").string(),
                                             "--force", "--threads", "1"};
@@ -370,7 +370,9 @@ std::string summary_json(const std::string& mode, double d1, double d2, bool det
     const auto names = components_of_mode(mode);
     std::string text = "{\n  \"mode\": \"" + mode + "\",\n  \"components\": [\n";
     text += "    {\"name\": \"" + names[0] + "\", \"D\": " + std::to_string(d1) +
-            ", \"D_stderr\": 1e-6, \"D_one_term\": 2e-5, \"determined\": true, \"note\": \"\"},\n";
+            ", \"D_stderr\": 1e-6, \"D_one_term\": 2e-5, \"determined\": true, \"note\": \"\", \"msd\": {\"D\": " +
+            std::to_string(d1) + ", \"D_lo\": " + std::to_string(0.9 * d1) + ", \"D_hi\": " + std::to_string(1.1 * d1) +
+            ", \"determined\": true}, \"hogg_free\": {\"D\": 1e-5, \"D_lo\": null, \"D_hi\": null, \"determined\": false}},\n";
     text += "    {\"name\": \"" + names[1] + "\", \"D\": " + std::to_string(d2) +
             ", \"D_stderr\": null, \"D_one_term\": 3e-5, \"determined\": " + (det2 ? "true" : "false") +
             ", \"note\": \"too short\"}\n  ],\n";
@@ -417,9 +419,13 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     const std::string header =
         "mode,shear_model,friction_normal,omega,froude,seed,revolutions,grains,"
         "D_material-1,D_stderr_material-1,D_one_term_material-1,determined_material-1,surface_share_material-1,"
+        "D_msd_material-1,D_msd_lo_material-1,D_msd_hi_material-1,D_hogg_free_material-1,D_hogg_free_lo_material-1,D_hogg_free_hi_material-1,"
         "D_material-2,D_stderr_material-2,D_one_term_material-2,determined_material-2,surface_share_material-2,"
+        "D_msd_material-2,D_msd_lo_material-2,D_msd_hi_material-2,D_hogg_free_material-2,D_hogg_free_lo_material-2,D_hogg_free_hi_material-2,"
         "D_left,D_stderr_left,D_one_term_left,determined_left,surface_share_left,"
+        "D_msd_left,D_msd_lo_left,D_msd_hi_left,D_hogg_free_left,D_hogg_free_lo_left,D_hogg_free_hi_left,"
         "D_right,D_stderr_right,D_one_term_right,determined_right,surface_share_right,"
+        "D_msd_right,D_msd_lo_right,D_msd_hi_right,D_hogg_free_right,D_hogg_free_lo_right,D_hogg_free_hi_right,"
         "ke_ratio_total,ke_ratio_total_ref,ke_ratio_per_grain,ke_ratio_per_grain_ref,angle_of_repose,"
         "grain_updates_per_second,status";
     EXPECT_EQ(slurp(dir_ / "sweep.csv").substr(0, header.size() + 1), header + "\n");
@@ -437,6 +443,10 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     EXPECT_EQ(r1["ke_ratio_per_grain_ref"], "0.296");
     EXPECT_EQ(r1["surface_share_material-1"], "0.9");
     EXPECT_EQ(r1["surface_share_material-2"], "");  // absent from depth_mobility
+    EXPECT_EQ(r1["D_msd_material-1"], "1e-05");
+    EXPECT_EQ(r1["D_msd_lo_material-1"], "9e-06");
+    EXPECT_EQ(r1["D_hogg_free_material-1"], "");  // not determined
+    EXPECT_EQ(r1["D_msd_material-2"], "");         // absent
     EXPECT_EQ(r1["angle_of_repose"], "38.5");
     EXPECT_EQ(r1["grain_updates_per_second"], "1000000");
     EXPECT_EQ(r1["status"], "finished");
@@ -464,6 +474,12 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     EXPECT_NEAR(std::stod(s1["D_material-1_mean"]), 3e-5, 1e-18);
     EXPECT_NEAR(std::stod(s1["D_material-1_std"]), 2e-5, 1e-18);
     EXPECT_EQ(s1["D_material-1_n"], "3");
+    // Three seeds: a bootstrap interval of the mean over seeds, inside the
+    // range of the seeds' values and around their mean.
+    EXPECT_LT(std::stod(s1["D_msd_material-1_lo"]), 3e-5);
+    EXPECT_GT(std::stod(s1["D_msd_material-1_hi"]), 3e-5);
+    EXPECT_GE(std::stod(s1["D_msd_material-1_lo"]), 1e-5);
+    EXPECT_LE(std::stod(s1["D_msd_material-1_hi"]), 5e-5);
     EXPECT_NEAR(std::stod(s1["D_material-2_mean"]), 3e-5, 1e-18);  // the undetermined seed left out
     EXPECT_EQ(s1["D_material-2_n"], "2");
     EXPECT_NEAR(std::stod(s1["ke_ratio_total_mean"]), 2.0, 1e-12);
@@ -477,6 +493,7 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     EXPECT_EQ(s2["finished"], "1");
     EXPECT_EQ(s2["D_material-1_mean"], "7e-05");
     EXPECT_EQ(s2["D_material-1_std"], "");  // one seed: no spread
+    EXPECT_EQ(s2["D_msd_material-1_lo"], "");  // one seed: no interval
     EXPECT_EQ(s2["D_material-1_n"], "1");
     EXPECT_EQ(row_map(sum, 3)["mode"], "self");
     EXPECT_EQ(row_map(sum, 3)["finished"], "1");

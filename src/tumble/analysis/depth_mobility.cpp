@@ -23,6 +23,9 @@ GrainFrame grain_frame(const ParticleStore& p, double revolutions) {
         f.position.push_back(p.position[i]);
         f.radius.push_back(p.radius[i]);
         f.tag.push_back(p.tag[i]);
+        f.velocity.push_back(p.velocity[i]);
+        f.angular_velocity.push_back(p.angular_velocity[i]);
+        f.mass.push_back(p.mass[i]);
     }
     return f;
 }
@@ -49,29 +52,48 @@ FreeSurface find_free_surface(const GrainFrame& frame, double inner_radius) {
     return s;
 }
 
-DepthMobility::DepthMobility(int components, int layers)
+DepthMobility::DepthMobility(int components, int layers, double period)
     : components_(components),
       layers_(layers),
+      period_(period),
       samples_(static_cast<std::size_t>(std::max(0, components * layers))),
       sum_dz2_per_revolution_(samples_.size()) {
     if (components < 1 || layers < 1) throw Error("depth mobility: need at least one component and one layer");
 }
 
 void DepthMobility::add(const GrainFrame& before, const GrainFrame& after, double inner_radius) {
+    const FreeSurface surface = find_free_surface(before, inner_radius);
+    std::vector<double> depth(before.id.size());
+    for (std::size_t k = 0; k < depth.size(); ++k) depth[k] = surface.depth(before.position[k]) / surface.mean_diameter;
+    record(before, after, depth);
+}
+
+void DepthMobility::add_window(const GrainFrame* frames, std::size_t count, double inner_radius) {
+    if (count < 2) throw Error("depth mobility: a window needs at least two frames");
+    std::vector<double> depth(frames[0].id.size(), 0.0);
+    for (std::size_t f = 0; f < count; ++f) {
+        if (frames[f].id != frames[0].id) throw Error("depth mobility: the frames hold different grains");
+        const FreeSurface surface = find_free_surface(frames[f], inner_radius);
+        for (std::size_t k = 0; k < depth.size(); ++k)
+            depth[k] += surface.depth(frames[f].position[k]) / surface.mean_diameter / static_cast<double>(count);
+    }
+    record(frames[0], frames[count - 1], depth);
+}
+
+void DepthMobility::record(const GrainFrame& before, const GrainFrame& after, const std::vector<double>& depth) {
     const double dN = after.revolutions - before.revolutions;
     if (!(dN > 0.0))
         throw Error("depth mobility: the second frame (N = " + std::to_string(after.revolutions) +
                     ") must come after the first (N = " + std::to_string(before.revolutions) + ")");
     if (before.id != after.id) throw Error("depth mobility: the two frames hold different grains");
-    const FreeSurface surface = find_free_surface(before, inner_radius);
     for (std::size_t k = 0; k < before.id.size(); ++k) {
         const int c = before.tag[k];
         if (c < 0 || c >= components_)
             throw Error("depth mobility: grain " + std::to_string(before.id[k]) + " has tag " + std::to_string(c) +
                         ", expected 0 .. " + std::to_string(components_ - 1));
-        const double depth = surface.depth(before.position[k]) / surface.mean_diameter;
-        const int layer = static_cast<int>(std::clamp(std::floor(depth), 0.0, layers_ - 1.0));
-        const double dz = after.position[k].z - before.position[k].z;
+        const int layer = static_cast<int>(std::clamp(std::floor(depth[k]), 0.0, layers_ - 1.0));
+        double dz = after.position[k].z - before.position[k].z;
+        if (period_ > 0.0) dz -= period_ * std::round(dz / period_);
         const auto slot = static_cast<std::size_t>(c * layers_ + layer);
         ++samples_[slot];
         sum_dz2_per_revolution_[slot] += dz * dz / dN;

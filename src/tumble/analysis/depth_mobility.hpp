@@ -29,6 +29,10 @@ struct GrainFrame {
     std::vector<Vec3> position;       // m
     std::vector<double> radius;       // m
     std::vector<std::int32_t> tag;    // component
+    // Filled where known (empty otherwise): for the energetics (bed_structure.hpp).
+    std::vector<Vec3> velocity;          // m/s
+    std::vector<Vec3> angular_velocity;  // rad/s
+    std::vector<double> mass;            // kg
 };
 
 GrainFrame grain_frame(const ParticleStore& p, double revolutions);
@@ -54,11 +58,20 @@ FreeSurface find_free_surface(const GrainFrame& frame, double inner_radius);
 // layer everything deeper.
 class DepthMobility {
 public:
-    DepthMobility(int components, int layers);
+    // period > 0: the axis is periodic with this period (m); a displacement
+    // is taken to the nearest image (grains move far less than period / 2
+    // between the frames compared).
+    DepthMobility(int components, int layers, double period = 0.0);
 
     // Adds the interval from `before` to `after` (the same grains; throws
     // tumble::Error otherwise, or if after.revolutions <= before.revolutions).
     void add(const GrainFrame& before, const GrainFrame& after, double inner_radius);
+    // Adds the window frames[0 .. count-1] (the same grains, in time order):
+    // each grain's axial displacement from the first frame to the last,
+    // attributed to its mean depth over the window's frames. For lags of a
+    // revolution or more, over which a grain passes through several depths:
+    // where the grains that move far along the axis spend their time.
+    void add_window(const GrainFrame* frames, std::size_t count, double inner_radius);
 
     int components() const { return components_; }
     int layers() const { return layers_; }
@@ -74,11 +87,14 @@ public:
     double occupancy(int component, int layer) const;
 
 private:
+    // Accumulates dz^2 / dN of each grain at its depth (mean grain diameters).
+    void record(const GrainFrame& before, const GrainFrame& after, const std::vector<double>& depth);
     template <class T>
     const T& at(const std::vector<T>& v, int component, int layer) const {
         return v.at(static_cast<std::size_t>(component * layers_ + layer));
     }
     int components_, layers_;
+    double period_;
     std::size_t intervals_ = 0;
     std::vector<std::size_t> samples_;
     std::vector<double> sum_dz2_per_revolution_;

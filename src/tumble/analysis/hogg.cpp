@@ -438,4 +438,138 @@ DiffusionFit fit_diffusion(const std::vector<double>& N, const std::vector<doubl
     return fit;
 }
 
+
+namespace {
+
+// Inverse of a small symmetric positive-definite matrix (Gauss-Jordan);
+// empty if it is singular.
+std::vector<std::vector<double>> inverse(std::vector<std::vector<double>> a) {
+    const std::size_t n = a.size();
+    std::vector<std::vector<double>> b(n, std::vector<double>(n, 0.0));
+    for (std::size_t i = 0; i < n; ++i) b[i][i] = 1.0;
+    for (std::size_t c = 0; c < n; ++c) {
+        std::size_t pivot = c;
+        for (std::size_t r = c + 1; r < n; ++r)
+            if (std::abs(a[r][c]) > std::abs(a[pivot][c])) pivot = r;
+        if (!(std::abs(a[pivot][c]) > 0.0)) return {};
+        std::swap(a[c], a[pivot]), std::swap(b[c], b[pivot]);
+        const double d = a[c][c];
+        for (std::size_t k = 0; k < n; ++k) a[c][k] /= d, b[c][k] /= d;
+        for (std::size_t r = 0; r < n; ++r)
+            if (r != c) {
+                const double f = a[r][c];
+                for (std::size_t k = 0; k < n; ++k) a[r][k] -= f * a[c][k], b[r][k] -= f * b[c][k];
+            }
+    }
+    return b;
+}
+
+// For a given D, the linear parameters of <z> = A g(N) + v N (g = 4 <z>_Hogg / L,
+// 1 at N = 0) by least squares, and the sum of squared residuals.
+struct Linear {
+    double A = 0.0, v = 0.0, sse = 0.0;
+};
+
+Linear linear_at(const Series& s, double D, bool drift) {
+    double gg = 0.0, gn = 0.0, nn = 0.0, gz = 0.0, nz = 0.0;
+    for (std::size_t i = 0; i < s.N.size(); ++i) {
+        const double g = 4.0 * mean_position_scaled(mode_time(D, s.N[i], s.L));
+        gg += g * g, gn += g * s.N[i], nn += s.N[i] * s.N[i], gz += g * s.z[i], nz += s.N[i] * s.z[i];
+    }
+    Linear f;
+    if (drift) {
+        const double det = gg * nn - gn * gn;
+        if (det > 0.0) f.A = (gz * nn - nz * gn) / det, f.v = (gg * nz - gn * gz) / det;
+    } else if (gg > 0.0) {
+        f.A = gz / gg;
+    }
+    for (std::size_t i = 0; i < s.N.size(); ++i) {
+        const double r = s.z[i] - f.A * 4.0 * mean_position_scaled(mode_time(D, s.N[i], s.L)) - f.v * s.N[i];
+        f.sse += r * r;
+    }
+    return f;
+}
+
+}  // namespace
+
+HoggFit fit_hogg(const std::vector<double>& N_all, const std::vector<double>& z_all, double L,
+                 const HoggFitOptions& o) {
+    check_series(N_all, z_all, L);
+    std::vector<double> N, z;
+    for (std::size_t i = 0; i < N_all.size(); ++i)
+        if (N_all[i] >= o.first_revolution) N.push_back(N_all[i]), z.push_back(z_all[i]);
+    HoggFit fit;
+    fit.points = N.size();
+    fit.D = fit.D_stderr = fit.amplitude = fit.amplitude_stderr = fit.residual_rms = nan;
+    const std::size_t n = N.size();
+    const std::size_t parameters = (o.fixed_D >= 0.0 ? 1 : 2) + (o.drift ? 1 : 0);
+    if (n < 10 || N.back() <= N.front()) {
+        fit.note = "only " + std::to_string(n) + " samples at N >= " + format(o.first_revolution) +
+                   " spanning a time; at least 10 are needed";
+        return fit;
+    }
+    const Series s{N, z, L};
+    double D = o.fixed_D;
+    if (D < 0.0) {
+        const double D_lo = 1e-8 * L * L / (pi2 * N.back());
+        const double D_hi = 40.0 * L * L / (pi2 * N.front());
+        D = minimise_log([&](double Dt) { return linear_at(s, Dt, o.drift).sse; }, D_lo, D_hi).D;
+    }
+    const Linear lin = linear_at(s, D, o.drift);
+    fit.D = D;
+    fit.amplitude = lin.A;
+    fit.drift = lin.v;
+
+    // Jacobian columns: d<z>/dA = g, d<z>/dD = A (4/L) d<z>_Hogg/dD, d<z>/dv = N.
+    std::vector<std::vector<double>> J;
+    std::vector<double> residual(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double a = mode_time(D, N[i], L);
+        std::vector<double> row{4.0 * mean_position_scaled(a)};
+        if (o.fixed_D < 0.0) row.push_back(lin.A * 4.0 / L * (-2.0 * N[i] / L * end_contrast(a)));
+        if (o.drift) row.push_back(N[i]);
+        residual[i] = z[i] - lin.A * row[0] - lin.v * N[i];
+        J.push_back(std::move(row));
+    }
+    std::vector<std::vector<double>> JtJ(parameters, std::vector<double>(parameters, 0.0));
+    for (const auto& row : J)
+        for (std::size_t p = 0; p < parameters; ++p)
+            for (std::size_t q = 0; q < parameters; ++q) JtJ[p][q] += row[p] * row[q];
+    fit.residual_rms = std::sqrt(lin.sse / static_cast<double>(n));
+    fit.correlation_samples = integrated_autocorrelation(residual);
+    const double sigma2 = lin.sse / static_cast<double>(n - parameters) * fit.correlation_samples;
+    const auto covariance = inverse(JtJ);
+    auto stderr_of = [&](std::size_t p) { return covariance.empty() ? inf : std::sqrt(sigma2 * covariance[p][p]); };
+    fit.amplitude_stderr = stderr_of(0);
+    fit.D_stderr = o.fixed_D < 0.0 ? stderr_of(1) : 0.0;
+    fit.drift_stderr = o.drift ? stderr_of(parameters - 1) : 0.0;
+
+    const double relative = o.fixed_D < 0.0 ? fit.D_stderr / fit.D : fit.drift_stderr / std::abs(fit.drift);
+    if (o.fixed_D < 0.0 && !(relative <= 0.5))
+        fit.note = "the relative standard error of D, " +
+                   (std::isfinite(relative) ? format(100.0 * relative) + " %" : "unbounded") + ", exceeds 50 %";
+    fit.determined = fit.note.empty();
+    return fit;
+}
+
+LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
+    if (x.size() != y.size() || x.size() < 3) throw Error("fit_line: need at least 3 (x, y) pairs of equal count");
+    const double n = static_cast<double>(x.size());
+    double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) sx += x[i], sy += y[i], sxx += x[i] * x[i], sxy += x[i] * y[i];
+    const double det = n * sxx - sx * sx;
+    LineFit f;
+    if (!(det > 0.0)) throw Error("fit_line: all x are equal");
+    f.slope = (n * sxy - sx * sy) / det;
+    f.intercept = (sy - f.slope * sx) / n;
+    std::vector<double> r(x.size());
+    double sse = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        r[i] = y[i] - f.intercept - f.slope * x[i];
+        sse += r[i] * r[i];
+    }
+    f.slope_stderr = std::sqrt(sse / (n - 2.0) * n / det * integrated_autocorrelation(r));
+    return f;
+}
+
 }  // namespace tumble::analysis

@@ -191,7 +191,10 @@ void add_ring(std::vector<ParticleSpec>& out, double rho, double z, std::size_t 
 // on the whole patch. Patches are split, highest bound first, and dropped
 // once their bound is within `tolerance` of the best value found at a point
 // of S; the answer, that best value + tolerance, then bounds f on all of S.
-double largest_hole(const SphereGrid& centres, double Rc, double Zc, double initial_patch, double tolerance) {
+// caps = false: the mantle alone (a periodic axis; `centres` then holds the
+// images of the rings one period away).
+double largest_hole(const SphereGrid& centres, double Rc, double Zc, double initial_patch, double tolerance,
+                    bool caps) {
     enum Surface { mantle, cap_high, cap_low };
     struct Patch {
         double bound;
@@ -230,8 +233,10 @@ double largest_hole(const SphereGrid& centres, double Rc, double Zc, double init
                 consider(s, a0 + (2 * i + 1) * ha, b0 + (2 * j + 1) * hb, ha, hb);
     };
     tile(mantle, 0.0, 2.0 * pi * Rc, -Zc, Zc);
-    tile(cap_high, -Rc, Rc, -Rc, Rc);
-    tile(cap_low, -Rc, Rc, -Rc, Rc);
+    if (caps) {
+        tile(cap_high, -Rc, Rc, -Rc, Rc);
+        tile(cap_low, -Rc, Rc, -Rc, Rc);
+    }
     // Every patch dropped had a bound <= best + tolerance at the time.
     while (!queue.empty() && queue.top().bound > best + tolerance) {
         const Patch p = queue.top();
@@ -266,34 +271,52 @@ DrumWall build_drum_wall(const DrumGeometry& g, std::int32_t wall_material, std:
     const double Rc = wall.inner_radius + rw;  // cylinder of the mantle's centres
     const double Zc = 0.5 * g.length + rw;     // planes of the caps' centres
 
-    // Mantle: rings from cap plane to cap plane, staggered by half a step.
     const std::size_t per_ring = ring_count(Rc, spacing);
-    const std::size_t intervals = interval_count(2.0 * Zc, spacing);
-    wall.mantle_rings = intervals + 1;
-    wall.axial_step = 2.0 * Zc / static_cast<double>(intervals);
-    for (std::size_t k = 0; k <= intervals; ++k) {
-        const double z = -Zc + static_cast<double>(k) * wall.axial_step;
-        const double phase = (k % 2) * pi / static_cast<double>(per_ring);
-        add_ring(wall.particles, Rc, k == intervals ? Zc : z, per_ring, phase, rw, wall_material, motion);
-    }
-    wall.mantle_particles = wall.particles.size();
-
-    // Caps: concentric rings inside the mantle's end rings, and the axis.
-    const std::size_t cap_steps = interval_count(Rc, spacing);
-    const double radial_step = Rc / static_cast<double>(cap_steps);
-    for (const double z : {-Zc, Zc}) {
-        add_ring(wall.particles, 0.0, z, 1, 0.0, rw, wall_material, motion);
-        for (std::size_t k = 1; k < cap_steps; ++k) {
-            const double rho = static_cast<double>(k) * radial_step;
-            const std::size_t n = ring_count(rho, spacing);
-            add_ring(wall.particles, rho, z, n, (k % 2) * pi / static_cast<double>(n), rw, wall_material, motion);
-        }
-    }
-    wall.cap_particles = wall.particles.size() - wall.mantle_particles;
-
     SphereGrid centres(spacing);
-    for (const ParticleSpec& p : wall.particles) centres.add(p.position, p.radius);
-    wall.largest_gap = largest_hole(centres, Rc, Zc, 0.5 * spacing, largest_gap_tolerance) - rw;
+    if (g.periodic_axis) {
+        // Mantle only, periodic in z with period `length`: rings at
+        // z = -length/2 + (k + 1/2) step, an even number of them so that the
+        // stagger repeats across the period; the gap search sees the rings'
+        // images one period away.
+        std::size_t rings = interval_count(g.length, spacing);
+        rings += rings % 2;
+        wall.mantle_rings = rings;
+        wall.axial_step = g.length / static_cast<double>(rings);
+        for (std::size_t k = 0; k < rings; ++k)
+            add_ring(wall.particles, Rc, -0.5 * g.length + (static_cast<double>(k) + 0.5) * wall.axial_step, per_ring,
+                     (k % 2) * pi / static_cast<double>(per_ring), rw, wall_material, motion);
+        wall.mantle_particles = wall.particles.size();
+        for (const ParticleSpec& p : wall.particles)
+            for (const double shift : {-g.length, 0.0, g.length})
+                centres.add(p.position + Vec3{0.0, 0.0, shift}, p.radius);
+        wall.largest_gap = largest_hole(centres, Rc, 0.5 * g.length, 0.5 * spacing, largest_gap_tolerance, false) - rw;
+    } else {
+        // Mantle: rings from cap plane to cap plane, staggered by half a step.
+        const std::size_t intervals = interval_count(2.0 * Zc, spacing);
+        wall.mantle_rings = intervals + 1;
+        wall.axial_step = 2.0 * Zc / static_cast<double>(intervals);
+        for (std::size_t k = 0; k <= intervals; ++k) {
+            const double z = -Zc + static_cast<double>(k) * wall.axial_step;
+            const double phase = (k % 2) * pi / static_cast<double>(per_ring);
+            add_ring(wall.particles, Rc, k == intervals ? Zc : z, per_ring, phase, rw, wall_material, motion);
+        }
+        wall.mantle_particles = wall.particles.size();
+
+        // Caps: concentric rings inside the mantle's end rings, and the axis.
+        const std::size_t cap_steps = interval_count(Rc, spacing);
+        const double radial_step = Rc / static_cast<double>(cap_steps);
+        for (const double z : {-Zc, Zc}) {
+            add_ring(wall.particles, 0.0, z, 1, 0.0, rw, wall_material, motion);
+            for (std::size_t k = 1; k < cap_steps; ++k) {
+                const double rho = static_cast<double>(k) * radial_step;
+                const std::size_t n = ring_count(rho, spacing);
+                add_ring(wall.particles, rho, z, n, (k % 2) * pi / static_cast<double>(n), rw, wall_material, motion);
+            }
+        }
+        wall.cap_particles = wall.particles.size() - wall.mantle_particles;
+        for (const ParticleSpec& p : wall.particles) centres.add(p.position, p.radius);
+        wall.largest_gap = largest_hole(centres, Rc, Zc, 0.5 * spacing, largest_gap_tolerance, true) - rw;
+    }
     if (wall.largest_gap >= smallest_grain_radius)
         throw Error("drum: a sphere of radius " + metres(wall.largest_gap) +
                     " could pass between the wall spheres, not smaller than the smallest grain (smallest_grain_radius " +
@@ -373,6 +396,16 @@ std::vector<ParticleSpec> fill_drum_region(const DrumGeometry& g, double z_lo, d
     return out;
 }
 
+double drum_angular_velocity(double omega, double ramp, double t) {
+    return ramp > 0.0 ? omega * std::clamp(t / ramp, 0.0, 1.0) : omega;
+}
+
+double spin_up_setting(double omega, double ramp, double dt, std::int64_t k) {
+    const double t_before = static_cast<double>(k - 1) * dt;
+    if (!(ramp > 0.0) || t_before > ramp + dt) return -1.0;
+    return drum_angular_velocity(omega, ramp, t_before + 0.5 * dt);
+}
+
 std::size_t equal_mass_count(std::size_t total, double m1, double m2) {
     if (!(m1 > 0.0) || !(m2 > 0.0)) throw Error("equal_mass_count: masses must be positive");
     // n1 m1 = (total - n1) m2 at n1 = total m2 / (m1 + m2); take the nearer
@@ -438,6 +471,11 @@ DrumSetup build_drum_scenario(const DrumGeometry& g, const std::string& mode, st
     const double reach_r = wall.inner_radius + 3.0 * g.wall_radius, reach_z = half + 3.0 * g.wall_radius;
     s.domain.lo = {-reach_r, -reach_r, -reach_z};
     s.domain.hi = {reach_r, reach_r, reach_z};
+    if (g.periodic_axis) {  // no caps: the drum's length is the period
+        s.domain.lo.z = -half;
+        s.domain.hi.z = half;
+        s.domain.periodic[2] = true;
+    }
 
     // dt is chosen automatically from the Hertz collision at this impact
     // speed. The fastest impact in the drum: a grain carried at the wall

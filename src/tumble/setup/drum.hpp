@@ -24,6 +24,12 @@ struct DrumGeometry {
     double length = 0.12;         // m
     double diameter = 0.08;       // m
     double wall_radius = 3.0e-3;  // m, radius of the wall spheres (the paper's material 3)
+    // No end caps: the axis is periodic with period `length` (a grain that
+    // leaves at one end enters at the other), so no cap friction drives
+    // axial recirculation. The mantle then has an even number of rings at
+    // z = -length/2 + (k + 1/2) x step, and build_drum_scenario makes the
+    // domain periodic in z over [-length/2, length/2).
+    bool periodic_axis = false;
 };
 
 // The drum wall. Layout (s = 2 wall_radius, the nominal spacing):
@@ -97,6 +103,19 @@ std::vector<ParticleSpec> fill_drum_region(const DrumGeometry& g, double z_lo, d
 // two masses most nearly equal (n1 m1 ~ (total - n1) m2): the two masses
 // differ by at most (m1 + m2) / 2.
 std::size_t equal_mass_count(std::size_t total, double m1, double m2);
+
+// The drum's angular velocity t seconds after the start of rotation, with a
+// linear spin-up from rest over `ramp` seconds (0: full speed at once):
+// omega min(1, t / ramp), rad/s.
+double drum_angular_velocity(double omega, double ramp, double t);
+
+// How a run drives the spin-up: before step k (k = 1 the first step after
+// the start of rotation, time step dt) the drum's angular velocity is set to
+// its value at the step's middle, so a linear ramp turns the drum by exactly
+// omega t^2 / 2T; once more at full speed after the ramp's end, then never
+// again. Returns the value to set before step k, or a negative number when
+// nothing is to be set.
+double spin_up_setting(double omega, double ramp, double dt, std::int64_t k);
 
 struct DrumSetup {
     Scenario scenario;
