@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tumble/core/constants.hpp"
+#include "tumble/materials/pair_table.hpp"
 #include "tumble/neighbor/candidate_pairs.hpp"
 #include "tumble/sim/particle_setup.hpp"
 
@@ -28,6 +30,13 @@ std::string scenario_problem(const Scenario& s) {
             if (!(p.W >= 0.0) || !std::isfinite(p.W)) return "pair " + pair + ": W must be >= 0";
             const PairProperties& q = s.pair_properties[b][a];
             if (p.mu != q.mu || p.W != q.W) return "pair " + pair + " is not symmetric";
+            // Moduli so large (or small) that the pair's mixing rules
+            // overflow: E = 1e308 gives E* = inf / inf.
+            const PairCoefficients c = make_pair_coefficients(s.materials[a], s.materials[b], p);
+            for (double v : {c.E_star, c.G_star, c.B_star, c.attraction, c.pull_off})
+                if (!std::isfinite(v))
+                    return "pair " + pair + ": its pair moduli (E*, G*, B*, attraction) overflow; E, G, xi, eta "
+                           "or W of its materials are out of range";
         }
     }
     if (!(s.model.slip_velocity_regularisation > 0.0)) return "slip velocity regularisation must be > 0";
@@ -55,6 +64,9 @@ std::string scenario_problem(const Scenario& s) {
         const std::string who = "particle " + std::to_string(i) + ": ";
         if (!(p.radius > 0.0) || !std::isfinite(p.radius)) return who + "radius must be > 0";
         if (p.material < 0 || p.material >= n_materials) return who + "unknown material";
+        const double rho = s.materials[static_cast<std::size_t>(p.material)].rho;
+        if (!std::isfinite(4.0 / 3.0 * pi * rho * p.radius * p.radius * p.radius))
+            return who + "its radius and its material's density rho give an infinite mass: out of range";
         if (p.motion != free_motion && (p.motion < 0 || p.motion >= static_cast<std::int32_t>(s.motions.size())))
             return who + "unknown motion";
         if (!finite(p.position) || !finite(p.velocity) || !finite(p.angular_velocity))
