@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
-#include "cli/machine.hpp"
+#include "experiments/machine.hpp"
 #include "tumble/setup/benchmark_cube.hpp"
 #include "tumble/sim/simulation.hpp"
 

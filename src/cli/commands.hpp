@@ -6,11 +6,17 @@
 #include <string>
 #include <vector>
 
-#include "cli/checkpointing.hpp"
+#include "experiments/drum.hpp"
+#include "experiments/machine.hpp"
+#include "experiments/run_control.hpp"
 #include "io/checkpoint.hpp"
 #include "io/drum_config.hpp"
 
 namespace tumble::cli {
+
+// The commands are built on the experiments layer (run control, progress,
+// limits, the drum protocol).
+using namespace tumble::experiments;
 
 struct RunOptions {
     std::string scenario_file;
@@ -33,25 +39,7 @@ struct BenchOptions {
 };
 int bench_command(const BenchOptions& options);
 
-// The thread count to run with: `requested`, or every core of the machine
-// for 0; 1 in a build without OpenMP (with a note on stderr if more were asked).
-// Every command defaults to 1 thread: sweeps, test suites and peer
-// benchmarks run several tumble processes side by side, and threads that
-// wait at each step's barriers for a core held by another process lose
-// more than they gain (docs/BENCHMARKS.md "Threads").
-int resolve_threads(int requested);
-
-struct DrumOptions {
-    io::DrumSettings settings;  // from --config and the command line
-    bool force = false;
-    bool quiet = false;
-    bool plot = true;  // draw the figures at the end (tools/plot_drum.py)
-    CheckpointPolicy checkpoints;  // every_steps unused: see checkpoint_revolutions
-    double checkpoint_revolutions = 1.0;  // revolutions between checkpoints while turning; 0: not by revolutions
-    bool allow_unsafe_dt = false;  // accept a --dt above the safe maximum (then only the blow-up check guards the run)
-    int threads = 1;   // 0: every core of the machine (resolve_threads)
-    double max_memory_gib = 0.0;  // refuse a run estimated to need more; 0: half the machine's (cli/limits.hpp)
-};
+using DrumOptions = experiments::DrumRunOptions;
 int drum_command(const DrumOptions& options);
 
 // tumble resume DIR: continue a run of `tumble run` or `tumble drum` from its

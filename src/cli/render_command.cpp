@@ -22,7 +22,7 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
-#include "cli/progress.hpp"
+#include "experiments/progress.hpp"
 #include "io/drum_output.hpp"
 #include "io/png.hpp"
 #include "io/render/scene.hpp"

@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
-#include "cli/limits.hpp"
+#include "experiments/limits.hpp"
 #include "io/run_lock.hpp"
 #include "tumble/core/error.hpp"
 

@@ -6,10 +6,10 @@
 
 #include <fmt/format.h>
 
-#include "cli/checkpointing.hpp"
+#include "experiments/run_control.hpp"
 #include "cli/commands.hpp"
-#include "cli/limits.hpp"
-#include "cli/progress.hpp"
+#include "experiments/limits.hpp"
+#include "experiments/progress.hpp"
 #include "io/config.hpp"
 #include "io/output.hpp"
 #include "io/snapshots.hpp"

@@ -6,7 +6,7 @@
 // sweep_summary.csv.
 #include "cli/sweep_command.hpp"
 #include "cli/commands.hpp"
-#include "cli/limits.hpp"
+#include "experiments/limits.hpp"
 
 #include <algorithm>
 #include <chrono>

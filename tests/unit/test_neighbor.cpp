@@ -167,6 +167,21 @@ TEST(Neighbor, CellListRefusesAPeriodicAxisShorterThanThreeRanges) {
     EXPECT_THROW(cell_list_pairs(p, d, skin, out), Error);
 }
 
+// A blown-up run reaching a rebuild before its health check: NaN positions
+// would ask for a grid of ~10^18 cells (std::bad_alloc); a clear error instead.
+TEST(Neighbor, CellListRefusesANonFinitePosition) {
+    const Domain d = box(edge, {false, false, false});
+    ParticleStore p = random_store(d, 20, r_min, r_max, 8);
+    p.position[7].y = std::nan("");
+    PairList out;
+    try {
+        cell_list_pairs(p, d, skin, out);
+        FAIL() << "a NaN position was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("a particle position is not finite"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Neighbor, VerletListRebuildsOnlyAfterHalfTheSkin) {
     const Domain d = box(edge, {true, true, false});
     ParticleStore p = random_store(d, 200, r_min, r_max, 7);

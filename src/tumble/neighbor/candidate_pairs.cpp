@@ -34,12 +34,14 @@ struct CellGrid {
             periodic[k] = domain.periodic[k];
             if (periodic[k]) continue;
             lo[k] = hi[k] = p.size() ? p.position[0][k] : 0.0;
+            bool finite = true;
             for (const Vec3& x : p.position) {
                 lo[k] = std::min(lo[k], x[k]);
                 hi[k] = std::max(hi[k], x[k]);
+                finite = finite && std::isfinite(x[k]);  // min and max pass over a NaN
             }
             // NaN or Inf would make a grid of ~10^18 cells.
-            if (!std::isfinite(hi[k] - lo[k]))
+            if (!finite)
                 throw Error("neighbour search: a particle position is not finite: the simulation blew up (check "
                             "the time step and the input)");
         }

@@ -17,7 +17,7 @@
 #include "tumble/core/error.hpp"
 #include "tumble/sim/health.hpp"
 
-namespace tumble::cli {
+namespace tumble::experiments {
 
 // Exit codes besides 0 (done) and 2 (bad input or error; main.cpp).
 inline constexpr int exit_stopped = 4;   // stopped early with a checkpoint: `tumble resume DIR` continues
@@ -81,4 +81,4 @@ Simulation restore_simulation(io::Checkpoint& checkpoint, const std::filesystem:
 void save_policy(io::CheckpointRecord& record, const CheckpointPolicy& policy);
 CheckpointPolicy load_policy(const io::CheckpointRecord& record);
 
-}  // namespace tumble::cli
+}  // namespace tumble::experiments

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "cli/progress.hpp"
+#include "experiments/progress.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-namespace tumble::cli {
+namespace tumble::experiments {
 
 bool progress_wanted() { return isatty(fileno(stderr)) && std::getenv("CI") == nullptr; }
 
@@ -35,4 +35,4 @@ void Progress::finish() {
     if (enabled_) fmt::print(stderr, "\r{:70}\r", "");
 }
 
-}  // namespace tumble::cli
+}  // namespace tumble::experiments

@@ -11,7 +11,7 @@
 #include "tumble/setup/drum.hpp"
 #include "tumble/sim/scenario.hpp"
 
-namespace tumble::cli {
+namespace tumble::experiments {
 
 // More steps than any run can finish (10^12: days at a million steps a second).
 inline constexpr double max_steps = 1e12;
@@ -43,4 +43,4 @@ double memory_limit_bytes(double gib);
 // need > limit; `source` is the input file or "command line".
 void check_memory(const MemoryNeed& need, double limit_bytes, const std::string& source);
 
-}  // namespace tumble::cli
+}  // namespace tumble::experiments

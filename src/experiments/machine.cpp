@@ -1,16 +1,15 @@
 // SPDX-License-Identifier: MIT
-#include "cli/machine.hpp"
+#include "experiments/machine.hpp"
 
 #include <fstream>
 #include <thread>
 
 #include <fmt/format.h>
 
-#include "cli/commands.hpp"
 #include "tumble/core/error.hpp"
 #include "tumble/core/parallel.hpp"
 
-namespace tumble::cli {
+namespace tumble::experiments {
 
 std::string machine_description() {
     std::ifstream cpuinfo("/proc/cpuinfo");
@@ -36,4 +35,4 @@ int resolve_threads(int requested) {
     return threads;
 }
 
-}  // namespace tumble::cli
+}  // namespace tumble::experiments

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string>
 
-namespace tumble::cli {
+namespace tumble::experiments {
 
 bool progress_wanted();
 
@@ -30,4 +30,4 @@ private:
     Clock::time_point last_print_;
 };
 
-}  // namespace tumble::cli
+}  // namespace tumble::experiments

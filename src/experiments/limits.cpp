@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "cli/limits.hpp"
+#include "experiments/limits.hpp"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -12,7 +12,7 @@
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 
-namespace tumble::cli {
+namespace tumble::experiments {
 
 namespace {
 
@@ -99,4 +99,4 @@ void check_memory(const MemoryNeed& need, double limit_bytes, const std::string&
                                 source, gib(need.bytes), need.driver, gib(limit_bytes)));
 }
 
-}  // namespace tumble::cli
+}  // namespace tumble::experiments

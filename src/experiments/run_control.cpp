@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "cli/checkpointing.hpp"
+#include "experiments/run_control.hpp"
 
 #include <csignal>
 #include <unistd.h>
@@ -8,7 +8,7 @@
 
 #include "tumble/sim/simulation.hpp"
 
-namespace tumble::cli {
+namespace tumble::experiments {
 
 namespace {
 
@@ -103,4 +103,4 @@ CheckpointPolicy load_policy(const io::CheckpointRecord& record) {
     return policy;
 }
 
-}  // namespace tumble::cli
+}  // namespace tumble::experiments

@@ -1,0 +1,380 @@
+// SPDX-License-Identifier: MIT
+// The paper's experiment as a protocol (docs/DRUM.md): build the
+// particle-walled drum, fill it, let the bed settle with the drum at rest,
+// turn it for the asked number of revolutions while sampling <z> per
+// component, photograph the grains, then analyse. Checkpoints on the way
+// let resume_drum() continue an interrupted run (docs/CHECKPOINTS.md).
+#include "experiments/drum.hpp"
+
+#include <cmath>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "experiments/limits.hpp"
+#include "experiments/machine.hpp"
+#include "experiments/progress.hpp"
+#include "io/drum_output.hpp"
+#include "io/output.hpp"
+#include "io/run_lock.hpp"
+#include "io/snapshots.hpp"
+#include "tumble/analysis/drum_measure.hpp"
+#include "tumble/core/constants.hpp"
+#include "tumble/sim/simulation.hpp"
+
+namespace tumble::experiments {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double rms_grain_speed(const ParticleStore& p) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+        if (!p.is_kinematic(i)) {
+            sum += norm2(p.velocity[i]);
+            ++n;
+        }
+    return n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+}
+
+std::vector<io::DrumComponent> components_of(const Simulation& sim, const std::string& mode) {
+    std::vector<io::DrumComponent> out(2);
+    out[0] = {mode == "self" ? "left" : "material-1", 0, 0.0, -1.0};
+    out[1] = {mode == "self" ? "right" : "material-2", 0, 0.0, +1.0};
+    const ParticleStore& p = sim.particles();
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        if (p.is_kinematic(i)) continue;
+        io::DrumComponent& c = out.at(static_cast<std::size_t>(p.tag[i]));
+        ++c.grains;
+        c.mass += p.mass[i];
+    }
+    return out;
+}
+
+// What a drum run carries from one process to the next, besides the engine
+// state (kept in its checkpoints).
+struct DrumPlan {
+    io::DrumRunInfo info;
+    int snapshots_per_revolution = 0;
+    double settle_speed = 0.0;     // m/s
+    double settle_max_time = 0.0;  // s
+    double fall_time = 0.0;        // s: settle at least this long
+    double checkpoint_revolutions = 0.0;
+    bool plot = true;
+    bool quiet = false;
+    bool rotating = false;
+    std::int64_t rotation_start_step = 0;
+};
+
+void save_plan(io::CheckpointRecord& r, const DrumPlan& plan) {
+    r.set("command", std::string("drum"));
+    r.set("drum.run_info", io::drum_run_info_text(plan.info));
+    r.set("drum.snapshots_per_revolution", std::int64_t{plan.snapshots_per_revolution});
+    r.set("drum.settle_speed", plan.settle_speed);
+    r.set("drum.settle_max_time", plan.settle_max_time);
+    r.set("drum.fall_time", plan.fall_time);
+    r.set("drum.checkpoint_revolutions", plan.checkpoint_revolutions);
+    r.set("drum.plot", std::int64_t{plan.plot});
+    r.set("drum.rotating", std::int64_t{plan.rotating});
+    r.set("drum.rotation_start_step", plan.rotation_start_step);
+}
+
+DrumPlan load_plan(const io::CheckpointRecord& r) {
+    DrumPlan plan;
+    plan.info = io::parse_drum_run_info(r.text("drum.run_info"), r.source + " (drum.run_info)");
+    plan.snapshots_per_revolution = static_cast<int>(r.integer("drum.snapshots_per_revolution"));
+    plan.settle_speed = r.number("drum.settle_speed");
+    plan.settle_max_time = r.number("drum.settle_max_time");
+    plan.fall_time = r.number("drum.fall_time");
+    plan.checkpoint_revolutions = r.number("drum.checkpoint_revolutions");
+    plan.plot = r.integer("drum.plot") != 0;
+    plan.rotating = r.integer("drum.rotating") != 0;
+    plan.rotation_start_step = r.integer("drum.rotation_start_step");
+    return plan;
+}
+
+// The drum's scenario domain is the drum with a margin of one wall sphere: a
+// grain centre outside it has passed through the wall.
+HealthLimits drum_limits(const Scenario& s) {
+    HealthLimits limits = default_health_limits(s);
+    limits.bounded = {true, true, !s.domain.periodic[2]};  // a periodic axis wraps the grains
+    limits.lo = s.domain.lo;
+    limits.hi = s.domain.hi;
+    limits.region = "the drum";
+    return limits;
+}
+
+// Settling and rotation from wherever `sim` stands, then the analysis.
+class DrumLoop {
+public:
+    DrumLoop(Simulation& sim, DrumPlan plan, fs::path dir, CheckpointPolicy policy, bool continuing)
+        : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)), period_(2.0 * pi / plan_.info.omega),
+          steps_(std::llround(plan_.info.revolutions * period_ / sim.dt())),
+          sample_every_(std::max<std::int64_t>(1, std::llround(period_ / plan_.info.samples_per_revolution / sim.dt()))),
+          snapshot_every_(plan_.snapshots_per_revolution > 0
+                              ? std::max<std::int64_t>(1, std::llround(period_ / plan_.snapshots_per_revolution / sim.dt()))
+                              : 0),
+          frame_{plan_.info.inner_length, plan_.info.inner_radius, 2, plan_.info.profile_bins, plan_.info.omega},
+          checkpoints_(dir_, with_revolutions(policy), drum_limits(sim.scenario())),
+          series_(dir_ / "time_series.csv", sim.scenario().materials, continuing) {
+        if (continuing && plan_.rotating) drum_series_.emplace(dir_, plan_.info, true);
+    }
+
+    // snapshot_times: of the snapshots written before a resume.
+    DrumOutcome run(const std::vector<double>& snapshot_times) {
+        return {protocol(snapshot_times), plan_.plot, dir_};
+    }
+
+private:
+    int protocol(const std::vector<double>& snapshot_times) {
+        if (plan_.rotating && snapshot_every_) snapshots_.emplace(dir_, snapshot_times);
+        if (!plan_.rotating) {
+            if (settle() == Checkpointer::Due::and_stop) return checkpoints_.stopped(sim_.step_count());
+            start_rotation();
+        }
+        if (rotate() == Checkpointer::Due::and_stop) return checkpoints_.stopped(sim_.step_count());
+        return finish();
+    }
+
+    bool talk() const { return !plan_.quiet; }
+
+    CheckpointPolicy with_revolutions(CheckpointPolicy policy) const {
+        const double steps = plan_.checkpoint_revolutions * period_ / sim_.dt();
+        policy.every_steps = steps > 0.0 ? std::max<std::int64_t>(1, std::llround(steps)) : 0;
+        return policy;
+    }
+
+    // Settle with the drum at rest: at least fall_time, until the rms grain
+    // speed is below settle_speed, at most settle_max_time.
+    Checkpointer::Due settle() {
+        const std::int64_t check_every = std::max<std::int64_t>(1, std::llround(1e-3 / sim_.dt()));
+        const std::int64_t first = sim_.step_count();  // > 0 after a resume
+        Progress progress(std::llround(plan_.settle_max_time / sim_.dt()) - first, sim_.particles().free_count(),
+                          talk() && progress_wanted());
+        while (sim_.time() < plan_.settle_max_time) {
+            sim_.advance(check_every);
+            progress.update(sim_.step_count() - first);
+            if (sim_.time() >= plan_.fall_time && rms_grain_speed(sim_.particles()) < plan_.settle_speed) {
+                plan_.info.settled = true;
+                break;
+            }
+            const auto due = checkpoints_.after_steps(sim_, 0);
+            if (due != Checkpointer::Due::no) checkpoint(false, 0.0);
+            if (due == Checkpointer::Due::and_stop) {
+                progress.finish();
+                return due;
+            }
+        }
+        progress.finish();
+        return Checkpointer::Due::no;
+    }
+
+    // Revolution N = 0 is the start of rotation.
+    void start_rotation() {
+        io::DrumRunInfo& info = plan_.info;
+        info.settle_time = sim_.time();
+        series_.write(sim_.observe());
+        info.fill_fraction = analysis::measure_drum(sim_.particles(), frame_).fill_fraction;
+        if (talk())
+            fmt::print("{} after {:.3g} s: rms grain speed {:.3g} m/s; fill fraction {:.3f}, solid fraction {:.3f}\n",
+                       info.settled ? "settled" : "warning: NOT settled", info.settle_time,
+                       rms_grain_speed(sim_.particles()), info.fill_fraction, info.solid_fraction);
+        sim_.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0},
+                                       drum_angular_velocity(info.omega, info.spin_up_time, 0.0), {0.0, 0.0, 0.0}});
+        plan_.rotating = true;
+        plan_.rotation_start_step = sim_.step_count();
+        io::write_drum_run_info(dir_ / "drum_run.toml", info);
+        drum_series_.emplace(dir_, info);
+        if (snapshot_every_) snapshots_.emplace(dir_);
+        if (talk()) {
+            fmt::print("rotating at {:.4g} rad/s (Froude {:.3g}) for {} revolutions: {} steps, {} samples per revolution\n",
+                       info.omega, info.froude, info.revolutions, steps_, info.samples_per_revolution);
+            if (info.revolutions < 10.0)
+                fmt::print("note: {} revolutions is a short run (the default is reduced so that it takes minutes); the "
+                           "paper's runs span tens of revolutions: --revolutions N\n",
+                           info.revolutions);
+        }
+        sample();
+        if (snapshot_every_) snapshots_->write(sim_);
+    }
+
+    Checkpointer::Due rotate() {
+        const std::int64_t done = sim_.step_count() - plan_.rotation_start_step;  // > 0 after a resume
+        Progress progress(steps_ - done, sim_.particles().free_count(), talk() && progress_wanted());
+        for (std::int64_t k = done + 1; k <= steps_; ++k) {
+            spin_up(k);
+            sim_.step();
+            if (k % sample_every_ == 0) sample();
+            if (snapshot_every_ && k % snapshot_every_ == 0) snapshots_->write(sim_);
+            progress.update(k - done);
+            const auto due = checkpoints_.after_steps(sim_, k);
+            if (due != Checkpointer::Due::no) checkpoint(false, progress.elapsed_seconds());
+            if (due == Checkpointer::Due::and_stop) {
+                progress.finish();
+                return due;
+            }
+        }
+        progress.finish();
+        plan_.info.wall_seconds += progress.elapsed_seconds();
+        return Checkpointer::Due::no;
+    }
+
+    // The spin-up ramp (spin_up_setting in setup/drum.hpp).
+    void spin_up(std::int64_t k) {
+        const double omega = spin_up_setting(plan_.info.omega, plan_.info.spin_up_time, sim_.dt(), k);
+        if (omega >= 0.0) sim_.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, omega, {0.0, 0.0, 0.0}});
+    }
+
+    void sample() {
+        const double start = static_cast<double>(plan_.rotation_start_step) * sim_.dt();
+        const double revolutions = plan_.info.omega * (sim_.time() - start) / (2.0 * pi);
+        drum_series_->write(revolutions, sim_.time(), analysis::measure_drum(sim_.particles(), frame_));
+        series_.write(sim_.observe());
+    }
+
+    int finish() {
+        io::DrumRunInfo& info = plan_.info;
+        // The run is finished only when its results are written: a checkpoint
+        // of the final state first (a resume from it writes the results
+        // again), then the results, then the checkpoint that says "finished".
+        checkpoint(false, 0.0);
+        if (steps_ % sample_every_ != 0) sample();  // always end with the final state
+        const double updates = static_cast<double>(sim_.particles().free_count()) * static_cast<double>(steps_);
+        info.grain_updates_per_second = info.wall_seconds > 0.0 ? updates / info.wall_seconds : 0.0;
+        io::write_drum_run_info(dir_ / "drum_run.toml", info);
+        if (talk())
+            fmt::print("rotation simulated in {:.1f} s: {:.3g} grain updates/s ({:.1f} s per revolution)\n\n",
+                       info.wall_seconds, info.grain_updates_per_second, info.wall_seconds / info.revolutions);
+        const std::string summary = io::analyze_drum_run(dir_);
+        checkpoint(true, 0.0);
+        if (talk()) fmt::print("{}\nwritten to {}\n", summary, dir_.string());
+        return 0;
+    }
+
+    // seconds: of rotation spent by this process so far.
+    void checkpoint(bool finished, double seconds) {
+        io::Checkpoint c = checkpoint_of(sim_);
+        DrumPlan now = plan_;
+        now.info.wall_seconds += seconds;
+        save_plan(c.record, now);
+        save_policy(c.record, checkpoints_.policy());
+        c.record.set("finished", std::int64_t{finished});
+        c.record.set("snapshot_times", snapshots_ ? snapshots_->times() : std::vector<double>{});
+        io::record_file_lengths(c.record, dir_, {"time_series.csv", "drum_series.csv", "profiles.csv"});
+        checkpoints_.write(sim_, c);
+    }
+
+    Simulation& sim_;
+    DrumPlan plan_;
+    fs::path dir_;
+    double period_;  // s per revolution
+    std::int64_t steps_, sample_every_, snapshot_every_;
+    analysis::DrumFrame frame_;
+    Checkpointer checkpoints_;
+    io::TimeSeriesWriter series_;
+    std::optional<io::DrumSeriesWriter> drum_series_;
+    std::optional<io::SnapshotSeries> snapshots_;
+};
+
+}  // namespace
+
+DrumOutcome run_drum(const DrumRunOptions& options) {
+    io::DrumSettings s = options.settings;
+    const double omega = s.omega();
+    const double inner_radius = 0.5 * s.geometry.diameter;
+    if (omega * omega * inner_radius / 9.81 > 1.0 && !options.quiet)
+        fmt::print("note: Froude number {:.3g} > 1: above the critical speed the grains are held against the wall\n",
+                   omega * omega * inner_radius / 9.81);
+
+    const int threads = resolve_threads(options.threads);
+    check_memory(drum_memory(s.geometry, static_cast<double>(s.grain_count()), threads),
+                 memory_limit_bytes(options.max_memory_gib), "command line");
+    DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed);
+    if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
+    setup.scenario.model.shear = s.shear;
+    setup.scenario.model.friction_normal = s.friction_normal;
+    setup.scenario.time_step.allow_unsafe = options.allow_unsafe_dt;
+    Simulation sim(std::move(setup.scenario), threads);
+    check_drum_durations(s.revolutions, omega, s.samples_per_revolution, s.settle_max_time, sim.dt());
+
+    DrumPlan plan;
+    io::DrumRunInfo& info = plan.info;
+    info.mode = s.mode;
+    info.omega = omega;
+    info.froude = omega * omega * setup.wall.inner_radius / 9.81;
+    info.revolutions = s.revolutions;
+    info.seed = s.seed;
+    info.wall_particles = setup.wall.particles.size();
+    info.inner_radius = setup.wall.inner_radius;
+    info.inner_length = setup.wall.inner_length;
+    info.periodic_axis = s.geometry.periodic_axis;
+    info.spin_up_time = s.spin_up_time;
+    info.dt = sim.dt();
+    info.threads = sim.threads();
+    for (const ShearModelEntry& e : shear_models)
+        if (e.model == s.shear) info.shear_model = e.keyword;
+    for (const FrictionNormalEntry& e : friction_normals)
+        if (e.choice == s.friction_normal) info.friction_normal = e.keyword;
+    info.samples_per_revolution = s.samples_per_revolution;
+    info.profile_bins = s.profile_bins;
+    info.components = components_of(sim, s.mode);
+    double grain_volume = 0.0;
+    for (std::size_t i = 0; i < sim.particles().size(); ++i)
+        if (!sim.particles().is_kinematic(i)) grain_volume += 4.0 / 3.0 * pi * std::pow(sim.particles().radius[i], 3);
+    info.solid_fraction = grain_volume / (pi * info.inner_radius * info.inner_radius * info.inner_length);
+    plan.snapshots_per_revolution = s.snapshots_per_revolution;
+    plan.settle_speed = s.settle_speed;
+    plan.settle_max_time = s.settle_max_time;
+    plan.fall_time = 2.0 * std::sqrt(2.0 * s.geometry.diameter / 9.81);  // twice the time to fall the diameter
+    plan.checkpoint_revolutions = options.checkpoint_revolutions;
+    plan.plot = options.plot;
+    plan.quiet = options.quiet;
+
+    const io::RunLock lock = io::prepare_output_directory(s.output, options.force);
+    if (!options.quiet) {
+        fmt::print("tumble drum: {} mode, {} grains ({} {}, {} {}), {} wall particles, inner radius {:.4g} m, "
+                   "length {:.4g} m; dt = {:.3g} s\n",
+                   s.mode, sim.particles().free_count(), info.components[0].grains, info.components[0].name,
+                   info.components[1].grains, info.components[1].name, info.wall_particles, info.inner_radius,
+                   info.inner_length, sim.dt());
+        fmt::print("settling (rms grain speed below {} m/s, at most {} s)\n", s.settle_speed, s.settle_max_time);
+    }
+    DrumLoop loop(sim, std::move(plan), s.output, options.checkpoints, false);
+    return loop.run({});
+}
+
+DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
+    DrumPlan plan = load_plan(checkpoint.record);
+    plan.quiet = quiet;
+    try {
+        check_drum_durations(plan.info.revolutions, plan.info.omega, plan.info.samples_per_revolution,
+                             plan.settle_max_time, checkpoint.state.dt);
+        if (plan.rotation_start_step < 0 || plan.rotation_start_step > checkpoint.state.step ||
+            plan.snapshots_per_revolution < 0 || plan.info.profile_bins < 2)
+            throw Error("drum.rotation_start_step, drum.snapshots_per_revolution or profile_bins out of range");
+    } catch (const Error& e) {
+        throw Error(checkpoint.record.source + ": its record does not fit its state: " + e.what());
+    }
+    Simulation sim = restore_simulation(checkpoint, dir);
+    if (!quiet)
+        fmt::print("tumble resume: drum run at step {} (t = {:.6g} s, {})\n", sim.step_count(), sim.time(),
+                   plan.rotating ? fmt::format("{:.4g} revolutions",
+                                               plan.info.omega * (sim.time() - plan.info.settle_time) / (2.0 * pi))
+                                 : std::string("settling"));
+    DrumLoop loop(sim, std::move(plan), dir, load_policy(checkpoint.record), true);
+    return loop.run(checkpoint.record.numbers("snapshot_times"));
+}
+
+std::string analyze_drum(const std::string& directory, double first_revolution) {
+    const io::RunLock lock(directory);
+    // A stopped or interrupted run: its series end early, and a summary of
+    // them would look like that of a finished run (tumble sweep takes it so).
+    if (io::resumable(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0))))
+        throw Error(directory + ": the run is unfinished (its newest checkpoint is not at its end); finish it with "
+                                "tumble resume " + directory + ", which analyses it");
+    return io::analyze_drum_run(directory, {first_revolution});
+}
+
+}  // namespace tumble::experiments

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: MIT
+// The drum experiment of the paper as a library (docs/DRUM.md): what the
+// command line (`tumble drum`, `resume`, `analyze`) and, later, a Python
+// module call. It writes a run directory (io/) and drives the engine; it
+// prints progress and the summary unless quiet, and draws no figures.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "experiments/run_control.hpp"
+#include "io/checkpoint.hpp"
+#include "io/drum_config.hpp"
+
+namespace tumble::experiments {
+
+struct DrumRunOptions {
+    io::DrumSettings settings;  // from --config and the command line
+    bool force = false;         // overwrite an earlier run in the directory (one tumble wrote)
+    bool quiet = false;
+    bool plot = true;           // the caller should draw the figures at the end (kept for a resume)
+    CheckpointPolicy checkpoints;         // every_steps unused: see checkpoint_revolutions
+    double checkpoint_revolutions = 1.0;  // revolutions between checkpoints while turning; 0: not by revolutions
+    bool allow_unsafe_dt = false;  // accept a dt above the safe maximum (then only the blow-up check guards the run)
+    int threads = 1;               // 0: every core of the machine (resolve_threads)
+    double max_memory_gib = 0.0;   // refuse a run estimated to need more; 0: half the machine's (limits.hpp)
+};
+
+// How a run ended: exit_code 0 (finished and analysed), exit_stopped (a
+// checkpoint to resume from); whether figures were asked for; where.
+struct DrumOutcome {
+    int exit_code = 0;
+    bool plot = false;
+    std::filesystem::path directory;
+};
+
+// A new run into options.settings.output. Throws tumble::Error for bad
+// settings (before any work), BlewUp if the run becomes unphysical.
+DrumOutcome run_drum(const DrumRunOptions& options);
+
+// Continues the run of `checkpoint` (the newest intact one of `directory`).
+DrumOutcome resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet);
+
+// The analysis of a finished run directory again (summary.json,
+// summary.txt), returned as text; first_revolution: the start-up left out
+// of the fits. Refuses a run in use or unfinished.
+std::string analyze_drum(const std::string& directory, double first_revolution = 1.0);
+
+}  // namespace tumble::experiments

@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <string>
+
+namespace tumble::experiments {
+
+// "CPU model, N logical cores" from /proc/cpuinfo, for benchmark reports.
+std::string machine_description();
+
+// The thread count to run with: `requested`, or every core of the machine
+// for 0; 1 in a build without OpenMP (with a note on stderr if more were
+// asked); tumble::Error (--threads) for more than the machine's cores.
+// Every command defaults to 1 thread: sweeps, test suites and peer
+// benchmarks run several tumble processes side by side, and threads that
+// wait at each step's barriers for a core held by another process lose
+// more than they gain (docs/BENCHMARKS.md "Threads").
+int resolve_threads(int requested);
+
+}  // namespace tumble::experiments
