@@ -163,7 +163,7 @@ std::string tail_of(const fs::path& file) {
 bool have(const std::string& program) { return run_command("command -v " + program).exit_code == 0; }
 
 // LAMMPS's `lmp`, installed from Debian's package when missing and root.
-// Empty when there is none; `why` then says so.
+// False when there is none; `why` then says why.
 bool find_lammps(std::string& why) {
     if (have("lmp")) return true;
     if (::geteuid() != 0) {
