@@ -21,7 +21,7 @@
 #include "io/checkpoint.hpp"
 #include "io/run_lock.hpp"
 #include "io/sweep.hpp"
-#include "tumble/integrate/time_step.hpp"
+#include "tumble/sim/time_step.hpp"
 #include "tumble/setup/drum.hpp"
 #include "io/toml_reader.hpp"
 #include "tumble/core/error.hpp"

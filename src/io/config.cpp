@@ -17,7 +17,7 @@
 #include "io/names.hpp"
 #include "io/toml_reader.hpp"
 #include "io/particle_csv.hpp"
-#include "tumble/integrate/time_step.hpp"
+#include "tumble/sim/time_step.hpp"
 #include "tumble/setup/generators.hpp"
 
 namespace tumble::io {

@@ -12,7 +12,7 @@
 
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
-#include "tumble/integrate/time_step.hpp"
+#include "tumble/sim/time_step.hpp"
 #include "tumble/setup/benchmark_cube.hpp"
 #include "tumble/setup/generators.hpp"
 #include "tumble/setup/paper_materials.hpp"

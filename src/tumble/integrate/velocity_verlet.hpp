@@ -6,7 +6,7 @@
 // the internal friction, which needs v(t + dt), sees it predicted as
 // v(t + dt/2) + dt/2 a(t) (ParticleStore::half_kick): second order too. The
 // prediction halves the stability bound of the explicit damping, to
-// dt < m*/c (integrate/time_step.hpp). With the velocity-dependent terms off
+// dt < m*/c (sim/time_step.hpp). With the velocity-dependent terms off
 // the scheme is symplectic. Spheres need no orientation.
 // Each particle is updated on its own, so `chunks` threads give the same
 // numbers as one.

@@ -10,7 +10,7 @@
 #include "tumble/neighbor/pair_list.hpp"
 #include "tumble/neighbor/periodic_images.hpp"
 #include "tumble/particles/particle_store.hpp"
-#include "tumble/sim/scenario.hpp"
+#include "tumble/core/domain.hpp"
 
 namespace tumble {
 

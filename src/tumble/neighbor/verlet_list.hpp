@@ -12,11 +12,19 @@
 
 #include "tumble/neighbor/pair_list.hpp"
 #include "tumble/neighbor/periodic_images.hpp"
+#include "tumble/core/domain.hpp"
 #include "tumble/particles/particle_store.hpp"
-#include "tumble/sim/scenario.hpp"
-#include "tumble/sim/simulation_state.hpp"
 
 namespace tumble {
+
+// The neighbour list as it stands: the pairs refer to array indices of the
+// particle store, in its current (sorted) order, so that the force loop
+// visits the pairs in the same order after a restore.
+struct NeighborState {
+    PairList pairs;
+    std::vector<Vec3> position_at_build;  // per array index, m
+    std::int64_t builds = 0;
+};
 
 class VerletList {
 public:

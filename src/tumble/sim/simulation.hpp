@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tumble/integrate/time_step.hpp"
+#include "tumble/sim/time_step.hpp"
 #include "tumble/materials/pair_table.hpp"
 #include "tumble/neighbor/verlet_list.hpp"
 #include "tumble/particles/particle_store.hpp"

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "tumble/neighbor/pair_list.hpp"
+#include "tumble/neighbor/verlet_list.hpp"
 #include "tumble/particles/particle_store.hpp"
 #include "tumble/sim/scenario.hpp"
 
@@ -22,15 +22,6 @@ namespace tumble {
 struct MotionClock {
     RigidMotion motion;
     double start_time = 0.0;  // s
-};
-
-// The neighbour list as it stands: the pairs refer to array indices of the
-// particle store, in its current (sorted) order, so that the force loop
-// visits the pairs in the same order after a restore.
-struct NeighborState {
-    PairList pairs;
-    std::vector<Vec3> position_at_build;  // per array index, m
-    std::int64_t builds = 0;
 };
 
 struct SimulationState {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "tumble/integrate/time_step.hpp"
+#include "tumble/sim/time_step.hpp"
 
 #include <algorithm>
 #include <cstdio>
