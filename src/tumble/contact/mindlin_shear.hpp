@@ -26,11 +26,15 @@ namespace tumble {
 // without creeping.
 enum class ShearModel { Off, Paper, Coulomb, Spring };
 
+// The pair loop runs these on every contact: each division counts, so the
+// length at the limit comes with its reciprocal, per_held = 1 / held (0 for
+// held = 0, no friction).
+
 // Length of the slip after the contact has slipped: `length` (> `held`, the
 // length at the limit) wrapped back by whole teeth for Paper, `held`
 // otherwise. held = 0 (no normal force) leaves no slip.
-inline double slip_length_after_slipping(ShearModel model, double length, double held) {
-    const double excess = held > 0.0 ? length - std::floor(length / held) * held : 0.0;
+inline double slip_length_after_slipping(ShearModel model, double length, double held, double per_held) {
+    const double excess = held > 0.0 ? length - std::floor(length * per_held) * held : 0.0;
     return model == ShearModel::Paper ? excess : held;
 }
 
@@ -42,18 +46,22 @@ inline double slip_length_after_slipping(ShearModel model, double length, double
 // slip, so the sum of the steps' forces is the saw-tooth's integral exactly
 // and sustained sliding feels its mean, held / 2, whatever the step, even
 // with a tooth shorter than a step (sampling it at the steps alone aliases:
-// 8 % off at the automatic step at 0.1 m/s). held > 0.
-inline double sawtooth_in_window(double x, double step, double held) {
+// 8 % off at the automatic step at 0.1 m/s). Meaningless for held = 0
+// (no friction), where the callers use no saw-tooth.
+inline double sawtooth_in_window(double x, double step, double held, double per_held) {
+    // Every value is computed and the result chosen, without branches, so
+    // that the pair loop still runs several contacts per instruction.
     // The integral of (y mod held) from 0 to y.
-    auto integral = [held](double y) {
-        const double teeth = std::floor(y / held), rest = y - teeth * held;
+    auto integral = [held, per_held](double y) {
+        const double teeth = std::floor(y * per_held), rest = y - teeth * held;
         return 0.5 * (teeth * held * held + rest * rest);
     };
     const double lo = std::max(x - 0.5 * step, 0.0), hi = x + 0.5 * step;
-    const double at_step = x - std::floor(x / held) * held;
     const double width = hi - lo;
     const double mean = (integral(hi) - integral(lo)) / (width > 0.0 ? width : 1.0);
-    return hi > held && width > 0.0 ? mean : at_step;
+    const double at_step = x - std::floor(x * per_held) * held;
+    // (width = 0 only at x = step = 0, where mean = 0 = at_step.)
+    return hi > held ? mean : at_step;
 }
 
 // Tangential force on i, N:
@@ -77,24 +85,32 @@ inline Vec3 mindlin_shear_force(ShearModel model, double G_star, double contact_
 
     const double stiffness = 16.0 / 3.0 * G_star * contact_radius;  // N/m
     const double held = friction_limit / stiffness;                // slip at the limit, m
+    const double per_held = held > 0.0 ? 1.0 / held : 0.0;
     // After slipping the slip is `after` long, along the sliding velocity for
     // the paper's readings while the contact slides faster than v_reg (the
     // paper's direction -v_t/|v_t| then), else along itself. Written as
     // choices between values rather than branches, so that the pair loop
     // still runs several contacts per instruction.
     const double length = norm(slip), speed = norm(v_t);
+    const double per_length = length > 0.0 ? 1.0 / length : 0.0, per_speed = speed > 0.0 ? 1.0 / speed : 0.0;
     const bool slides = length > held;
     const bool along_velocity = model != ShearModel::Spring && speed > v_reg;
-    const double after = slip_length_after_slipping(model, length, held);
-    const double keep = slides ? (along_velocity ? 0.0 : after / length) : 1.0;
-    const double turn = slides && along_velocity ? after / speed : 0.0;
+    const double after = slip_length_after_slipping(model, length, held, per_held);
+    // The force's length along the same direction: the paper's reading feels
+    // its saw-tooth over the step's window (which is the slip's own length
+    // away from a tooth's edge), the others the slip.
+    const double window = held > 0.0 ? sawtooth_in_window(length, speed * dt, held, per_held) : 0.0;
+    const double felt = model == ShearModel::Paper ? window : (slides ? after : length);
+    // slip <- keep slip + turn v_t, and the force -stiffness (keep_felt slip +
+    // turn_felt v_t); one comparison per choice (GCC 12 does not vectorise a
+    // choice on the `&&` of two).
+    const double keep = slides ? (along_velocity ? 0.0 : after * per_length) : 1.0;
+    const double turn = slides ? (along_velocity ? after * per_speed : 0.0) : 0.0;
+    const double keep_felt = along_velocity ? (slides ? 0.0 : felt * per_length) : felt * per_length;
+    const double turn_felt = slides ? (along_velocity ? felt * per_speed : 0.0) : 0.0;
+    const Vec3 force = -stiffness * (keep_felt * slip + turn_felt * v_t);
     slip = keep * slip + turn * v_t;
-    // The paper's reading feels its saw-tooth over the step's window.
-    const double window = model == ShearModel::Paper && held > 0.0 ? sawtooth_in_window(length, speed * dt, held)
-                                                                    : after;
-    const bool windowed = model == ShearModel::Paper && length + 0.5 * speed * dt > held;
-    const double scale = windowed && after > 0.0 ? window / after : 1.0;
-    return (-stiffness * scale) * slip;
+    return force;
 }
 
 }  // namespace tumble

@@ -26,16 +26,17 @@ inline double twisting_couple(ShearModel model, double G_star, double contact_ra
     const double a = contact_radius;
     const double stiffness = 8.0 / 3.0 * G_star * a * a * a;           // N m/rad
     const double held = 3.0 * pi / 16.0 * a * friction_limit / stiffness;  // rad
+    const double per_held = held > 0.0 ? 1.0 / held : 0.0;
     const double length = std::abs(angular_slip);
     const bool along_spin = model != ShearModel::Spring && std::abs(w_n) * a > v_reg;
     const double sign = (along_spin ? w_n : angular_slip) < 0.0 ? -1.0 : 1.0;
-    const double after = slip_length_after_slipping(model, length, held);
+    const double after = slip_length_after_slipping(model, length, held, per_held);
     angular_slip = length > held ? sign * after : angular_slip;  // a choice, not a branch (as in mindlin_shear.hpp)
     // The paper's reading feels its saw-tooth over the step's window.
     const double step = std::abs(w_n) * dt;
-    const double window = model == ShearModel::Paper && held > 0.0 ? sawtooth_in_window(length, step, held) : after;
-    const bool windowed = model == ShearModel::Paper && length + 0.5 * step > held && after > 0.0;
-    return -stiffness * (windowed ? window / after : 1.0) * angular_slip;
+    const double window = sawtooth_in_window(length, step, held, per_held);
+    const double scale = model == ShearModel::Paper ? (after > 0.0 ? window / after : 1.0) : 1.0;  // as for the shear
+    return -stiffness * scale * angular_slip;
 }
 
 }  // namespace tumble
