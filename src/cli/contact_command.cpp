@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 // tumble contact: what each kind of contact of a scenario or of the drum
 // does, and why the time step is what it is (docs/MODEL.md "tumble contact").
+#include <cmath>
+#include <string>
+
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
@@ -32,6 +35,9 @@ std::string json_string(const std::string& text) {
     return out + "\"";
 }
 
+// A JSON number, null for an infinite time (its term is off).
+std::string json_number(double value) { return std::isfinite(value) ? fmt::format("{}", value) : "null"; }
+
 std::string collision_json(const analysis::Collision& c) {
     return fmt::format("{{\"separated\": {}, \"restitution\": {}, \"contact_time\": {}}}", c.separated,
                        c.restitution, c.contact_time);
@@ -51,10 +57,14 @@ void print_table(const analysis::ContactReport& report) {
         const analysis::NormalLaw& law = r.law;
         fmt::print("\n{}: R* = {:.4g} mm, m* = {:.4g} g, E* = {:.4g} MPa, B* = {:.4g} Pa s\n", r.pair.name,
                    law.R_star * 1e3, law.m_star * 1e3, law.E_star * 1e-6, law.B_star);
-        fmt::print("  at {:.3g} m/s: Hertz collision time {:.4g} ms (dt = t_c / {:.3g}), viscous time m*/c {:.4g} ms "
-                   "(dt = {:.3g} m*/c)\n",
-                   report.reference_speed, r.times.collision * 1e3, t.dt > 0.0 ? r.times.collision / t.dt : 0.0,
-                   r.times.viscous * 1e3, r.times.viscous > 0.0 ? t.dt / r.times.viscous : 0.0);
+        // A time, and the step in its units; "off" with its term.
+        auto time = [&](const char* name, const char* symbol, double value) {
+            return std::isfinite(value)
+                       ? fmt::format("{} {} {:.4g} ms (dt = {:.3g} {})", name, symbol, value * 1e3, t.dt / value, symbol)
+                       : fmt::format("{} off", name);
+        };
+        fmt::print("  at {:.3g} m/s: {}, {}\n", report.reference_speed, time("Hertz collision time", "t_c", r.times.collision),
+                   time("viscous time", "m*/c", r.times.viscous));
         fmt::print("  equilibrium overlap {:.4g} um ({:.3g} % of R*), pull-off force {:.4g} mN\n",
                    r.equilibrium_overlap * 1e6, 100.0 * r.equilibrium_overlap / law.R_star, r.pull_off_force * 1e3);
         if (law.attraction <= 0.0)
@@ -89,7 +99,8 @@ void print_json(const analysis::ContactReport& report) {
             "\"attraction\": {}, \"hertz_collision_time\": {}, \"viscous_time\": {}, \"equilibrium_overlap\": {}, \"pull_off_force\": {}, \"sticking_speed\": {}, "
             "\"sticks_at_every_speed\": {}, \"impacts\": [{}]}}",
             pairs.empty() ? "" : ", ", json_string(r.pair.name), partner_name(r.pair.partner), law.R_star, law.m_star,
-            law.E_star, law.B_star, law.attraction, r.times.collision, r.times.viscous, r.equilibrium_overlap, r.pull_off_force,
+            law.E_star, law.B_star, law.attraction, json_number(r.times.collision), json_number(r.times.viscous),
+            r.equilibrium_overlap, r.pull_off_force,
             r.sticking_speed, law.attraction > 0.0 && r.sticking_speed >= analysis::max_sticking_speed, impacts);
     }
     fmt::print("{{\"dt\": {}, \"automatic\": {}, \"dt_set_by\": {}, \"reference_speed\": {}, \"maximum_dt\": {}, \"maximum_set_by\": {}, "

@@ -2,7 +2,6 @@
 #include "tumble/analysis/pair_collision.hpp"
 
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "tumble/contact/attraction.hpp"
@@ -83,8 +82,7 @@ double normal_force(const NormalLaw& law, double overlap, double overlap_rate) {
 }
 
 double hertz_collision_time(const NormalLaw& law, double v) {
-    const double h_max = std::pow(15.0 * law.m_star * v * v / (16.0 * law.E_star * std::sqrt(law.R_star)), 0.4);
-    return 2.943275 * h_max / v;
+    return tumble::hertz_collision_time(law.m_star, law.E_star, law.R_star, v);
 }
 
 Collision converged_collision(const NormalLaw& law, double v) {

@@ -42,8 +42,8 @@ struct Collision {
     double contact_time = 0.0; // s, between the zeros of h (0 if not separated)
 };
 
-// The undamped Hertz collision time at impact speed v, s:
-// 2.943275 (15 m* v^2 / (16 E* sqrt(R*)))^(2/5) / v.
+// The undamped Hertz collision time of the law at impact speed v, s
+// (tumble::hertz_collision_time).
 double hertz_collision_time(const NormalLaw& law, double v);
 
 // Converged: the law integrated by RK4 at hertz_collision_time(v) / 10^4

@@ -63,12 +63,20 @@ std::vector<ContactPair> contact_pairs(const Scenario& s) {
     return pairs;
 }
 
+double hertz_max_overlap(double m_star, double E_star, double R_star, double v) {
+    return std::pow(15.0 * m_star * v * v / (16.0 * E_star * std::sqrt(R_star)), 0.4);
+}
+
+double hertz_collision_time(double m_star, double E_star, double R_star, double v) {
+    return 2.943275 * hertz_max_overlap(m_star, E_star, R_star, v) / v;
+}
+
 PairTimes pair_times(const ContactPair& p, const ContactModel& model, double v) {
     const PairCoefficients& c = p.coefficients;
     PairTimes t;
     if (!model.elastic || c.E_star <= 0.0) return t;
-    const double h_max = std::pow(15.0 * p.m_star * v * v / (16.0 * c.E_star * std::sqrt(p.R_star)), 0.4);
-    t.collision = 2.943275 * h_max / v;
+    const double h_max = hertz_max_overlap(p.m_star, c.E_star, p.R_star, v);
+    t.collision = hertz_collision_time(p.m_star, c.E_star, p.R_star, v);
     if (model.viscous && c.B_star > 0.0) t.viscous = p.m_star / (2.0 * c.B_star * std::sqrt(p.R_star * h_max));  // c in N s/m
     return t;
 }
@@ -80,8 +88,8 @@ TimeStepReport assess_time_step(const Scenario& s) {
     // The Hertz collision at speed v and its viscous damping for each pair.
     for (const ContactPair& p : contact_pairs(s)) {
         const PairTimes times = pair_times(p, s.model, v);
-        if (times.collision > 0.0 && times.collision < collision) { collision = times.collision; collision_pair = p.name; }
-        if (times.viscous > 0.0 && times.viscous < viscous) { viscous = times.viscous; viscous_pair = p.name; }
+        if (times.collision < collision) { collision = times.collision; collision_pair = p.name; }
+        if (times.viscous < viscous) { viscous = times.viscous; viscous_pair = p.name; }
         // The Rayleigh time of each material of free grains (each has its pair with itself).
         if (p.partner != Partner::free || p.a != p.b) continue;
         const Material& ma = s.materials[p.a];

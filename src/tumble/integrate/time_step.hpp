@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -50,12 +51,19 @@ struct ContactPair {
 // the flat wall). Two kinematic particles never touch.
 std::vector<ContactPair> contact_pairs(const Scenario& scenario);
 
-// The two times of one kind of contact at impact speed v, s (0 where the
-// term is off): the undamped Hertz collision time t_c and the viscous time
-// m*/c at its deepest overlap (formulas at the top of this file).
+// The undamped Hertz collision of reduced mass m* (kg), modulus E* (Pa) and
+// radius R* (m) at impact speed v (m/s): deepest overlap h_max (m) and
+// duration t_c (s), the formulas at the top of this file.
+double hertz_max_overlap(double m_star, double E_star, double R_star, double v);
+double hertz_collision_time(double m_star, double E_star, double R_star, double v);
+
+// The two times of one kind of contact at impact speed v, s (infinite
+// where the term is off: no limit): the undamped Hertz collision time t_c
+// and the viscous time m*/c at its deepest overlap (formulas at the top of
+// this file).
 struct PairTimes {
-    double collision = 0.0;
-    double viscous = 0.0;
+    double collision = std::numeric_limits<double>::infinity();
+    double viscous = std::numeric_limits<double>::infinity();
 };
 struct ContactModel;
 PairTimes pair_times(const ContactPair& pair, const ContactModel& model, double v);
