@@ -1,18 +1,33 @@
 // SPDX-License-Identifier: MIT
-// tumble bench: the paper's dense periodic cube (SPEC-NOTES "Speed").
+// tumble bench: the paper's dense periodic cube (SPEC-NOTES "Speed"), or the
+// long flowing drum of issue 13 (docs/BENCHMARKS.md).
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <ctime>
 #include <fstream>
+#include <iterator>
 
 #include <unistd.h>
 
 #include <fmt/format.h>
 
+#include "experiments/run_control.hpp"
 #include "cli/commands.hpp"
+#include "experiments/drum_setup.hpp"
+#include "experiments/limits.hpp"
 #include "experiments/machine.hpp"
+#include "io/checkpoint.hpp"
+#include "io/drum_config.hpp"
+#include "tumble/core/constants.hpp"
+#include "tumble/core/error.hpp"
 #include "tumble/setup/benchmark_cube.hpp"
+#include "tumble/setup/drum.hpp"
 #include "tumble/sim/simulation.hpp"
 
 namespace tumble::cli {
+
+namespace fs = std::filesystem;
 
 namespace {
 constexpr double paper_best_updates_per_second = 45.2e3;  // IBM Power2, paper table 1
@@ -24,22 +39,35 @@ double resident_bytes() {
     if (!(statm >> pages_total >> pages_resident)) return 0.0;
     return pages_resident * static_cast<double>(sysconf(_SC_PAGESIZE));
 }
-}  // namespace
 
-int bench_command(const BenchOptions& options) {
+// CPU time of this process so far, all threads, s.
+double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+// Times `steps` steps of `sim`; returns the wall time, s, and sets `cpu`
+// to the process's CPU time over them (about threads x wall when each
+// thread had a core to itself; less when it waited for one).
+double timed_advance(Simulation& sim, std::int64_t steps, double& cpu) {
+    const double cpu_start = cpu_seconds();
+    const auto start = std::chrono::steady_clock::now();
+    sim.advance(steps);
+    cpu = cpu_seconds() - cpu_start;
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+int cube_bench(const BenchOptions& options) {
+    const std::int64_t steps = options.steps.value_or(2000), warmup = options.warmup.value_or(200);
     const double resident_before = resident_bytes();
     Simulation sim(benchmark_cube(options.size, options.seed), resolve_threads(options.threads));
     const std::size_t n = sim.particles().size();
     if (!options.json)
         fmt::print("tumble bench: {0}^3 = {1} spheres of material 1, periodic cube, dt = {2} s, all terms on\n",
                    options.size, n, sim.dt());
-    sim.advance(options.warmup);
+    sim.advance(warmup);
     const std::int64_t builds_before = sim.neighbors().builds();
-    const auto start = std::chrono::steady_clock::now();
-    sim.advance(options.steps);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    double cpu = 0.0;
+    const double seconds = timed_advance(sim, steps, cpu);
     const Observables o = sim.observe();
-    const double updates = static_cast<double>(n) * static_cast<double>(options.steps) / seconds;
+    const double updates = static_cast<double>(n) * static_cast<double>(steps) / seconds;
     const double contacts_per_particle = 2.0 * static_cast<double>(o.contacts) / static_cast<double>(n);
     const std::string machine = machine_description();
     const std::int64_t builds = sim.neighbors().builds() - builds_before;
@@ -49,8 +77,8 @@ int bench_command(const BenchOptions& options) {
     const double bytes_per_particle = (resident_bytes() - resident_before) / static_cast<double>(n);
 
     if (!options.json) {
-        fmt::print("  steps            {} (after {} warm-up steps)\n", options.steps, options.warmup);
-        fmt::print("  wall time        {:.3f} s\n", seconds);
+        fmt::print("  steps            {} (after {} warm-up steps)\n", steps, warmup);
+        fmt::print("  wall time        {:.3f} s (CPU {:.3f} s)\n", seconds, cpu);
         fmt::print("  updates/s        {:.4g}  ({:.0f}x the paper's best, 45.2 thousand on an IBM Power2)\n",
                    updates, updates / paper_best_updates_per_second);
         fmt::print("  contacts/sphere  {:.3f}\n", contacts_per_particle);
@@ -61,12 +89,122 @@ int bench_command(const BenchOptions& options) {
     }
     if (options.json)
         fmt::print(
-        "{{\"code\": \"tumble\", \"version\": \"{}\", \"particles\": {}, \"steps\": {}, \"seconds\": {}, "
+        "{{\"code\": \"tumble\", \"version\": \"{}\", \"case\": \"cube\", \"particles\": {}, \"steps\": {}, \"seconds\": {}, "
         "\"updates_per_second\": {}, \"contacts_per_particle\": {}, \"neighbor_builds\": {}, \"threads\": {}, "
-        "\"bytes_per_particle\": {:.0f}, \"dt\": {}, \"machine\": \"{}\"}}\n",
-        TUMBLE_VERSION, n, options.steps, seconds, updates, contacts_per_particle, builds, sim.threads(),
-        bytes_per_particle, sim.dt(), machine);
+        "\"bytes_per_particle\": {:.0f}, \"dt\": {}, \"cpu_seconds\": {}, \"machine\": \"{}\"}}\n",
+        TUMBLE_VERSION, n, steps, seconds, updates, contacts_per_particle, builds, sim.threads(),
+        bytes_per_particle, sim.dt(), cpu, machine);
     return 0;
+}
+
+// The drum's bed, settled at rest as tumble drum settles it, read from the
+// cache if an earlier run left it there, else made and stored there.
+// `made` tells which.
+Simulation settled_drum(const io::DrumSettings& d, const fs::path& cache, int threads, bool& made) {
+    DrumSetup setup = build_drum(d);
+    const fs::path file = cache / fmt::format("long-drum-length{}-fill{}-seed{}-format{}.tck", d.geometry.length,
+                                              d.fill_fraction, d.seed, io::checkpoint_format_version);
+    if (std::ifstream in{file, std::ios::binary}) {
+        const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        io::Checkpoint bed = io::decode_checkpoint(bytes, file.string());
+        if (bed.scenario.particles.size() != setup.scenario.particles.size())
+            throw Error(file.string() + ": the stored bed has " + std::to_string(bed.scenario.particles.size()) +
+                        " particles, this drum " + std::to_string(setup.scenario.particles.size()) +
+                        "; remove the file to have it made again");
+        Simulation sim(std::move(bed.scenario), threads);
+        sim.restore(std::move(bed.state));
+        made = false;
+        return sim;
+    }
+    Simulation sim(std::move(setup.scenario), threads);
+    const std::int64_t check_every = std::max<std::int64_t>(1, std::llround(1e-3 / sim.dt()));
+    const double fall_time = drum_fall_time(d);
+    while (sim.time() < d.settle_max_time &&
+           (sim.time() < fall_time || rms_grain_speed(sim.particles()) >= d.settle_speed))
+        sim.advance(check_every);
+    if (rms_grain_speed(sim.particles()) >= d.settle_speed)
+        fmt::print(stderr, "tumble bench: warning: the bed did not settle within {} s\n", d.settle_max_time);
+    fs::create_directories(cache);
+    const fs::path part = file.string() + ".tmp";
+    {
+        std::ofstream out(part, std::ios::binary | std::ios::trunc);
+        out << io::encode_checkpoint(checkpoint_of(sim));
+        if (!out.flush()) throw Error(part.string() + ": cannot write the settled bed");
+    }
+    fs::rename(part, file);  // a run killed while writing leaves no partial bed under the real name
+    made = true;
+    return sim;
+}
+
+fs::path default_cache() {
+    std::error_code error;
+    const fs::path executable = fs::read_symlink("/proc/self/exe", error);
+    return (error ? fs::current_path() : executable.parent_path()) / "bench-cache";
+}
+
+int long_drum_bench(const BenchOptions& options) {
+    const std::int64_t steps = options.steps.value_or(10000), warmup = options.warmup.value_or(2000);
+    io::DrumSettings d;  // the paper's drum: two components, 5 rad/s, end caps
+    d.geometry.length = options.length;
+    d.fill_fraction = options.fill;
+    io::check_drum_settings(d, "command line");
+    const int threads = resolve_threads(options.threads);
+    check_memory(drum_memory(d.geometry, static_cast<double>(d.grain_count()), threads), memory_limit_bytes(0.0),
+                 "command line");
+    const double resident_before = resident_bytes();
+    const fs::path cache = options.cache.empty() ? default_cache() : options.cache;
+    bool made = false;
+    Simulation sim = settled_drum(d, cache, threads, made);
+    const std::size_t n = sim.particles().size(), grains = sim.particles().free_count();
+    const double omega = d.omega();
+    if (!options.json)
+        fmt::print("tumble bench: long drum, length {} m, fill {}: {} grains, {} wall spheres, {} rad/s; settled bed {}\n",
+                   d.geometry.length, d.fill_fraction, grains, n - grains, omega,
+                   (made ? "made and stored in " : "read from ") + cache.string());
+    sim.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, omega, {0.0, 0.0, 0.0}});
+    sim.advance(warmup);
+    const std::int64_t builds_before = sim.neighbors().builds();
+    double cpu = 0.0;
+    const double seconds = timed_advance(sim, steps, cpu);
+    const std::int64_t builds = sim.neighbors().builds() - builds_before;
+    const double grain_updates = static_cast<double>(grains) * static_cast<double>(steps) / seconds;
+    const double steps_per_revolution = 2.0 * pi / omega / sim.dt();
+    const double seconds_per_revolution = seconds / static_cast<double>(steps) * steps_per_revolution;
+    const double revolutions_per_hour = 3600.0 / seconds_per_revolution;
+    const TimeStepReport& t = sim.time_step_report();
+    const std::string limited_by = t.automatic ? t.recommended_by : "given (--dt of the stored bed)";
+    const double bytes_per_particle = (resident_bytes() - resident_before) / static_cast<double>(n);
+    const std::string machine = machine_description();
+
+    if (!options.json) {
+        fmt::print("  steps              {} (after {} warm-up steps turning)\n", steps, warmup);
+        fmt::print("  wall time          {:.3f} s (CPU {:.3f} s)\n", seconds, cpu);
+        fmt::print("  grain updates/s    {:.4g}\n", grain_updates);
+        fmt::print("  revolutions/hour   {:.4g}  ({:.4g} s per revolution)\n", revolutions_per_hour,
+                   seconds_per_revolution);
+        fmt::print("  steps/revolution   {:.0f}\n", steps_per_revolution);
+        fmt::print("  dt                 {:.4g} s, set by {}\n", sim.dt(), limited_by);
+        fmt::print("  list rebuilds      {}\n", builds);
+        fmt::print("  threads            {}\n", sim.threads());
+        fmt::print("  memory             {:.0f} bytes per particle (grains and wall, resident, measured)\n",
+                   bytes_per_particle);
+        fmt::print("  machine            {}\n", machine);
+    }
+    if (options.json)
+        fmt::print("{{\"code\": \"tumble\", \"version\": \"{}\", \"case\": \"long-drum\", \"length\": {}, \"fill\": {}, "
+                   "\"grains\": {}, \"particles\": {}, \"bed\": \"{}\", \"steps\": {}, \"warmup\": {}, \"seconds\": {}, "
+                   "\"grain_updates_per_second\": {}, \"revolutions_per_hour\": {}, \"seconds_per_revolution\": {}, "
+                   "\"steps_per_revolution\": {}, \"dt\": {}, \"dt_limited_by\": \"{}\", \"neighbor_builds\": {}, "
+                   "\"threads\": {}, \"bytes_per_particle\": {:.0f}, \"cpu_seconds\": {}, \"machine\": \"{}\"}}\n",
+                   TUMBLE_VERSION, d.geometry.length, d.fill_fraction, grains, n, made ? "made" : "read", steps,
+                   warmup, seconds, grain_updates, revolutions_per_hour, seconds_per_revolution,
+                   steps_per_revolution, sim.dt(), limited_by, builds, sim.threads(), bytes_per_particle, cpu, machine);
+    return 0;
+}
+}  // namespace
+
+int bench_command(const BenchOptions& options) {
+    return options.bench_case == "long-drum" ? long_drum_bench(options) : cube_bench(options);
 }
 
 }  // namespace tumble::cli

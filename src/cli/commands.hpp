@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,22 +27,37 @@ struct RunOptions {
     bool quiet = false;
     CheckpointPolicy checkpoints;
     int threads = 1;               // 0: every core of the machine (resolve_threads)
-    double max_memory_gib = 0.0;   // refuse a run estimated to need more; 0: half the machine's (cli/limits.hpp)
+    double max_memory_gib = 0.0;   // refuse a run estimated to need more; 0: half the machine's (experiments/limits.hpp)
 };
 int run_command(const RunOptions& options);
 
 struct BenchOptions {
-    int size = 21;             // lattice edge: 21 -> 9261 spheres (the paper's), 46 -> 97336
-    std::int64_t steps = 2000;
-    std::int64_t warmup = 200;
+    std::string bench_case = "cube";  // "cube" (the paper's benchmark) or "long-drum" (issue 13)
+    int size = 21;             // cube: lattice edge, 21 -> 9261 spheres (the paper's), 46 -> 97336
+    std::optional<std::int64_t> steps;   // timed steps; default 2000 (cube), 10000 (long drum)
+    std::optional<std::int64_t> warmup;  // untimed steps first; default 200 (cube), 2000 (long drum, turning)
     std::uint64_t seed = 1;
     bool json = false;
     int threads = 1;           // 0: every core of the machine (resolve_threads)
+    double length = 0.64;      // long drum: inner length, m
+    double fill = 0.3;         // long drum: fill fraction
+    std::filesystem::path cache;  // long drum: where the settled bed is kept; empty: bench-cache beside the executable
 };
 int bench_command(const BenchOptions& options);
 
 using DrumOptions = experiments::DrumRunOptions;
 int drum_command(const DrumOptions& options);
+
+// tumble contact: each kind of contact of a scenario file, or of the drum
+// (scenario_file empty), at the given impact speeds (docs/MODEL.md).
+struct ContactOptions {
+    std::string scenario_file;
+    io::DrumSettings drum;  // when scenario_file is empty
+    bool allow_unsafe_dt = false;  // the drum's --dt may exceed the safe maximum
+    std::vector<double> speeds{0.05, 0.1, 0.3, 1.0, 1.4};  // m/s
+    bool json = false;
+};
+int contact_command(const ContactOptions& options);
 
 // tumble resume DIR: continue a run of `tumble run` or `tumble drum` from its
 // newest intact checkpoint (docs/CHECKPOINTS.md).

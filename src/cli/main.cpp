@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The tumble command line: run, bench, drum, analyze, plot, sweep, render, resume.
+// The tumble command line: run, bench, drum, contact, analyze, plot, sweep, render, resume.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -86,14 +86,27 @@ int main(int argc, char** argv) {
     run_cmd->add_option("--max-memory", run.max_memory_gib, memory_help)->check(finite_positive);
 
     BenchOptions bench;
-    CLI::App* bench_cmd = app.add_subcommand("bench", "Speed on the paper's dense periodic cube (SPEC-NOTES \"Speed\")");
-    bench_cmd->add_option("--size", bench.size, "Spheres per lattice edge (21: 9261, the paper's; 46: 97336)")
+    CLI::App* bench_cmd = app.add_subcommand(
+        "bench", "Speed: the paper's dense periodic cube (SPEC-NOTES \"Speed\"), or a long flowing drum "
+                 "(docs/BENCHMARKS.md)");
+    bench_cmd->add_option("--case", bench.bench_case,
+                          "cube (default) or long-drum (tumble drum --length 0.64 --fill 0.3, from a settled bed "
+                          "made once and kept)")
+        ->check(CLI::IsMember({"cube", "long-drum"}));
+    auto* size_opt = bench_cmd->add_option("--size", bench.size, "Cube: spheres per lattice edge (21: 9261, the paper's; 46: 97336)")
         ->check(CLI::Range(4, 400));
-    bench_cmd->add_option("--steps", bench.steps, "Timed steps")->check(CLI::PositiveNumber);
-    bench_cmd->add_option("--warmup", bench.warmup, "Untimed steps before timing")->check(CLI::NonNegativeNumber);
-    bench_cmd->add_option("--seed", bench.seed, "Seed of the random initial velocities");
+    bench_cmd->add_option("--steps", bench.steps, "Timed steps (default 2000; long drum 10000)")->check(CLI::PositiveNumber);
+    bench_cmd->add_option("--warmup", bench.warmup, "Untimed steps before timing (default 200; long drum 2000, turning)")
+        ->check(CLI::NonNegativeNumber);
+    auto* seed_opt = bench_cmd->add_option("--seed", bench.seed, "Cube: seed of the random initial velocities");
     bench_cmd->add_flag("--json", bench.json, "Print one JSON object instead of the table");
     bench_cmd->add_option("--threads", bench.threads, threads_help)->check(CLI::NonNegativeNumber);
+    auto* length_opt = bench_cmd->add_option("--length", bench.length, "Long drum: inner length, m (default 0.64)")
+        ->check(finite_positive);
+    auto* fill_opt = bench_cmd->add_option("--fill", bench.fill, "Long drum: fill fraction (default 0.3)")
+        ->check(finite_positive);
+    auto* cache_opt = bench_cmd->add_option(
+        "--cache", bench.cache, "Long drum: directory of the settled beds (default: bench-cache beside the executable)");
 
     // tumble drum: every setting of the drum file can be given here too.
     DrumOptions drum;
@@ -152,6 +165,31 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("--max-memory", drum.max_memory_gib, memory_help)->check(finite_positive);
     for (CLI::Option* option : drum_cmd->get_options())
         if (option->get_expected_min() > 0) option->check(not_empty);
+
+    ContactOptions contact;
+    bool contact_drum = false;
+    std::string contact_drum_config;
+    std::optional<std::string> contact_mode;
+    std::optional<double> contact_dt, contact_wall_radius;
+    CLI::App* contact_cmd = app.add_subcommand(
+        "contact", "Each pair of materials of a scenario or of the drum: collision time, restitution at the step and "
+                   "converged, equilibrium overlap, pull-off force, sticking speed, and the time step's criterion "
+                   "(docs/MODEL.md)");
+    auto* contact_file = contact_cmd->add_option("scenario", contact.scenario_file, "Scenario file (TOML)");
+    auto* contact_drum_flag = contact_cmd->add_flag("--drum", contact_drum, "The drum (tumble drum's defaults and the options below)")
+                                  ->excludes(contact_file);
+    contact_cmd->add_option("--config", contact_drum_config, "Drum settings file (with --drum)")->needs(contact_drum_flag);
+    contact_cmd->add_option("--mode", contact_mode, "Drum mode: two-component or self (with --drum)")->needs(contact_drum_flag);
+    contact_cmd->add_option("--wall-radius", contact_wall_radius, "Radius of the drum's wall particles, m (with --drum)")
+        ->needs(contact_drum_flag);
+    contact_cmd->add_option("--dt", contact_dt, "Time step of the drum, s (with --drum; default: chosen)")
+        ->needs(contact_drum_flag);
+    contact_cmd->add_flag("--allow-unsafe-dt", contact.allow_unsafe_dt,
+                          "Accept a --dt above the safe maximum (to see what a larger step would do)")
+        ->needs(contact_drum_flag);
+    contact_cmd->add_option("--speeds", contact.speeds, "Impact speeds, m/s (default 0.05 0.1 0.3 1 1.4)")
+        ->check(finite_positive);
+    contact_cmd->add_flag("--json", contact.json, "Print one JSON object instead of the table");
 
     std::string resume_dir;
     bool resume_quiet = false;
@@ -213,12 +251,29 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     try {
         if (run_cmd->parsed()) return run_command(run);
-        if (bench_cmd->parsed()) return bench_command(bench);
+        if (bench_cmd->parsed()) {
+            const bool drum_case = bench.bench_case == "long-drum";
+            for (CLI::Option* option : {size_opt, seed_opt, length_opt, fill_opt, cache_opt})
+                if (option->count() > 0 && (option == size_opt || option == seed_opt) == drum_case)
+                    throw tumble::Error("bench: " + option->get_name() + " does not apply to --case " + bench.bench_case);
+            return bench_command(bench);
+        }
         if (analyze_cmd->parsed()) return analyze_command(analyze_dir, first_revolution);
         if (plot_cmd->parsed()) return plot_command(plot_compare ? "compare" : "run", plot_inputs, plot_out);
         if (sweep_cmd->parsed()) return sweep_command(sweep);
         if (render_cmd->parsed()) return render_command(render);
         if (resume_cmd->parsed()) return resume_command(resume_dir, resume_quiet);
+        if (contact_cmd->parsed()) {
+            if (contact.scenario_file.empty() && !contact_drum)
+                throw tumble::Error("contact: give a scenario file or --drum");
+            tumble::io::DrumSettings& d = contact.drum;
+            if (!contact_drum_config.empty()) d = tumble::io::load_drum_settings(contact_drum_config);
+            if (contact_mode) d.mode = *contact_mode;
+            if (contact_wall_radius) d.geometry.wall_radius = *contact_wall_radius;
+            if (contact_dt) d.dt = *contact_dt;
+            tumble::io::check_drum_settings(d, "command line");
+            return contact_command(contact);
+        }
         if (drum_cmd->parsed()) {
             tumble::io::DrumSettings& d = drum.settings;
             if (!drum_config.empty()) d = tumble::io::load_drum_settings(drum_config);

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "experiments/drum_setup.hpp"
 #include "experiments/limits.hpp"
 #include "experiments/machine.hpp"
 #include "experiments/progress.hpp"
@@ -27,17 +28,6 @@ namespace tumble::experiments {
 namespace fs = std::filesystem;
 
 namespace {
-
-double rms_grain_speed(const ParticleStore& p) {
-    double sum = 0.0;
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < p.size(); ++i)
-        if (!p.is_kinematic(i)) {
-            sum += norm2(p.velocity[i]);
-            ++n;
-        }
-    return n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
-}
 
 std::vector<io::DrumComponent> components_of(const Simulation& sim, const std::string& mode) {
     std::vector<io::DrumComponent> out(2);
@@ -291,11 +281,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     const int threads = resolve_threads(options.threads);
     check_memory(drum_memory(s.geometry, static_cast<double>(s.grain_count()), threads),
                  memory_limit_bytes(options.max_memory_gib), "command line");
-    DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed);
-    if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
-    setup.scenario.model.shear = s.shear;
-    setup.scenario.model.friction_normal = s.friction_normal;
-    setup.scenario.time_step.allow_unsafe = options.allow_unsafe_dt;
+    DrumSetup setup = build_drum(s, options.allow_unsafe_dt);
     Simulation sim(std::move(setup.scenario), threads);
     check_drum_durations(s.revolutions, omega, s.samples_per_revolution, s.settle_max_time, sim.dt());
 
@@ -327,7 +313,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     plan.snapshots_per_revolution = s.snapshots_per_revolution;
     plan.settle_speed = s.settle_speed;
     plan.settle_max_time = s.settle_max_time;
-    plan.fall_time = 2.0 * std::sqrt(2.0 * s.geometry.diameter / 9.81);  // twice the time to fall the diameter
+    plan.fall_time = drum_fall_time(s);
     plan.checkpoint_revolutions = options.checkpoint_revolutions;
     plan.plot = options.plot;
     plan.quiet = options.quiet;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.hpp"
+#include "io/sweep.hpp"
 #include "tumble/core/parallel.hpp"
 
 #include <cstdio>
@@ -22,6 +23,12 @@ using Result = tumble::test_support::CommandResult;
 
 Result run_tumble(const std::string& arguments) {
     return tumble::test_support::run_command(std::string(TUMBLE_BINARY) + " " + arguments);
+}
+
+// The last line of the output (the JSON object of --json).
+std::string last_line(const std::string& output) {
+    const std::string text = output.substr(0, output.find_last_not_of('\n') + 1);
+    return text.substr(text.find_last_of('\n') + 1);
 }
 
 class Cli : public tumble::test_support::ScratchTest {};
@@ -150,8 +157,7 @@ TEST(CliBench, JsonLastLineHasTheBenchmarkKeys) {
     // A tiny lattice and few steps: this checks the report, not the speed.
     const Result r = run_tumble("bench --size 8 --steps 20 --warmup 0 --json");
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    std::string last = r.output.substr(0, r.output.find_last_not_of('\n') + 1);
-    last = last.substr(last.find_last_of('\n') + 1);
+    const std::string last = last_line(r.output);
     for (const char* key : {"\"particles\": 512", "\"steps\": 20", "\"seconds\"", "\"updates_per_second\"",
                             "\"contacts_per_particle\""})
         EXPECT_NE(last.find(key), std::string::npos) << key << " missing in: " << last;
@@ -167,6 +173,85 @@ TEST(CliBench, ThreadsAndMemoryAreReported) {
     EXPECT_NE(r.output.find(threads), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\"bytes_per_particle\": "), std::string::npos) << r.output;
     EXPECT_NE(run_tumble("bench --size 8 --steps 5 --threads -1").exit_code, 0);
+}
+
+// A small long drum (2 cm of the paper's cross-section) and few steps: this
+// checks the report and the stored bed, not the speed.
+TEST_F(Cli, BenchLongDrumReportsEveryFieldAndKeepsTheSettledBed) {
+    const std::string arguments = "bench --case long-drum --length 0.02 --fill 0.2 --steps 20 --warmup 5 --cache " +
+                                  (dir_ / "cache").string();
+    const Result table = run_tumble(arguments);
+    ASSERT_EQ(table.exit_code, 0) << table.output;
+    for (const char* field : {"settled bed made and stored in", "grain updates/s", "revolutions/hour",
+                              "steps/revolution", "dt ", "set by", "bytes per particle", "threads", "machine"})
+        EXPECT_NE(table.output.find(field), std::string::npos) << field << " missing in: " << table.output;
+    const Result json = run_tumble(arguments + " --json --threads 2");
+    ASSERT_EQ(json.exit_code, 0) << json.output;
+    const tumble::io::Json j = tumble::io::parse_json(last_line(json.output));
+    ASSERT_NE(j.find("bed"), nullptr);
+    EXPECT_EQ(j.find("bed")->string, "read");  // the second run reads the bed the first made
+    EXPECT_EQ(j.find("case")->string, "long-drum");
+    for (const char* key : {"grains", "particles", "steps", "seconds", "grain_updates_per_second",
+                            "revolutions_per_hour", "steps_per_revolution", "dt", "bytes_per_particle", "threads"})
+        EXPECT_TRUE(j.number_at(key).has_value()) << key << " missing in: " << json.output;
+    EXPECT_NE(j.find("dt_limited_by")->string.find("viscous time"), std::string::npos) << json.output;
+    // 5 rad/s at the automatic step: 2 pi / 5 / dt steps per revolution.
+    EXPECT_NEAR(*j.number_at("steps_per_revolution"), 2.0 * 3.141592653589793 / 5.0 / *j.number_at("dt"), 1e-6);
+    EXPECT_EQ(*j.number_at("steps"), 20.0);
+    EXPECT_EQ(*j.number_at("threads"), tumble::parallel_build() ? 2.0 : 1.0);
+}
+
+TEST(CliBench, OptionsOfTheOtherCaseAreRefused) {
+    const std::pair<const char*, const char*> cases[] = {{"bench --case long-drum --size 8", "--size"},
+                                                         {"bench --length 0.1", "--length"},
+                                                         {"bench --case drum", "--case"},
+                                                         {"bench --case long-drum --fill 0", "--fill"}};
+    for (const auto& [arguments, option] : cases) {
+        const Result r = run_tumble(arguments);
+        EXPECT_NE(r.exit_code, 0) << arguments;
+        EXPECT_NE(r.output.find(option), std::string::npos) << arguments << ": " << r.output;
+    }
+}
+
+TEST(CliContact, DrumTableHasEveryPairAndColumn) {
+    const Result r = run_tumble("contact --drum");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    for (const char* text : {"time step 7.468e-06 s (automatic), set by 0.2 x the viscous time", "largest safe step",
+                             "material-1-material-1:", "material-1-material-2:", "material-2-material-2:",
+                             "material-1-wall (kinematic):", "material-2-wall (kinematic):", "Hertz collision time",
+                             "equilibrium overlap 44.8 um", "pull-off force 2.262 mN", "sticks at every impact speed",
+                             "restitution", "converged", "1.4 "})
+        EXPECT_NE(r.output.find(text), std::string::npos) << text << " missing in: " << r.output;
+}
+
+TEST_F(Cli, ContactJsonOfAScenarioFile) {
+    const fs::path scenario = write("small.toml", small_scenario);
+    const Result r = run_tumble("contact " + scenario.string() + " --speeds 0.1 1 --json");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const tumble::io::Json j = tumble::io::parse_json(last_line(r.output));
+    EXPECT_EQ(*j.number_at("dt"), 1e-5);  // the scenario's own
+    const tumble::io::Json* pairs = j.find("pairs");
+    ASSERT_NE(pairs, nullptr);
+    ASSERT_EQ(pairs->array.size(), 2u);  // material-1 with itself and with the flat floor
+    EXPECT_EQ(pairs->array[1].find("pair")->string, "material-1-flat wall");
+    for (const tumble::io::Json& pair : pairs->array) {
+        ASSERT_EQ(pair.find("impacts")->array.size(), 2u);
+        for (const char* key : {"R_star", "m_star", "hertz_collision_time", "viscous_time", "equilibrium_overlap",
+                                "pull_off_force", "sticking_speed"})
+            EXPECT_TRUE(pair.number_at(key).has_value()) << key;
+        const tumble::io::Json& impact = pair.find("impacts")->array[0];
+        EXPECT_TRUE(impact.find("at_step")->number_at("restitution").has_value());
+        EXPECT_TRUE(impact.find("converged")->number_at("contact_time").has_value());
+    }
+}
+
+TEST(CliContact, RefusesMissingOrBadInput) {
+    for (const char* arguments : {"contact", "contact --speeds 0 --drum", "contact --drum --speeds nan",
+                                  "contact /nonexistent.toml", "contact --mode mixed --drum", "contact --dt 1e-6"}) {
+        const Result r = run_tumble(arguments);
+        EXPECT_NE(r.exit_code, 0) << arguments;
+        EXPECT_FALSE(r.output.empty()) << arguments;
+    }
 }
 
 TEST_F(Cli, DrumRefusesImpossibleSettingsAndWritesNothing) {

@@ -2,8 +2,10 @@
 #include "tumble/sim/time_step.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
+#include <initializer_list>
+#include <utility>
 #include <limits>
 #include <vector>
 
@@ -25,7 +27,7 @@ std::string format(double value, const char* unit) {
 std::string format_seconds(double t) { return format(t, "s"); }
 }  // namespace
 
-TimeStepReport assess_time_step(const Scenario& s) {
+std::vector<ContactPair> contact_pairs(const Scenario& s) {
     // Smallest radius per material, among free and among kinematic particles.
     const std::size_t n_materials = s.materials.size();
     std::vector<double> free_radius(n_materials, inf), kinematic_radius(n_materials, inf);
@@ -33,64 +35,93 @@ TimeStepReport assess_time_step(const Scenario& s) {
         double& r = p.motion == free_motion ? free_radius[p.material] : kinematic_radius[p.material];
         r = std::min(r, p.radius);
     }
-
-    double collision = inf, viscous = inf, rayleigh = inf;
-    std::string collision_pair, viscous_pair, rayleigh_material;
-    const double v = s.time_step.reference_speed;
-    // The Hertz collision at speed v and its viscous damping for one pair.
-    auto consider = [&](const std::string& pair, const PairCoefficients& c, double R_star, double m_star) {
-        if (!s.model.elastic || c.E_star <= 0.0) return;
-        const double h_max = std::pow(15.0 * m_star * v * v / (16.0 * c.E_star * std::sqrt(R_star)), 0.4);
-        const double t_c = 2.943275 * h_max / v;
-        if (t_c < collision) { collision = t_c; collision_pair = pair; }
-        if (!s.model.viscous || c.B_star <= 0.0) return;
-        const double damping = 2.0 * c.B_star * std::sqrt(R_star * h_max);  // N s/m
-        if (m_star / damping < viscous) { viscous = m_star / damping; viscous_pair = pair; }
-    };
     auto mass = [&](std::size_t a, double R) { return 4.0 / 3.0 * pi * s.materials[a].rho * R * R * R; };
-    auto coefficients = [&](std::size_t a, std::size_t b) {
-        return make_pair_coefficients(s.materials[a], s.materials[b], s.pair_properties[a][b]);
+    std::vector<ContactPair> pairs;
+    auto add = [&](std::string name, std::size_t a, std::size_t b, Partner partner, double R_a, double R_b) {
+        ContactPair c{std::move(name), a, b, partner, R_a, R_b, 0.0, mass(a, R_a), {}};
+        c.R_star = R_b == inf ? R_a : R_a * R_b / (R_a + R_b);
+        if (partner == Partner::free) c.m_star = c.m_star * mass(b, R_b) / (c.m_star + mass(b, R_b));
+        c.coefficients = make_pair_coefficients(s.materials[a], s.materials[b], s.pair_properties[a][b]);
+        pairs.push_back(std::move(c));
     };
     const auto& walls = s.domain.walls;
     const bool any_wall = walls[0] || walls[1] || walls[2];
     for (std::size_t a = 0; a < n_materials; ++a) {
         const double Ra = free_radius[a];
         if (Ra == inf) continue;  // no free particle of this material
-        const Material& ma = s.materials[a];
-        const double t_R = pi * Ra * std::sqrt(ma.rho / ma.G) / (0.1631 * ma.nu + 0.8766);
-        if (t_R < rayleigh) { rayleigh = t_R; rayleigh_material = ma.name; }
+        const std::string& name = s.materials[a].name;
         for (std::size_t b = 0; b < n_materials; ++b) {
-            const std::string pair = ma.name + "-" + s.materials[b].name;
-            // Two free grains: the reduced mass.
-            if (const double Rb = free_radius[b]; b >= a && Rb != inf)
-                consider(pair, coefficients(a, b), Ra * Rb / (Ra + Rb), mass(a, Ra) * mass(b, Rb) / (mass(a, Ra) + mass(b, Rb)));
-            // A free grain against a kinematic one, whose motion is prescribed
-            // (infinite mass): m* = m. Two kinematic particles never interact.
-            if (const double Rb = kinematic_radius[b]; Rb != inf)
-                consider(pair + " (kinematic)", coefficients(a, b), Ra * Rb / (Ra + Rb), mass(a, Ra));
+            const std::string pair = name + "-" + s.materials[b].name;
+            if (b >= a && free_radius[b] != inf) add(pair, a, b, Partner::free, Ra, free_radius[b]);
+            if (kinematic_radius[b] != inf) add(pair + " (kinematic)", a, b, Partner::kinematic, Ra, kinematic_radius[b]);
         }
         if (any_wall) {
-            // A flat wall: infinite radius and mass, so R* = R and m* = m.
             const auto w = static_cast<std::size_t>(s.domain.wall_material);
-            consider(ma.name + "-flat wall", coefficients(a, w), Ra, mass(a, Ra));
+            add(name + "-flat wall", a, w, Partner::flat_wall, Ra, inf);
         }
+    }
+    return pairs;
+}
+
+double hertz_max_overlap(double m_star, double E_star, double R_star, double v) {
+    return std::pow(15.0 * m_star * v * v / (16.0 * E_star * std::sqrt(R_star)), 0.4);
+}
+
+double hertz_collision_time(double m_star, double E_star, double R_star, double v) {
+    return 2.943275 * hertz_max_overlap(m_star, E_star, R_star, v) / v;
+}
+
+PairTimes pair_times(const ContactPair& p, const ContactModel& model, double v) {
+    const PairCoefficients& c = p.coefficients;
+    PairTimes t;
+    if (!model.elastic || c.E_star <= 0.0) return t;
+    const double h_max = hertz_max_overlap(p.m_star, c.E_star, p.R_star, v);
+    t.collision = hertz_collision_time(p.m_star, c.E_star, p.R_star, v);
+    if (model.viscous && c.B_star > 0.0) t.viscous = p.m_star / (2.0 * c.B_star * std::sqrt(p.R_star * h_max));  // c in N s/m
+    return t;
+}
+
+TimeStepReport assess_time_step(const Scenario& s) {
+    double collision = inf, viscous = inf, rayleigh = inf;
+    std::string collision_pair, viscous_pair, rayleigh_material;
+    const double v = s.time_step.reference_speed;
+    // The Hertz collision at speed v and its viscous damping for each pair.
+    for (const ContactPair& p : contact_pairs(s)) {
+        const PairTimes times = pair_times(p, s.model, v);
+        if (times.collision < collision) { collision = times.collision; collision_pair = p.name; }
+        if (times.viscous < viscous) { viscous = times.viscous; viscous_pair = p.name; }
+        // The Rayleigh time of each material of free grains (each has its pair with itself).
+        if (p.partner != Partner::free || p.a != p.b) continue;
+        const Material& ma = s.materials[p.a];
+        const double t_R = pi * p.R_a * std::sqrt(ma.rho / ma.G) / (0.1631 * ma.nu + 0.8766);
+        if (t_R < rayleigh) { rayleigh = t_R; rayleigh_material = ma.name; }
     }
 
     TimeStepReport r;
     r.collision_time = collision == inf ? 0.0 : collision;
     r.viscous_time = viscous == inf ? 0.0 : viscous;
     r.rayleigh_time = rayleigh == inf ? 0.0 : rayleigh;
-    r.recommended = std::min({collision / 50.0, 0.2 * viscous, 0.2 * rayleigh});
-    r.maximum = inf;
-    auto limit = [&](double value, const std::string& why) {
-        if (value < r.maximum) { r.maximum = value; r.limiting = why; }
+    const std::string collision_why = "the Hertz collision time at " + format(v, "m/s") + " (" +
+                                      format_seconds(collision) + ", pair " + collision_pair + ")";
+    const std::string viscous_why = "the viscous time m*/c (" + format_seconds(viscous) + ", pair " + viscous_pair +
+                                    "), above which the damping is unstable";
+    const std::string rayleigh_why = "the Rayleigh time (" + format_seconds(rayleigh) + ", material " +
+                                     rayleigh_material + ")";
+    // The smallest of the criteria, each a fraction of its time; the first wins a tie.
+    auto smallest = [](std::initializer_list<std::pair<double, std::string>> criteria, std::string& why) {
+        double value = inf;
+        for (const auto& [t, text] : criteria)
+            if (t < value) { value = t; why = text; }
+        return value;
     };
-    limit(collision / 10.0, "a tenth of the Hertz collision time at " + format(v, "m/s") + " (" +
-                                format_seconds(collision) + ", pair " + collision_pair + ")");
-    limit(0.5 * viscous, "half the viscous time m*/c (" + format_seconds(viscous) + ", pair " + viscous_pair +
-                             "), above which the damping is unstable");
-    limit(0.5 * rayleigh, "half the Rayleigh time (" + format_seconds(rayleigh) + ", material " +
-                              rayleigh_material + ")");
+    r.recommended = smallest({{collision / 50.0, "a fiftieth of " + collision_why},
+                              {0.2 * viscous, "0.2 x " + viscous_why},
+                              {0.2 * rayleigh, "0.2 x " + rayleigh_why}},
+                             r.recommended_by);
+    r.maximum = smallest({{collision / 10.0, "a tenth of " + collision_why},
+                          {0.5 * viscous, "half " + viscous_why},
+                          {0.5 * rayleigh, "half " + rayleigh_why}},
+                         r.limiting);
     if (r.recommended == inf) throw Error("time step: no free particles to derive a time step from");
 
     const double given = s.time_step.dt;

@@ -17,11 +17,56 @@
 // Largest step accepted: min(t_c/10, 0.5 m*/c, 0.5 t_R).
 #pragma once
 
+#include <cstddef>
+#include <limits>
 #include <string>
+#include <vector>
+
+#include "tumble/materials/pair_table.hpp"
 
 namespace tumble {
 
 struct Scenario;
+
+// What a grain of material a can touch: another free grain, a kinematic
+// particle (whose motion is prescribed: infinite mass) or a flat wall
+// (infinite radius and mass).
+enum class Partner { free, kinematic, flat_wall };
+
+// One kind of contact of a scenario, at the smallest radii that meet in it.
+struct ContactPair {
+    std::string name;     // "material-1-material-2", "... (kinematic)", "material-1-flat wall"
+    std::size_t a = 0;    // material of the free grain
+    std::size_t b = 0;    // material of the partner (the wall material for a flat wall)
+    Partner partner = Partner::free;
+    double R_a = 0.0;     // m, smallest radius of free grains of material a
+    double R_b = 0.0;     // m, smallest radius of the partner (infinite for a flat wall)
+    double R_star = 0.0;  // m, reduced radius
+    double m_star = 0.0;  // kg, reduced mass (the grain's own mass against a kinematic particle or a wall)
+    PairCoefficients coefficients;
+};
+
+// Every kind of contact that can occur in the scenario, in a fixed order
+// (by material a; for each, free partners b >= a, then kinematic ones, then
+// the flat wall). Two kinematic particles never touch.
+std::vector<ContactPair> contact_pairs(const Scenario& scenario);
+
+// The undamped Hertz collision of reduced mass m* (kg), modulus E* (Pa) and
+// radius R* (m) at impact speed v (m/s): deepest overlap h_max (m) and
+// duration t_c (s), the formulas at the top of this file.
+double hertz_max_overlap(double m_star, double E_star, double R_star, double v);
+double hertz_collision_time(double m_star, double E_star, double R_star, double v);
+
+// The two times of one kind of contact at impact speed v, s (infinite
+// where the term is off: no limit): the undamped Hertz collision time t_c
+// and the viscous time m*/c at its deepest overlap (formulas at the top of
+// this file).
+struct PairTimes {
+    double collision = std::numeric_limits<double>::infinity();
+    double viscous = std::numeric_limits<double>::infinity();
+};
+struct ContactModel;
+PairTimes pair_times(const ContactPair& pair, const ContactModel& model, double v);
 
 struct TimeStepReport {
     double collision_time = 0.0;  // s, shortest over pairs (0 if elasticity is off)
@@ -30,6 +75,7 @@ struct TimeStepReport {
     double recommended = 0.0;     // s
     double maximum = 0.0;         // s
     std::string limiting;         // which criterion and which pair or material sets `maximum`
+    std::string recommended_by;   // which criterion and which pair or material sets `recommended`
     double dt = 0.0;              // s, the step in use
     bool automatic = false;       // dt was chosen, not given
 };

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// The drum as tumble drum builds it, and how its bed settles before it
+// turns (tumble drum, tumble bench --case long-drum, tumble contact --drum).
+#pragma once
+
+#include <cmath>
+
+#include "io/drum_config.hpp"
+#include "tumble/particles/particle_store.hpp"
+#include "tumble/setup/drum.hpp"
+
+namespace tumble::experiments {
+
+// The drum of the settings: build_drum_scenario() with the settings' step
+// (0: automatic), shear model and friction normal.
+inline DrumSetup build_drum(const io::DrumSettings& s, bool allow_unsafe_dt = false) {
+    DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed);
+    if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
+    setup.scenario.model.shear = s.shear;
+    setup.scenario.model.friction_normal = s.friction_normal;
+    setup.scenario.time_step.allow_unsafe = allow_unsafe_dt;
+    return setup;
+}
+
+// Root mean square speed of the free particles (the grains), m/s.
+inline double rms_grain_speed(const ParticleStore& p) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+        if (!p.is_kinematic(i)) {
+            sum += norm2(p.velocity[i]);
+            ++n;
+        }
+    return n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+}
+
+// The bed settles at least this long, s: twice the time to fall the drum's diameter.
+inline double drum_fall_time(const io::DrumSettings& s) { return 2.0 * std::sqrt(2.0 * s.geometry.diameter / 9.81); }
+
+}  // namespace tumble::experiments
