@@ -295,8 +295,8 @@ int main(int argc, char** argv) {
             if (spin_up_seconds) d.spin_up_time = *spin_up_seconds;
             if (spin_up_revolutions) d.spin_up_time = 2.0 * tumble::pi * *spin_up_revolutions / d.omega();
             if (dt) d.dt = *dt;
-            if (shear) d.shear = tumble::find_keyword(tumble::shear_models, *shear)->model;
-            if (friction_normal) d.friction_normal = tumble::find_keyword(tumble::friction_normals, *friction_normal)->choice;
+            if (shear) d.shear = tumble::find_keyword(tumble::shear_models, *shear)->value;
+            if (friction_normal) d.friction_normal = tumble::find_keyword(tumble::friction_normals, *friction_normal)->value;
             if (seed) d.seed = static_cast<std::uint64_t>(*seed);
             if (out) d.output = *out;
             tumble::io::check_drum_settings(d, "command line");

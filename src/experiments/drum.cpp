@@ -299,10 +299,8 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     info.spin_up_time = s.spin_up_time;
     info.dt = sim.dt();
     info.threads = sim.threads();
-    for (const ShearModelEntry& e : shear_models)
-        if (e.model == s.shear) info.shear_model = e.keyword;
-    for (const FrictionNormalEntry& e : friction_normals)
-        if (e.choice == s.friction_normal) info.friction_normal = e.keyword;
+    info.shear_model = keyword_of(shear_models, s.shear);
+    info.friction_normal = keyword_of(friction_normals, s.friction_normal);
     info.samples_per_revolution = s.samples_per_revolution;
     info.profile_bins = s.profile_bins;
     info.components = components_of(sim, s.mode);

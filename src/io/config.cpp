@@ -243,9 +243,9 @@ private:
         m.viscous = r_.boolean(*t, p, "viscous", true);
         m.attraction = r_.boolean(*t, p, "attraction", true);
         m.twisting = r_.boolean(*t, p, "twisting", true);
-        if (const toml::node* n = t->get("shear")) m.shear = r_.keyword(*n, join(p, "shear"), shear_models)->model;
+        if (const toml::node* n = t->get("shear")) m.shear = r_.keyword(*n, join(p, "shear"), shear_models)->value;
         if (const toml::node* n = t->get("friction_normal"))
-            m.friction_normal = r_.keyword(*n, join(p, "friction_normal"), friction_normals)->choice;
+            m.friction_normal = r_.keyword(*n, join(p, "friction_normal"), friction_normals)->value;
         m.slip_velocity_regularisation =
             r_.number(*t, p, "slip_velocity_regularisation", Bound::positive, m.slip_velocity_regularisation);
     }

@@ -120,9 +120,9 @@ DrumSettings load_drum_settings(const std::filesystem::path& file) {
     }
     if (const toml::table* t = r.table(root, "model", false)) {
         r.only_keys(*t, "model", {"shear", "friction_normal"});
-        if (const toml::node* n = t->get("shear")) s.shear = r.keyword(*n, "model.shear", shear_models)->model;
+        if (const toml::node* n = t->get("shear")) s.shear = r.keyword(*n, "model.shear", shear_models)->value;
         if (const toml::node* n = t->get("friction_normal"))
-            s.friction_normal = r.keyword(*n, "model.friction_normal", friction_normals)->choice;
+            s.friction_normal = r.keyword(*n, "model.friction_normal", friction_normals)->value;
     }
     if (const toml::table* t = r.table(root, "output", false)) {
         r.only_keys(*t, "output", {"directory"});

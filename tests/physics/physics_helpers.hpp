@@ -68,6 +68,23 @@ inline double hertz_max_overlap(double m_star, double E_star, double R_star, dou
     return std::pow(15.0 * m_star * v * v / (16.0 * E_star * std::sqrt(R_star)), 0.4);
 }
 
+// Overlap at which a contact of materials a and b with reduced radius R_star
+// carries `load` at rest: Hertz - attraction = load (bisection on the part
+// above the attraction's balance, where the net force grows with h).
+inline double resting_overlap(int a, int b, double R_star, double load) {
+    const auto materials = paper_materials();
+    const double E_star = e_star(materials[a], materials[b]);
+    const double K = 4.0 / 3.0 * E_star * std::sqrt(R_star);
+    const double A = attraction_prefactor(paper_pairs()[a][b].W, E_star);
+    auto net = [&](double h) { return K * std::pow(h, 1.5) - A * std::pow(R_star * h, 0.75) - load; };
+    double lo = std::pow(A / K, 4.0 / 3.0) * R_star, hi = R_star;  // net < 0 at lo (= -load), > 0 at h = R*
+    for (int k = 0; k < 200; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (net(mid) < 0.0 ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
 // ---- Scenarios -----------------------------------------------------------
 
 // Paper materials, open space (no periodic axes, no walls), no gravity.

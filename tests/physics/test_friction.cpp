@@ -32,20 +32,7 @@ constexpr int grain_material = 0, surface_material = 2;
 
 // Overlap at which the grain rests on the big sphere: Hertz - attraction = m g.
 double resting_overlap() {
-    const auto materials = paper_materials();
-    const double E_star = e_star(materials[grain_material], materials[surface_material]);
-    const double R_star = reduced(R1, R_big);
-    const double K = 4.0 / 3.0 * E_star * std::sqrt(R_star);
-    const double A = attraction_prefactor(paper_pairs()[grain_material][surface_material].W, E_star);
-    const double weight = sphere_mass(1000.0, R1) * g;
-    auto net = [&](double h) { return K * std::pow(h, 1.5) - A * std::pow(R_star * h, 0.75) - weight; };
-    // net < 0 at the adhesion balance (where it is -weight), > 0 at h = R.
-    double lo = std::pow(A / K, 4.0 / 3.0) * R_star, hi = R1;
-    for (int k = 0; k < 200; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (net(mid) < 0.0 ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
+    return physics_test::resting_overlap(grain_material, surface_material, reduced(R1, R_big), sphere_mass(1000.0, R1) * g);
 }
 
 // Particle 0: the grain on top, at its resting overlap; particle 1: the big
@@ -83,8 +70,7 @@ GrainContact grain_contact(const tumble::Simulation& sim) {
 namespace tumble {
 // Names the shear model in test output (gtest finds it by argument lookup).
 inline void PrintTo(ShearModel m, std::ostream* out) {
-    for (const ShearModelEntry& e : shear_models)
-        if (e.model == m) *out << e.keyword;
+    *out << keyword_of(shear_models, m);
 }
 }  // namespace tumble
 

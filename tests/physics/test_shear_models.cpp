@@ -30,27 +30,10 @@ constexpr double g = 9.81;  // m/s^2
 constexpr int grain = 0, wall = 2;  // material 1 on material 3 (the drum's wall): mu = 0.2
 constexpr double R_big = 1000.0;    // m
 
-std::string model_name(tumble::ShearModel m) {
-    for (const auto& e : tumble::shear_models)
-        if (e.model == m) return std::string(e.keyword);
-    return "?";
-}
+std::string model_name(tumble::ShearModel m) { return std::string(tumble::keyword_of(tumble::shear_models, m)); }
 
-// Overlap at which Hertz - attraction = load for the material-1 grain on
-// material 3 with reduced radius R_star (bisection on the monotonic part).
-double overlap_for_load(double R_star, double load) {
-    const auto materials = paper_materials();
-    const double E_star = e_star(materials[grain], materials[wall]);
-    const double K = 4.0 / 3.0 * E_star * std::sqrt(R_star);
-    const double A = attraction_prefactor(paper_pairs()[grain][wall].W, E_star);
-    auto net = [&](double h) { return K * std::pow(h, 1.5) - A * std::pow(R_star * h, 0.75) - load; };
-    double lo = std::pow(A / K, 4.0 / 3.0) * R_star, hi = R1;
-    for (int k = 0; k < 200; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (net(mid) < 0.0 ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-}
+// Overlap at which the material-1 grain rests on material 3 under `load`.
+double overlap_for_load(double R_star, double load) { return resting_overlap(grain, wall, R_star, load); }
 
 // ---- 1. Sustained sliding ----------------------------------------------
 

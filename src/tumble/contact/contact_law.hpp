@@ -19,14 +19,18 @@
 
 namespace tumble {
 
-// The shear models a scenario can name (mindlin_shear.hpp). To add one: an
-// entry in ShearModel and here, its rule in mindlin_shear.hpp.
-struct ShearModelEntry {
+// A choice a scenario names by keyword (the shear model, the friction
+// normal): the keyword, the value, and what it means.
+template <class Value>
+struct Keyword {
     std::string_view keyword;
-    ShearModel model;
+    Value value;
     std::string_view description;
 };
-inline constexpr std::array<ShearModelEntry, 4> shear_models{{
+
+// The shear models a scenario can name (mindlin_shear.hpp). To add one: an
+// entry in ShearModel and here, its rule in mindlin_shear.hpp.
+inline constexpr std::array<Keyword<ShearModel>, 4> shear_models{{
     {"paper", ShearModel::Paper, "paper eq. 8: the slip restarts at the static limit (saw-tooth, mean mu |F_n| / 2)"},
     {"coulomb", ShearModel::Coulomb, "paper eq. 8 held at the static limit while sliding (mean mu |F_n|)"},
     {"spring", ShearModel::Spring, "tangential spring truncated at the Coulomb limit, as in LAMMPS/LIGGGHTS"},
@@ -39,23 +43,26 @@ inline constexpr std::array<ShearModelEntry, 4> shear_models{{
 //   Jkr: |F_elastic + F_attraction + 2 F_pull-off|, as JKR-based codes do,
 //        with F_pull-off = 2 pi W R* the pull-off force of this law.
 enum class FrictionNormal { Net, Jkr };
-struct FrictionNormalEntry {
-    std::string_view keyword;
-    FrictionNormal choice;
-    std::string_view description;
-};
-inline constexpr std::array<FrictionNormalEntry, 2> friction_normals{{
+inline constexpr std::array<Keyword<FrictionNormal>, 2> friction_normals{{
     {"net", FrictionNormal::Net, "|F_n|: elastic - attraction + viscous (the paper)"},
     {"jkr", FrictionNormal::Jkr, "|elastic - attraction + 2 pull-off| (JKR-based codes)"},
 }};
 
 // The entry of `table` (shear_models, friction_normals) named `keyword`, or
 // nullptr.
-template <class Entry, std::size_t N>
-const Entry* find_keyword(const std::array<Entry, N>& table, std::string_view keyword) {
-    for (const Entry& e : table)
+template <class Value, std::size_t N>
+const Keyword<Value>* find_keyword(const std::array<Keyword<Value>, N>& table, std::string_view keyword) {
+    for (const Keyword<Value>& e : table)
         if (e.keyword == keyword) return &e;
     return nullptr;
+}
+
+// The keyword of `value` in `table`.
+template <class Value, std::size_t N>
+std::string_view keyword_of(const std::array<Keyword<Value>, N>& table, Value value) {
+    for (const Keyword<Value>& e : table)
+        if (e.value == value) return e.keyword;
+    return "?";
 }
 
 // Which terms are on. Every term can be switched off for tests and users.
