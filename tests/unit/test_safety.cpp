@@ -147,20 +147,7 @@ duration = 0.0005
 lo = [0.0, 0.0, 0.0]
 hi = [0.1, 0.1, 0.1]
 periodic = [true, true, true]
-[[material]]
-name = "m"
-E = 1.0e6
-G = 0.3e6
-nu = 0.25
-xi = 500.0
-eta = 500.0
-rho = 1000.0
-radius = 0.0036
-[[pair]]
-materials = ["m", "m"]
-mu = 0.1
-W = 0.2
-[[particles]]
+)" + tumble::test_support::material_m_toml + R"([[particles]]
 kind = "list"
 material = "m"
 particles = [{ position = [0.05, 0.05, 0.05], velocity = [1000.0, 0.0, 0.0] }]

@@ -60,17 +60,8 @@ protected:
     std::filesystem::path dir_;
 };
 
-// A small scenario (TOML): 30 spheres of the paper's material 1 dropped at
-// random into a walled 4 cm box, for `duration` seconds. `simulation` adds
-// keys to [simulation] (e.g. gravity), `rest` tables at the end (e.g. [output]).
-inline std::string walled_box_scenario(const std::string& duration, const std::string& simulation = "",
-                                       const std::string& rest = "") {
-    return "[simulation]\nduration = " + duration + "\n" + simulation + R"([domain]
-lo = [-0.02, -0.02, 0.0]
-hi = [0.02, 0.02, 0.04]
-walls = [true, true, true]
-wall_material = "m"
-[[material]]
+// The paper's material 1 as material "m" of a scenario file, with its pair.
+inline const std::string material_m_toml = R"([[material]]
 name = "m"
 E = 1.0e6
 G = 0.3e6
@@ -83,7 +74,19 @@ radius = 0.0036
 materials = ["m", "m"]
 mu = 0.1
 W = 0.2
-[[particles]]
+)";
+
+// A small scenario (TOML): 30 spheres of the paper's material 1 dropped at
+// random into a walled 4 cm box, for `duration` seconds. `simulation` adds
+// keys to [simulation] (e.g. gravity), `rest` tables at the end (e.g. [output]).
+inline std::string walled_box_scenario(const std::string& duration, const std::string& simulation = "",
+                                       const std::string& rest = "") {
+    return "[simulation]\nduration = " + duration + "\n" + simulation + R"([domain]
+lo = [-0.02, -0.02, 0.0]
+hi = [0.02, 0.02, 0.04]
+walls = [true, true, true]
+wall_material = "m"
+)" + material_m_toml + R"([[particles]]
 kind = "random_fill"
 material = "m"
 lo = [-0.015, -0.015, 0.005]
