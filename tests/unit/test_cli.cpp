@@ -93,6 +93,17 @@ TEST(CliBasics, VersionAndHelp) {
     EXPECT_NE(help.output.find("bench"), std::string::npos);
 }
 
+// The contact model's choices of the drum: an unknown one is refused at once,
+// naming the option and the choices (docs/MODEL.md, "Shear models").
+TEST(CliBasics, DrumRefusesAnUnknownShearModelOrFrictionNormal) {
+    const Result shear = run_tumble("drum --shear slip --out /nonexistent/never-written");
+    EXPECT_NE(shear.exit_code, 0);
+    EXPECT_NE(shear.output.find("--shear: slip not in {paper,coulomb,spring,off}"), std::string::npos) << shear.output;
+    const Result normal = run_tumble("drum --friction-normal elastic --out /nonexistent/never-written");
+    EXPECT_NE(normal.exit_code, 0);
+    EXPECT_NE(normal.output.find("--friction-normal: elastic not in {net,jkr}"), std::string::npos) << normal.output;
+}
+
 TEST_F(Cli, SameInputAndSeedGiveIdenticalFiles) {
     const fs::path scenario = write("small.toml", small_scenario);
     const Result a = run_tumble("run -q " + scenario.string() + " --out " + (dir_ / "a").string());
@@ -278,10 +289,11 @@ TEST_F(Cli, DrumRefusesImpossibleSettingsAndWritesNothing) {
 
 TEST_F(Cli, DrumRunWritesSeriesAndSummaryAndCanBeAnalysedAgain) {
     // A small, short drum: 300 grains, 0.3 revolutions at 8 rad/s sampled
-    // 40 times per revolution. It checks the files, not the physics.
+    // 40 times per revolution, with the spring shear model and the JKR
+    // friction normal. It checks the files, not the physics.
     const fs::path run = dir_ / "drum";
-    const Result r = run_tumble("drum -q --grains 300 --omega 8 --revolutions 0.3 --samples 40 --snapshots 10 --out " +
-                                run.string());
+    const Result r = run_tumble("drum -q --grains 300 --omega 8 --revolutions 0.3 --samples 40 --snapshots 10 "
+                                "--shear spring --friction-normal jkr --out " + run.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
     for (const char* file : {"drum_run.toml", "drum_series.csv", "profiles.csv", "profile_comparison.csv",
                              "depth_mobility.csv", "summary.json", "summary.txt", "time_series.csv"})
@@ -299,6 +311,10 @@ TEST_F(Cli, DrumRunWritesSeriesAndSummaryAndCanBeAnalysedAgain) {
                             "\"surface_share\""})
         EXPECT_NE(summary.find(key), std::string::npos) << key;
     EXPECT_EQ(summary.find("NaN"), std::string::npos) << "JSON has no NaN";
+    // The contact model chosen is recorded with the results.
+    EXPECT_NE(summary.find("\"shear_model\" : \"spring\""), std::string::npos) << summary.substr(0, 400);
+    EXPECT_NE(summary.find("\"friction_normal\" : \"jkr\""), std::string::npos);
+    EXPECT_NE(read_file(run / "drum_run.toml").find("shear_model = 'spring'"), std::string::npos);
 
     fs::remove(run / "summary.json");
     const Result again = run_tumble("analyze " + run.string());
