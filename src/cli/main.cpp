@@ -54,14 +54,6 @@ void add_checkpoint_options(CLI::App* command, tumble::cli::CheckpointPolicy& po
         ->check(CLI::PositiveNumber);
 }
 
-// The keywords of a choice table of the engine (shear_models, friction_normals).
-template <class Table>
-std::vector<std::string> keywords(const Table& table) {
-    std::vector<std::string> words;
-    for (const auto& e : table) words.emplace_back(e.keyword);
-    return words;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -146,10 +138,10 @@ int main(int argc, char** argv) {
                        "No end caps: the axis is periodic, the drum's length its period");
     drum_cmd->add_option("--dt", dt, "Time step, s (default: chosen from the materials)");
     drum_cmd->add_option("--shear", shear, "Reading of the friction limit: paper (default), coulomb or spring (docs/MODEL.md)")
-        ->check(CLI::IsMember(keywords(tumble::shear_models)));
+        ->check(CLI::IsMember(tumble::keywords(tumble::shear_models)));
     drum_cmd->add_option("--friction-normal", friction_normal,
                          "Normal force that limits friction: net (the paper's, default) or jkr")
-        ->check(CLI::IsMember(keywords(tumble::friction_normals)));
+        ->check(CLI::IsMember(tumble::keywords(tumble::friction_normals)));
     drum_cmd->add_flag("--allow-unsafe-dt", drum.allow_unsafe_dt,
                        "Accept a --dt above the safe maximum (experts and tests; the blow-up check still stops the run)");
     drum_cmd->add_option("--seed", seed, "Seed of the random filling (0 to 2^63 - 1)")->check(seed_range);

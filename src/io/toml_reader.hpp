@@ -20,6 +20,7 @@
 
 #include "io/config.hpp"
 #include "io/names.hpp"
+#include "tumble/core/keyword.hpp"
 #include "tumble/core/vec3.hpp"
 
 namespace tumble::io {
@@ -98,16 +99,14 @@ public:
 
     // --- single values ---
 
-    // The entry of `table` (an array of entries with a `keyword`, as the
-    // engine's shear_models) that the string at `key` names; else a failure
-    // with the known keywords.
-    template <class Table>
-    const auto* keyword(const toml::node& n, const std::string& key, const Table& table) const {
+    // The entry of `table` (a keyword table of the engine, e.g. shear_models)
+    // that the string at `key` names; else a failure with the known keywords.
+    template <class Value, std::size_t N>
+    const Keyword<Value>* keyword(const toml::node& n, const std::string& key,
+                                  const std::array<Keyword<Value>, N>& table) const {
         const std::string word = string(n, key);
-        for (const auto& e : table)
-            if (e.keyword == word) return &e;
-        std::vector<std::string> known;
-        for (const auto& e : table) known.emplace_back(e.keyword);
+        if (const Keyword<Value>* e = find_keyword(table, word)) return e;
+        const std::vector<std::string> known = keywords(table);
         fail(key, "unknown choice \"" + word + "\"" + detail::did_you_mean(word, known) +
                       "; known: " + detail::quoted_list(known),
              &n);

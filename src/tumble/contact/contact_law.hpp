@@ -15,18 +15,10 @@
 #include "tumble/contact/kuwabara_kono.hpp"
 #include "tumble/contact/mindlin_shear.hpp"
 #include "tumble/contact/twisting.hpp"
+#include "tumble/core/keyword.hpp"
 #include "tumble/materials/pair_table.hpp"
 
 namespace tumble {
-
-// A choice a scenario names by keyword (the shear model, the friction
-// normal): the keyword, the value, and what it means.
-template <class Value>
-struct Keyword {
-    std::string_view keyword;
-    Value value;
-    std::string_view description;
-};
 
 // The shear models a scenario can name (mindlin_shear.hpp). To add one: an
 // entry in ShearModel and here, its rule in mindlin_shear.hpp.
@@ -47,23 +39,6 @@ inline constexpr std::array<Keyword<FrictionNormal>, 2> friction_normals{{
     {"net", FrictionNormal::Net, "|F_n|: elastic - attraction + viscous (the paper)"},
     {"jkr", FrictionNormal::Jkr, "|elastic - attraction + 2 pull-off| (JKR-based codes)"},
 }};
-
-// The entry of `table` (shear_models, friction_normals) named `keyword`, or
-// nullptr.
-template <class Value, std::size_t N>
-const Keyword<Value>* find_keyword(const std::array<Keyword<Value>, N>& table, std::string_view keyword) {
-    for (const Keyword<Value>& e : table)
-        if (e.keyword == keyword) return &e;
-    return nullptr;
-}
-
-// The keyword of `value` in `table`.
-template <class Value, std::size_t N>
-std::string_view keyword_of(const std::array<Keyword<Value>, N>& table, Value value) {
-    for (const Keyword<Value>& e : table)
-        if (e.value == value) return e.keyword;
-    return "?";
-}
 
 // Which terms are on. Every term can be switched off for tests and users.
 struct ContactModel {
