@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 namespace io = tumble::io;
 using tumble::test_support::read_file;
 
-// The small drum of test_resume.cpp: settles near step 7700, turns 6147
+// The small drum of test_resume.cpp: settles at step 2355, turns 1884
 // steps per 0.2 revolutions.
 std::string drum(const std::string& revolutions) {
     return " drum -q --mode self --grains 20 --length 0.03 --diameter 0.03 --omega 10 --samples 50 --snapshots 20 "
@@ -100,7 +100,7 @@ protected:
 TEST_F(Safety, TwoResumesAtOnceOneRefusesAndTheResultIsTheUninterruptedOne) {
     const fs::path full = drum_reference("1");
     const fs::path out = dir_ / "run";
-    ASSERT_EQ(tumble(drum("1") + " --out " + out.string() + " --stop-at-step 3000").exit_code, 4);
+    ASSERT_EQ(tumble(drum("1") + " --out " + out.string() + " --stop-at-step 1000").exit_code, 4);
     // The second starts when the first holds the lock (its pid is in the
     // lock file), before it has gone far.
     const pid_t a = start("resume -q " + out.string(), "a.log");
@@ -284,7 +284,7 @@ TEST_F(Safety, ASeriesShorterThanTheNewestCheckpointSaysFallsBackToThePreviousOn
     const fs::path full = dir_ / "full", out = dir_ / "cut";
     ASSERT_EQ(tumble("run -q " + scenario.string() + " --out " + full.string()).exit_code, 0);
     ASSERT_EQ(tumble("run -q " + scenario.string() + " --out " + out.string() +
-                     " --checkpoint-every-steps 300 --stop-at-step 700")
+                     " --checkpoint-every-steps 90 --stop-at-step 210")
                   .exit_code,
               4);
     const auto files = io::checkpoint_files(out);
@@ -321,7 +321,7 @@ TEST_F(Safety, ForceKeepsAUsersOwnFoldersAndRemovesTheOldResultsFirst) {
 
 TEST_F(Safety, AnalyzeRefusesAnUnfinishedRun) {
     const fs::path out = dir_ / "run";
-    ASSERT_EQ(tumble(small_drum + " --out " + out.string() + " --stop-at-step 9000").exit_code, 4);
+    ASSERT_EQ(tumble(small_drum + " --out " + out.string() + " --stop-at-step 2761").exit_code, 4);
     const auto r = tumble("analyze " + out.string());
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(contains(r.output, "the run is unfinished")) << r.output;

@@ -646,8 +646,8 @@ TEST_F(Sweep, EndToEndTinySweep) {
 
 // An interrupted point with a checkpoint is resumed, not rerun, and ends
 // with the same series as a run that was never interrupted. One point of
-// 20 grains and 0.1 revolutions (settling ends at step 15840, the run at
-// 23319): a few seconds.
+// 20 grains and 0.1 revolutions (settling ends at step 4526, the run at
+// 6663): a few seconds.
 TEST_F(Sweep, InterruptedPointResumesFromItsCheckpoint) {
     const std::string bin = tumble_binary();
     const fs::path file = write("one.toml", R"([sweep]
@@ -669,7 +669,7 @@ snapshots_per_revolution = 0
     }
     ASSERT_EQ(run(bin + uninterrupted + " --no-plot").exit_code, 0);
 
-    const Result stopped = run(bin + drum + " --stop-at-step 20000");
+    const Result stopped = run(bin + drum + " --stop-at-step 5714");
     ASSERT_EQ(stopped.exit_code, 4) << stopped.output;
     EXPECT_EQ(point_state(point.directory), PointState::unfinished);
     const Result r = run(bin + " sweep " + file.string() + " -o " + out.string());
