@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""Issue 13: the drum's observables at the automatic step against a quarter
+of it (studies/time_step/run.sh). Per run: the dynamic angle of repose, the
+kinetic energy per grain of each material (mean over N >= 1) and each
+material's axial self-diffusion D from the grains' mean-squared displacement
+(summary.json). Seeds are the independent samples: mean, standard error
+s/sqrt(n) and a 95 % Student interval per step; the two steps are compared
+by Welch's test. Writes results.md beside this file; run with /usr/bin/python3
+(numpy, scipy)."""
+import csv
+import json
+import pathlib
+import sys
+
+import numpy as np
+from scipy import stats
+
+HERE = pathlib.Path(__file__).resolve().parent
+OUT = HERE / "out"
+
+
+def observables(run):
+    summary = json.loads((run / "summary.json").read_text())
+    rows = list(csv.DictReader(open(run / "drum_series.csv")))
+    late = [r for r in rows if float(r["revolutions"]) >= 1.0]
+    values = {"angle of repose (degrees)": summary["angle_of_repose"]}
+    for c in summary["components"]:
+        name = c["name"]
+        values[f"kinetic energy per grain, {name} (J)"] = np.mean([float(r[f"kinetic_per_grain_{name}"]) for r in late])
+        values[f"MSD D, {name} (m^2/rev)"] = c["msd"]["D"]
+    return values
+
+
+def runs(step):
+    found = sorted(d for d in OUT.glob(f"{step}_seed*") if (d / "summary.json").exists())
+    return found, [observables(d) for d in found]
+
+
+def interval(x):
+    x = np.asarray(x, float)
+    n = len(x)
+    se = x.std(ddof=1) / np.sqrt(n)
+    return x.mean(), se, stats.t.ppf(0.975, n - 1) * se
+
+
+def main():
+    (auto_dirs, auto), (quarter_dirs, quarter) = runs("auto"), runs("quarter")
+    if len(auto) < 2 or len(quarter) < 2:
+        sys.exit(f"need at least 2 finished runs at each step; have {len(auto)} and {len(quarter)}")
+    steps = (OUT / "steps.txt").read_text().strip()
+    lines = [
+        "# The drum's observables at the automatic step and at a quarter of it",
+        "",
+        f"Made by `studies/time_step/compare.py` from {len(auto)} runs at the step and {len(quarter)} at a quarter"
+        f" ({steps}; seeds {', '.join(d.name.split('seed')[1] for d in auto_dirs)} and"
+        f" {', '.join(d.name.split('seed')[1] for d in quarter_dirs)}). Each run: the default drum (two components,"
+        " 1000 grains, 5 rad/s), 6 revolutions after settling; means over N >= 1. +- is the 95 % Student"
+        " interval over seeds; p is Welch's two-sided test of equal means.",
+        "",
+        "| observable | at the step | at a quarter | difference (quarter = 1) | p |",
+        "|---|---|---|---|---|",
+    ]
+    verdicts = []
+    for key in auto[0]:
+        a = [v[key] for v in auto]
+        q = [v[key] for v in quarter]
+        (ma, sa, ha), (mq, sq, hq) = interval(a), interval(q)
+        p = stats.ttest_ind(a, q, equal_var=False).pvalue
+        lines.append(f"| {key} | {ma:.4g} +- {ha:.2g} | {mq:.4g} +- {hq:.2g} | {100 * (ma / mq - 1):+.1f} % | {p:.2f} |")
+        verdicts.append((key, p))
+    lines += ["", "Per run:", "", "| run | " + " | ".join(auto[0]) + " |", "|---" * (len(auto[0]) + 1) + "|"]
+    for d, v in zip(auto_dirs + quarter_dirs, auto + quarter):
+        lines.append(f"| {d.name} | " + " | ".join(f"{x:.4g}" for x in v.values()) + " |")
+    significant = [k for k, p in verdicts if p < 0.05]
+    lines += ["", "Differences significant at 5 %: " + (", ".join(significant) if significant else "none") + "."]
+    (HERE / "results.md").write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
