@@ -58,7 +58,8 @@ SweepSettings load_sweep_settings(const fs::path& file) {
     const toml::table& t = *r.table(root, "sweep", true);
     r.only_keys(t, "sweep",
                 {"omega", "rpm", "froude", "modes", "seeds", "revolutions", "grains_two_component", "grains_self",
-                 "samples_per_revolution", "snapshots_per_revolution", "diameter", "shear", "friction_normal"});
+                 "samples_per_revolution", "snapshots_per_revolution", "diameter", "shear", "friction_normal",
+                 "periodic_axis"});
     int given = 0;
     for (auto [key, unit] : {std::pair{"omega", SpeedUnit::rad_per_s}, std::pair{"rpm", SpeedUnit::rpm},
                              std::pair{"froude", SpeedUnit::froude}})
@@ -109,6 +110,7 @@ SweepSettings load_sweep_settings(const fs::path& file) {
     if (const toml::node* n = t.get("shear")) s.shear = r.keyword(*n, "sweep.shear", shear_models)->keyword;
     if (const toml::node* n = t.get("friction_normal"))
         s.friction_normal = r.keyword(*n, "sweep.friction_normal", friction_normals)->keyword;
+    s.periodic_axis = r.boolean(t, "sweep", "periodic_axis", s.periodic_axis);
     s.diameter = r.number(t, "sweep", "diameter", Bound::positive, s.diameter);
     if (t.get("diameter") && s.speed_unit != SpeedUnit::froude)
         r.fail("sweep.diameter", "only used to turn froude into omega; give it with froude only", t.get("diameter"));
@@ -147,6 +149,7 @@ std::vector<SweepPoint> expand_sweep(const SweepSettings& s, const fs::path& dir
                 p.snapshots_per_revolution = s.snapshots_per_revolution;
                 p.shear = s.shear;
                 p.friction_normal = s.friction_normal;
+                p.periodic_axis = s.periodic_axis;
                 p.name = sweep_point_name(mode, p.omega, seed);
                 p.directory = directory / "points" / p.name;
                 if (!names.insert(p.name).second)
@@ -158,7 +161,7 @@ std::vector<SweepPoint> expand_sweep(const SweepSettings& s, const fs::path& dir
 }
 
 std::vector<std::string> drum_arguments(const SweepPoint& p) {
-    return {"drum",
+    std::vector<std::string> arguments{"drum",
             "-q",
             "--mode",
             p.mode,
@@ -183,6 +186,8 @@ std::vector<std::string> drum_arguments(const SweepPoint& p) {
             "--force",
             "--threads",  // the sweep runs its points side by side, one core each
             "1"};
+    if (p.periodic_axis) arguments.push_back("--periodic-axis");
+    return arguments;
 }
 
 std::vector<std::string> resume_arguments(const SweepPoint& p) { return {"resume", "-q", p.directory.string()}; }
@@ -658,7 +663,7 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
     std::size_t missing = 0;
     {
         std::ostringstream out;
-        out << "mode,shear_model,friction_normal,omega,froude,seed,revolutions,grains";
+        out << "mode,shear_model,friction_normal,ends,omega,froude,seed,revolutions,grains";
         for (const std::string& c : components)
             out << fmt::format(",D_{0},D_stderr_{0},D_one_term_{0},determined_{0},surface_share_{0},D_msd_{0},D_msd_lo_{0},"
                                "D_msd_hi_{0},D_hogg_free_{0},D_hogg_free_lo_{0},D_hogg_free_hi_{0}",
@@ -669,8 +674,9 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
             const SweepPoint& p = r.point;
             const bool ok = has_numbers(r);
             if (!ok) ++missing;
-            out << fmt::format("{},{},{},{},{},{},{},{}", p.mode, p.shear, p.friction_normal, p.omega, p.froude, p.seed,
-                               p.revolutions, p.grains);
+            out << fmt::format("{},{},{},{},{},{},{},{},{}", p.mode, p.shear, p.friction_normal,
+                               p.periodic_axis ? "periodic" : "caps", p.omega, p.froude, p.seed, p.revolutions,
+                               p.grains);
             for (const std::string& c : components) {
                 const PointResult::Component* k = ok ? component(r, c) : nullptr;
                 if (k)

@@ -39,6 +39,7 @@ struct SweepSettings {
     double diameter = 0.08;            // m: only to turn froude into omega (the drum's default diameter)
     std::string shear = "paper";            // shear model of every point (tumble drum --shear)
     std::string friction_normal = "net";    // tumble drum --friction-normal
+    bool periodic_axis = false;             // tumble drum --periodic-axis: no end caps
     std::filesystem::path output = "sweep-out";
 };
 
@@ -58,6 +59,7 @@ struct SweepPoint {
     int samples_per_revolution = 20;
     int snapshots_per_revolution = 0;
     std::string shear = "paper", friction_normal = "net";
+    bool periodic_axis = false;
     std::string name;          // e.g. "two-component_omega5.000_seed1"
     std::filesystem::path directory;  // DIR/points/NAME
 };

@@ -93,6 +93,7 @@ grains_two_component = 300
 grains_self = 100
 samples_per_revolution = 10
 snapshots_per_revolution = 1
+periodic_axis = true
 [output]
 directory = "there"
 )"));
@@ -105,7 +106,11 @@ directory = "there"
     EXPECT_EQ(s.grains_self, 100u);
     EXPECT_EQ(s.samples_per_revolution, 10);
     EXPECT_EQ(s.snapshots_per_revolution, 1);
+    EXPECT_TRUE(s.periodic_axis);
     EXPECT_EQ(s.output, fs::path("there"));
+    // Each point's drum runs without end caps.
+    const std::vector<std::string> args = drum_arguments(expand_sweep(s, "d")[0]);
+    EXPECT_EQ(args.back(), "--periodic-axis");
 }
 
 TEST_F(Sweep, DefaultsAndExamples) {
@@ -417,7 +422,7 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     const auto rows = read_csv(dir_ / "sweep.csv");
     ASSERT_EQ(rows.size(), 13u);
     const std::string header =
-        "mode,shear_model,friction_normal,omega,froude,seed,revolutions,grains,"
+        "mode,shear_model,friction_normal,ends,omega,froude,seed,revolutions,grains,"
         "D_material-1,D_stderr_material-1,D_one_term_material-1,determined_material-1,surface_share_material-1,"
         "D_msd_material-1,D_msd_lo_material-1,D_msd_hi_material-1,D_hogg_free_material-1,D_hogg_free_lo_material-1,D_hogg_free_hi_material-1,"
         "D_material-2,D_stderr_material-2,D_one_term_material-2,determined_material-2,surface_share_material-2,"
