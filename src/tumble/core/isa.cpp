@@ -39,9 +39,8 @@ Isa chosen_by_environment() {
     const std::vector<Isa> available = available_isas();
     if (value == nullptr || *value == '\0') return available.back();
     if constexpr (!TUMBLE_ISA_CHOICE)
-        throw Error(std::string("TUMBLE_ISA=") + value +
-                    ": this tumble has one instruction set, fixed when it was built (" + isa_description() +
-                    "); the choice needs the default build (TUMBLE_ARCH empty, GCC, x86-64)");
+        throw Error(std::string("TUMBLE_ISA=") + value + ": this tumble has no choice of instruction set: " +
+                    isa_description() + "; the default build has one (TUMBLE_ARCH empty, GCC, x86-64)");
     for (Isa level : all_levels)
         if (isa_name(level) == value) {
             if (!processor_runs(level))
@@ -94,8 +93,8 @@ std::string isa_description() {
 #if TUMBLE_ISA_CHOICE
     constexpr const char* x86_level[] = {"x86-64", "x86-64-v3", "x86-64-v4"};
     const Isa level = isa_in_use();
-    return std::string(isa_name(level)) + " (" + x86_level[static_cast<int>(level)] +
-           ", chosen at run time from " + level_list(available_isas()) + ")";
+    return std::string(isa_name(level)) + " (" + x86_level[static_cast<int>(level)] + "; this processor runs " +
+           level_list(available_isas()) + ")";
 #elif defined(TUMBLE_MARCH)
     return std::string("-march=") + TUMBLE_MARCH + " (TUMBLE_ARCH, fixed when built)";
 #else

@@ -5,24 +5,24 @@
 // The default build (CMake TUMBLE_ARCH empty) compiles everything for the
 // baseline x86-64 (SSE2), so that a binary made on one machine runs on any
 // other, and compiles the hot loops (the pair loop, the kicks and the drift,
-// the adding up of the threads' forces) three times more from the same
-// source: for the baseline, for x86-64-v3 (AVX2) and for x86-64-v4
-// (AVX-512). The level is chosen once per process, the widest the processor
-// has, or the one named by the environment variable TUMBLE_ISA (baseline,
-// avx2, avx512), to compare them or to rule one out.
+// the adding up of the threads' forces) three times from the same source:
+// for the baseline, for x86-64-v3 (AVX2) and for x86-64-v4 (AVX-512). The
+// level is chosen once per process, the widest the processor has, or the
+// one named by the environment variable TUMBLE_ISA (baseline, avx2,
+// avx512), to compare them or to rule one out.
 //
 // How: run_for_isa(f) calls f through one of three copies of a one-line
 // function template that differ only in their `target` attribute; `flatten`
 // inlines into each copy all that f calls, so f's loops are compiled (and
-// vectorised) for that copy's instructions. What is not inlined (nothing in
-// the hot loops; library calls) stays a baseline function, so no code for a
-// wider instruction set can be reached on a processor without it. The
-// choice is a switch on a value read once, not GCC's `target_clones`, whose
-// resolver picks the version before main() and cannot be told to use a
-// lower level. Compiling a translation unit several times with different
-// -march would not be safe: the inline functions and templates it shares
-// with the rest of the program would exist in several versions under one
-// name, and the linker would keep any one of them.
+// vectorised) for that copy's instructions. What is not inlined (here only
+// the memory allocation of the recorded contacts' list) stays a baseline
+// function, so no code for a wider instruction set can be reached on a
+// processor without it. The choice is a switch on a value read once, not
+// GCC's `target_clones`, whose resolver picks the version before main() and
+// cannot be told to use a lower level. Compiling a translation unit several
+// times with different -march would not be safe: the inline functions and
+// templates it shares with the rest of the program would exist in several
+// versions under one name, and the linker would keep any one of them.
 //
 // Every level gives the same results bitwise: the build contracts no
 // multiply-add (-ffp-contract=off) and vector square roots and divisions
@@ -66,7 +66,7 @@ Isa isa_in_use();
 // tumble::Error if it is not available.
 void use_isa(Isa level);
 
-// The level in use for reports: "avx512 (x86-64-v4, chosen at run time from
+// The level in use for reports: "avx2 (x86-64-v3; this processor runs
 // baseline, avx2, avx512)", or "-march=native (TUMBLE_ARCH, fixed when
 // built)".
 std::string isa_description();
@@ -83,8 +83,11 @@ template <class F>
 [[gnu::flatten, gnu::target("arch=x86-64-v3")]] void run_avx2(F& f) {
     f();
 }
+// 4 doubles per instruction, as GCC's tuning for Intel's processors with
+// AVX-512 chooses (-march=native does here): with 8 the cube and the long
+// drum ran 9 % slower on an Intel Xeon (docs/BENCHMARKS.md).
 template <class F>
-[[gnu::flatten, gnu::target("arch=x86-64-v4")]] void run_avx512(F& f) {
+[[gnu::flatten, gnu::target("arch=x86-64-v4,prefer-vector-width=256")]] void run_avx512(F& f) {
     f();
 }
 #endif
