@@ -7,12 +7,14 @@
 // (NeighbourBuild, Step). Two more measure the machine's own limits for the
 // estimate in docs/BENCHMARKS.md: memory bandwidth (Triad, bytes_per_second)
 // and the sqrt and divide throughput, scalar (SqrtDivide) and vectorised
-// (SqrtDivideVector).
+// (SqrtDivideVector). The engine's loops run on the instruction set in use
+// (tumble/core/isa.hpp; TUMBLE_ISA chooses another), as in a simulation.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <vector>
 
+#include "tumble/core/isa.hpp"
 #include "tumble/neighbor/candidate_pairs.hpp"
 #include "tumble/setup/benchmark_cube.hpp"
 #include "tumble/sim/pair_loop.hpp"
@@ -41,8 +43,10 @@ void ContactLaw(benchmark::State& state) {
     ContactHistory history;
     for (auto _ : state) {
         benchmark::DoNotOptimize(g);
-        ContactForces f = contact_law(table(0, 0), g, s.model, 1e-5, history);
-        benchmark::DoNotOptimize(f);
+        run_for_isa([&] {
+            ContactForces f = contact_law(table(0, 0), g, s.model, 1e-5, history);
+            benchmark::DoNotOptimize(f);
+        });
     }
     state.SetItemsProcessed(state.iterations());
 }
@@ -57,8 +61,10 @@ void PairLoop(benchmark::State& state) {
     const PairTable table(sim.scenario().materials, sim.scenario().pair_properties);
     std::vector<ContactRecord> none;
     for (auto _ : state) {
-        add_contact_forces<false>(p, pairs, {0, pairs.size()}, sim.neighbors().images(), table, sim.scenario().model,
-                                  sim.dt(), p.force.data(), p.torque.data(), none);
+        run_for_isa([&] {
+            add_contact_forces<false>(p, pairs, {0, pairs.size()}, sim.neighbors().images(), table,
+                                      sim.scenario().model, sim.dt(), p.force.data(), p.torque.data(), none);
+        });
         benchmark::ClobberMemory();
     }
     state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(pairs.size()));

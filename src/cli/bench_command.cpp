@@ -21,6 +21,7 @@
 #include "io/drum_config.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
+#include "tumble/core/isa.hpp"
 #include "tumble/setup/benchmark_cube.hpp"
 #include "tumble/setup/drum.hpp"
 #include "tumble/sim/simulation.hpp"
@@ -84,6 +85,7 @@ int cube_bench(const BenchOptions& options) {
         fmt::print("  contacts/sphere  {:.3f}\n", contacts_per_particle);
         fmt::print("  list rebuilds    {}\n", builds);
         fmt::print("  threads          {}\n", sim.threads());
+        fmt::print("  instruction set  {}\n", isa_description());
         fmt::print("  memory           {:.0f} bytes per sphere (resident, measured)\n", bytes_per_particle);
         fmt::print("  machine          {}\n", machine);
     }
@@ -91,9 +93,9 @@ int cube_bench(const BenchOptions& options) {
         fmt::print(
         "{{\"code\": \"tumble\", \"version\": \"{}\", \"case\": \"cube\", \"particles\": {}, \"steps\": {}, \"seconds\": {}, "
         "\"updates_per_second\": {}, \"contacts_per_particle\": {}, \"neighbor_builds\": {}, \"threads\": {}, "
-        "\"bytes_per_particle\": {:.0f}, \"dt\": {}, \"cpu_seconds\": {}, \"machine\": \"{}\"}}\n",
+        "\"bytes_per_particle\": {:.0f}, \"dt\": {}, \"cpu_seconds\": {}, \"machine\": \"{}\", \"isa\": \"{}\"}}\n",
         TUMBLE_VERSION, n, steps, seconds, updates, contacts_per_particle, builds, sim.threads(),
-        bytes_per_particle, sim.dt(), cpu, machine);
+        bytes_per_particle, sim.dt(), cpu, machine, isa_description());
     return 0;
 }
 
@@ -190,6 +192,7 @@ int long_drum_bench(const BenchOptions& options) {
         fmt::print("  dt                 {:.4g} s, set by {}\n", sim.dt(), limited_by);
         fmt::print("  list rebuilds      {}\n", builds);
         fmt::print("  threads            {}\n", sim.threads());
+        fmt::print("  instruction set    {}\n", isa_description());
         fmt::print("  memory             {:.0f} bytes per particle (grains and wall, resident, measured)\n",
                    bytes_per_particle);
         fmt::print("  machine            {}\n", machine);
@@ -199,10 +202,12 @@ int long_drum_bench(const BenchOptions& options) {
                    "\"grains\": {}, \"particles\": {}, \"bed\": \"{}\", \"steps\": {}, \"warmup\": {}, \"seconds\": {}, "
                    "\"grain_updates_per_second\": {}, \"revolutions_per_hour\": {}, \"seconds_per_revolution\": {}, "
                    "\"steps_per_revolution\": {}, \"dt\": {}, \"dt_limited_by\": \"{}\", \"neighbor_builds\": {}, "
-                   "\"threads\": {}, \"bytes_per_particle\": {:.0f}, \"cpu_seconds\": {}, \"machine\": \"{}\"}}\n",
+                   "\"threads\": {}, \"bytes_per_particle\": {:.0f}, \"cpu_seconds\": {}, \"machine\": \"{}\", "
+                   "\"isa\": \"{}\"}}\n",
                    TUMBLE_VERSION, d.geometry.length, d.fill_fraction, grains, n, made ? "made" : "read", steps,
                    warmup, seconds, grain_updates, revolutions_per_hour, seconds_per_revolution,
-                   steps_per_revolution, sim.dt(), limited_by, builds, sim.threads(), bytes_per_particle, cpu, machine);
+                   steps_per_revolution, sim.dt(), limited_by, builds, sim.threads(), bytes_per_particle, cpu, machine,
+                   isa_description());
     return 0;
 }
 }  // namespace

@@ -62,6 +62,8 @@ int main(int argc, char** argv) {
     CLI::App app{"tumble: discrete-element simulation of visco-elastic spheres (Kohring's contact model)"};
     app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
     app.require_subcommand(1);
+    app.footer("Environment: TUMBLE_ISA=baseline|avx2|avx512 runs the hot loops on that instruction set "
+               "(default: the widest this processor has; docs/BENCHMARKS.md, \"Portable binary\").");
 
     RunOptions run;
     CLI::App* run_cmd = app.add_subcommand("run", "Simulate a scenario file (TOML; see docs/SCENARIO.md)");

@@ -21,6 +21,7 @@
 #include "io/snapshots.hpp"
 #include "tumble/analysis/drum_measure.hpp"
 #include "tumble/core/constants.hpp"
+#include "tumble/core/isa.hpp"
 #include "tumble/sim/simulation.hpp"
 
 namespace tumble::experiments {
@@ -299,6 +300,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     info.spin_up_time = s.spin_up_time;
     info.dt = sim.dt();
     info.threads = sim.threads();
+    info.isa = isa_description();
     info.shear_model = keyword_of(shear_models, s.shear);
     info.friction_normal = keyword_of(friction_normals, s.friction_normal);
     info.samples_per_revolution = s.samples_per_revolution;
@@ -319,10 +321,10 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     const io::RunLock lock = io::prepare_output_directory(s.output, options.force);
     if (!options.quiet) {
         fmt::print("tumble drum: {} mode, {} grains ({} {}, {} {}), {} wall particles, inner radius {:.4g} m, "
-                   "length {:.4g} m; dt = {:.3g} s\n",
+                   "length {:.4g} m; dt = {:.3g} s; instruction set {}\n",
                    s.mode, sim.particles().free_count(), info.components[0].grains, info.components[0].name,
                    info.components[1].grains, info.components[1].name, info.wall_particles, info.inner_radius,
-                   info.inner_length, sim.dt());
+                   info.inner_length, sim.dt(), info.isa);
         fmt::print("settling (rms grain speed below {} m/s, at most {} s)\n", s.settle_speed, s.settle_max_time);
     }
     DrumLoop loop(sim, std::move(plan), s.output, options.checkpoints, false);
@@ -332,6 +334,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
 DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
     DrumPlan plan = load_plan(checkpoint.record);
     plan.quiet = quiet;
+    plan.info.isa = isa_description();  // this machine's, which may differ from the interrupted run's
     try {
         check_drum_durations(plan.info.revolutions, plan.info.omega, plan.info.samples_per_revolution,
                              plan.settle_max_time, checkpoint.state.dt);

@@ -50,6 +50,7 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                         {"wall_seconds", info.wall_seconds},
                         {"grain_updates_per_second", info.grain_updates_per_second},
                         {"threads", info.threads},
+                        {"isa", info.isa},
                         {"shear_model", info.shear_model},
                         {"friction_normal", info.friction_normal},
                         {"periodic_axis", info.periodic_axis},
@@ -89,6 +90,7 @@ DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
     info.wall_seconds = num("wall_seconds");
     info.grain_updates_per_second = num("grain_updates_per_second");
     info.threads = t["threads"].value_or(1);  // absent in runs of tumble before threads
+    info.isa = t["isa"].value_or(std::string());  // absent before the portable build (2026-11-30)
     // Absent in runs before the shear models (2026-11-30): the paper's rule,
     // then with the slip reset to zero at the limit.
     info.shear_model = t["shear_model"].value_or(std::string("paper"));
@@ -641,6 +643,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                         {"fill_fraction", info.fill_fraction},
                         {"angle_of_repose", angle_of_repose},
                         {"grain_updates_per_second", info.grain_updates_per_second},
+                        {"isa", info.isa},
                         {"components", components_json}};
 
     // Kinetic energy of species 2 over species 1 (component 1 over 0), with

@@ -47,6 +47,7 @@ struct DrumRunInfo {
     double wall_seconds = 0.0;     // of the rotating phase
     double grain_updates_per_second = 0.0;
     int threads = 1;               // of the time step (tumble drum --threads)
+    std::string isa;               // instruction set of the hot loops (tumble/core/isa.hpp), of the last part run
     std::string shear_model = "paper";    // keyword of the shear model (contact_law.hpp)
     std::string friction_normal = "net";  // keyword of the normal force that limits friction
     bool periodic_axis = false;    // no end caps: the axis is periodic with period inner_length

@@ -17,6 +17,7 @@
 #include <fmt/os.h>
 
 #include "tumble/core/error.hpp"
+#include "tumble/core/isa.hpp"
 
 namespace tumble::io {
 
@@ -181,7 +182,7 @@ void write_run_json(const fs::path& file, const Simulation& sim, const RunSummar
                        t.collision_time, t.viscous_time, t.rayleigh_time)
         << fmt::format("  \"neighbor_skin\": {},\n  \"neighbor_builds\": {},\n", sim.neighbors().skin(),
                        sim.neighbors().builds())
-        << fmt::format("  \"threads\": {},\n", sim.threads())
+        << fmt::format("  \"threads\": {},\n  \"isa\": \"{}\",\n", sim.threads(), isa_description())
         << fmt::format("  \"wall_seconds\": {},\n  \"updates_per_second\": {}\n", s.wall_seconds, updates) << "}\n";
     write_file_atomically(file, out.str());
 }

@@ -5,6 +5,7 @@
 
 #include "test_support.hpp"
 #include "io/sweep.hpp"
+#include "tumble/core/isa.hpp"
 #include "tumble/core/parallel.hpp"
 
 #include <cstdio>
@@ -184,6 +185,26 @@ TEST(CliBench, ThreadsAndMemoryAreReported) {
     EXPECT_NE(r.output.find(threads), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\"bytes_per_particle\": "), std::string::npos) << r.output;
     EXPECT_NE(run_tumble("bench --size 8 --steps 5 --threads -1").exit_code, 0);
+}
+
+// The instruction set of the hot loops is reported; TUMBLE_ISA chooses it,
+// and a value that is not a level is refused before anything runs.
+TEST(CliBench, InstructionSetIsReportedAndAnUnknownOneRefused) {
+    const Result r = run_tumble("bench --size 8 --steps 5 --warmup 0 --json");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(last_line(r.output).find("\"isa\": \""), std::string::npos) << r.output;
+    const Result baseline = tumble::test_support::run_command("TUMBLE_ISA=baseline " + std::string(TUMBLE_BINARY) +
+                                                              " bench --size 8 --steps 5 --warmup 0");
+    if constexpr (TUMBLE_ISA_CHOICE) {
+        ASSERT_EQ(baseline.exit_code, 0) << baseline.output;
+        EXPECT_NE(baseline.output.find("instruction set  baseline (x86-64;"), std::string::npos) << baseline.output;
+    } else {  // a build for one processor has no choice to make
+        EXPECT_NE(baseline.exit_code, 0) << baseline.output;
+    }
+    const Result unknown = tumble::test_support::run_command("TUMBLE_ISA=sse9 " + std::string(TUMBLE_BINARY) +
+                                                             " bench --size 8 --steps 5 --warmup 0");
+    EXPECT_NE(unknown.exit_code, 0);
+    EXPECT_NE(unknown.output.find("TUMBLE_ISA=sse9"), std::string::npos) << unknown.output;
 }
 
 // A small long drum (2 cm of the paper's cross-section) and few steps: this

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "tumble/core/error.hpp"
+#include "tumble/core/isa.hpp"
 #include "tumble/core/parallel.hpp"
 #include "tumble/integrate/velocity_verlet.hpp"
 #include "tumble/particles/rigid_motion.hpp"
@@ -27,6 +28,7 @@ double default_skin(const Scenario& s) {
 Simulation::Simulation(Scenario scenario, int threads) : scenario_(std::move(scenario)) {
     if (const std::string why = scenario_problem(scenario_); !why.empty()) throw Error("scenario: " + why);
     set_threads(threads);
+    isa_in_use();  // a wrong TUMBLE_ISA is an error here, not in a thread
     pair_table_ = PairTable(scenario_.materials, scenario_.pair_properties);
     time_step_report_ = assess_time_step(scenario_);
     dt_ = time_step_report_.dt;
@@ -67,9 +69,8 @@ namespace {
 
 // sum[k] += part[k], part[k] = 0 for k in [begin, end): the adding up of one
 // thread's forces, on the arrays as plain numbers that do not overlap
-// (`__restrict`, out of line), so that it runs several per instruction.
-[[gnu::noinline]] void add_and_clear(double* __restrict sum, double* __restrict part, std::size_t begin,
-                                     std::size_t end) {
+// (`__restrict`), so that it runs several per instruction.
+void add_and_clear(double* __restrict sum, double* __restrict part, std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
         sum[k] += part[k];
         part[k] = 0.0;
@@ -113,20 +114,24 @@ void Simulation::compute_forces() {
         } else if (range.begin < range.end) {
             touched_from[part] = pairs.first[range.begin];
         }
-        if (recording_)
-            add_contact_forces<true>(p, pairs, range, neighbors_.images(), pair_table_, scenario_.model, dt_, force,
-                                     torque, records_);
-        else
-            add_contact_forces<false>(p, pairs, range, neighbors_.images(), pair_table_, scenario_.model, dt_, force,
-                                      torque, records_);
+        run_for_isa([&] {
+            if (recording_)
+                add_contact_forces<true>(p, pairs, range, neighbors_.images(), pair_table_, scenario_.model, dt_,
+                                         force, torque, records_);
+            else
+                add_contact_forces<false>(p, pairs, range, neighbors_.images(), pair_table_, scenario_.model, dt_,
+                                          force, torque, records_);
+        });
     });
     for (std::size_t part = 1; part < touched_from.size(); ++part) {
         const std::size_t from = touched_from[part], offset = (part - 1) * n;
         for_each_chunk(chunks, [&](int c) {
             const IndexRange r = chunk_range(c, chunks, n - from);
             const std::size_t begin = 3 * (from + r.begin), end = 3 * (from + r.end);  // 3 numbers per vector
-            add_and_clear(&p.force.data()->x, &(chunk_force_.data() + offset)->x, begin, end);
-            add_and_clear(&p.torque.data()->x, &(chunk_torque_.data() + offset)->x, begin, end);
+            run_for_isa([&] {
+                add_and_clear(&p.force.data()->x, &(chunk_force_.data() + offset)->x, begin, end);
+                add_and_clear(&p.torque.data()->x, &(chunk_torque_.data() + offset)->x, begin, end);
+            });
         });
     }
     if (!wall_history_.empty()) add_wall_forces(chunks);
