@@ -15,9 +15,12 @@ Standard library only.
 
 A result line has: code, config, procs, grains, steps, seconds,
 grain_updates_per_second (grains x timed steps / wall time of the timed
-steps), per_core (that over procs), kinetic_translational and
-kinetic_rotational (J, grains, at the end), contacts, and the whole
-process's cpu/wall (peerlib.py).
+steps), cpu_seconds (CPU time of the timed steps, all threads or ranks),
+kinetic_translational and kinetic_rotational (J, grains, at the end),
+contacts, neighbor_builds, and the whole process's cpu/wall (peerlib.py).
+On a loaded machine grains x steps / cpu_seconds is the steadier measure
+of the work per update: a code that waited for a core loses wall time, not
+CPU time (but a thread spinning at a barrier burns CPU time).
 """
 import csv
 import json
@@ -36,7 +39,8 @@ MARGIN = 2  # the box reaches this many largest radii beyond every sphere
 # thermo of lammps_drum.in: Step Atoms c_kgrain c_rgrain v_contacts v_rmax v_zmax
 THERMO_HEAD = re.compile(r"^\s*Step\s+Atoms\s+c_kgrain\s+c_rgrain\s+v_contacts\s+v_rmax\s+v_zmax\s*$")
 GRAINS = re.compile(r"TUMBLE_PEER drum grains=(\d+)")
-IMBALANCE = re.compile(r"final imbalance factor = ([0-9.]+)")
+IMBALANCE = re.compile(r"initial/final imbalance factor\s*=\s*[0-9.]+\s+([0-9.]+)")
+CPU_USE = re.compile(r"([0-9.]+)% CPU use with (\d+) MPI tasks")
 
 
 def write_data(snapshot, out):
@@ -91,9 +95,13 @@ def parse_lammps(path, config):
                 last = lines[j].split()
                 j += 1
     imbalance = IMBALANCE.findall(text)
+    builds = peerlib.BUILDS.findall(text)
+    cpu_use = CPU_USE.findall(text)  # per rank, averaged over the ranks
     n, seconds, steps, procs = int(grains[-1]), float(seconds), int(steps), int(procs)
     return {"code": "lammps", "config": config, "procs": procs, "grains": n, "steps": steps,
             "seconds": seconds, "grain_updates_per_second": n * steps / seconds,
+            "cpu_seconds": seconds * procs * float(cpu_use[-1][0]) / 100.0,
+            "neighbor_builds": int(builds[-1]),
             "kinetic_translational": float(last[2]), "kinetic_rotational": float(last[3]),
             "contacts": float(last[4]), "largest_axis_distance": float(last[5]),
             "largest_abs_z": float(last[6]),
@@ -109,6 +117,7 @@ def parse_tumble(path, config):
     return {"code": "tumble", "config": config, "procs": int(d["threads"]), "grains": int(d["grains"]),
             "steps": int(d["steps"]), "seconds": float(d["seconds"]),
             "grain_updates_per_second": float(d["grain_updates_per_second"]),
+            "cpu_seconds": float(d["cpu_seconds"]),
             "kinetic_translational": float(d["kinetic_translational"]),
             "kinetic_rotational": float(d["kinetic_rotational"]), "contacts": float(d["contacts"]),
             "dt": float(d["dt"]), "neighbor_builds": d["neighbor_builds"]}
@@ -118,39 +127,43 @@ def table(path):
     rows = [json.loads(l) for l in open(path, encoding="utf-8") if l.strip()]
     groups = {}
     for r in rows:
+        r["per_cpu_second"] = r["grains"] * r["steps"] / r["cpu_seconds"]
         groups.setdefault((r["code"], r["procs"]), []).append(r)
-    median = {k: statistics.median(r["grain_updates_per_second"] for r in rs) for k, rs in groups.items()}
+    med = lambda rs, key: statistics.median(r[key] for r in rs)
+    wall = {k: med(rs, "grain_updates_per_second") for k, rs in groups.items()}
+    cpu = {k: med(rs, "per_cpu_second") for k, rs in groups.items()}
     hdr = ("code", "procs", "runs", "grain updates/s", "per core", "min..max", "wall s", "cpu/wall",
-           "KE trans J", "KE rot J", "contacts", "tumble/peer per core")
+           "per CPU s", "KE trans J", "KE rot J", "contacts", "nbr builds", "tumble/LAMMPS", "by CPU s")
     out = []
     for (code, procs), rs in sorted(groups.items(), key=lambda kv: (kv[0][0] != "tumble", kv[0][1])):
-        m = median[(code, procs)]
+        k, t = (code, procs), ("tumble", procs)
         ups = [r["grain_updates_per_second"] for r in rs]
-        cpu = [r["cpu_per_wall"] for r in rs if r.get("cpu_per_wall") is not None]
-        t = median.get(("tumble", procs))
-        ratio = "-" if code == "tumble" else (f"{t / m:.2f}" if t else "n/a")
-        out.append((code, str(procs), str(len(rs)), peerlib.fmt_rate(m), peerlib.fmt_rate(m / procs),
-                    f"{peerlib.fmt_rate(min(ups))}..{peerlib.fmt_rate(max(ups))}",
-                    f"{statistics.median(r['seconds'] for r in rs):.1f}",
-                    f"{min(cpu):.2f}..{max(cpu):.2f}" if cpu else "?",
+        use = [r["cpu_seconds"] / (r["seconds"] * procs) for r in rs]
+        peer = code != "tumble" and t in wall
+        out.append((code, str(procs), str(len(rs)), peerlib.fmt_rate(wall[k]), peerlib.fmt_rate(wall[k] / procs),
+                    f"{peerlib.fmt_rate(min(ups))}..{peerlib.fmt_rate(max(ups))}", f"{med(rs, 'seconds'):.1f}",
+                    f"{min(use):.2f}..{max(use):.2f}", peerlib.fmt_rate(cpu[k]),
                     f"{rs[-1]['kinetic_translational']:.3g}", f"{rs[-1]['kinetic_rotational']:.3g}",
-                    f"{rs[-1]['contacts']:.0f}", ratio))
+                    f"{rs[-1]['contacts']:.0f}", str(rs[-1]["neighbor_builds"]),
+                    f"{wall[t] / wall[k]:.2f}" if peer else "-", f"{cpu[t] / cpu[k]:.2f}" if peer else "-"))
     widths = [max(len(h), *(len(r[i]) for r in out)) for i, h in enumerate(hdr)]
     line = lambda cells: "  ".join(c.ljust(w) for c, w in zip(cells, widths)).rstrip()
     print(line(hdr))
     print(line(["-" * w for w in widths]))
     for r in out:
         print(line(r))
-    for (code, procs), rs in groups.items():
-        if procs > 1 and (code, 1) in median:
-            print(f"{code}: {procs} procs {median[(code, procs)] / median[(code, 1)]:.2f}x one")
-        for r in rs:
-            if r.get("imbalance"):
-                print(f"{code} {procs} procs: LAMMPS's load imbalance after its balance command {r['imbalance']:.2f}")
-                break
+    for (code, procs), rs in sorted(groups.items()):
+        if procs > 1 and (code, 1) in wall:
+            print(f"{code}: {procs} cores {wall[(code, procs)] / wall[(code, 1)]:.2f}x one (wall time)")
+        imbalance = [r["imbalance"] for r in rs if r.get("imbalance") is not None]
+        if procs > 1 and imbalance:
+            print(f"{code} {procs} ranks: load imbalance after the balance command "
+                  f"{min(imbalance):.2f}..{max(imbalance):.2f}")
     print("grain updates/s = grains x timed steps / wall time of the timed steps (wall spheres not counted);"
-          " ratio = tumble median / LAMMPS median on as many threads as LAMMPS has MPI ranks (per core alike);"
-          " KE and contacts at the end of the last run (contacts: all touching pairs, wall included)")
+          " per CPU s: the same over the CPU time of the timed steps; cpu/wall: CPU time over wall time x cores"
+          " in the timed steps (below 1: it waited for a core); tumble/LAMMPS: medians on as many threads as"
+          " LAMMPS has MPI ranks (per core alike); KE, contacts (touching pairs, wall included) and neighbour"
+          " builds of the last run")
 
 
 def main(argv):
