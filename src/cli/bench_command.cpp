@@ -19,6 +19,7 @@
 #include "experiments/machine.hpp"
 #include "io/checkpoint.hpp"
 #include "io/drum_config.hpp"
+#include "io/output.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 #include "tumble/core/isa.hpp"
@@ -161,6 +162,11 @@ int long_drum_bench(const BenchOptions& options) {
     const fs::path cache = options.cache.empty() ? default_cache() : options.cache;
     bool made = false;
     Simulation sim = settled_drum(d, cache, threads, made);
+    if (!options.export_dir.empty()) {  // the start of a peer code's run on the same bed
+        const fs::path file = io::write_snapshot(options.export_dir, 0, sim);
+        if (!options.json) fmt::print("tumble bench: the settled bed, before it turns, is in {}\n", file.string());
+        return 0;
+    }
     const std::size_t n = sim.particles().size(), grains = sim.particles().free_count();
     const double omega = d.omega();
     if (!options.json)
@@ -173,6 +179,8 @@ int long_drum_bench(const BenchOptions& options) {
     double cpu = 0.0;
     const double seconds = timed_advance(sim, steps, cpu);
     const std::int64_t builds = sim.neighbors().builds() - builds_before;
+    // A peer on the same bed is checked against this (bench/compare_drum.sh).
+    const Observables o = sim.observe();
     const double grain_updates = static_cast<double>(grains) * static_cast<double>(steps) / seconds;
     const double steps_per_revolution = 2.0 * pi / omega / sim.dt();
     const double seconds_per_revolution = seconds / static_cast<double>(steps) * steps_per_revolution;
@@ -191,6 +199,8 @@ int long_drum_bench(const BenchOptions& options) {
         fmt::print("  steps/revolution   {:.0f}\n", steps_per_revolution);
         fmt::print("  dt                 {:.4g} s, set by {}\n", sim.dt(), limited_by);
         fmt::print("  list rebuilds      {}\n", builds);
+        fmt::print("  kinetic energy     {:.4g} J translational, {:.4g} J rotational (grains, at the end)\n",
+                   o.kinetic_translational, o.kinetic_rotational);
         fmt::print("  threads            {}\n", sim.threads());
         fmt::print("  instruction set    {}\n", isa_description());
         fmt::print("  memory             {:.0f} bytes per particle (grains and wall, resident, measured)\n",
@@ -202,12 +212,13 @@ int long_drum_bench(const BenchOptions& options) {
                    "\"grains\": {}, \"particles\": {}, \"bed\": \"{}\", \"steps\": {}, \"warmup\": {}, \"seconds\": {}, "
                    "\"grain_updates_per_second\": {}, \"revolutions_per_hour\": {}, \"seconds_per_revolution\": {}, "
                    "\"steps_per_revolution\": {}, \"dt\": {}, \"dt_limited_by\": \"{}\", \"neighbor_builds\": {}, "
+                   "\"kinetic_translational\": {}, \"kinetic_rotational\": {}, \"contacts\": {}, "
                    "\"threads\": {}, \"bytes_per_particle\": {:.0f}, \"cpu_seconds\": {}, \"machine\": \"{}\", "
                    "\"isa\": \"{}\"}}\n",
                    TUMBLE_VERSION, d.geometry.length, d.fill_fraction, grains, n, made ? "made" : "read", steps,
                    warmup, seconds, grain_updates, revolutions_per_hour, seconds_per_revolution,
-                   steps_per_revolution, sim.dt(), limited_by, builds, sim.threads(), bytes_per_particle, cpu, machine,
-                   isa_description());
+                   steps_per_revolution, sim.dt(), limited_by, builds, o.kinetic_translational, o.kinetic_rotational,
+                   o.contacts, sim.threads(), bytes_per_particle, cpu, machine, isa_description());
     return 0;
 }
 }  // namespace

@@ -42,6 +42,7 @@ struct BenchOptions {
     double length = 0.64;      // long drum: inner length, m
     double fill = 0.3;         // long drum: fill fraction
     std::filesystem::path cache;  // long drum: where the settled bed is kept; empty: bench-cache beside the executable
+    std::filesystem::path export_dir;  // long drum: write the settled bed there (snapshots/000000.csv) and stop
 };
 int bench_command(const BenchOptions& options);
 

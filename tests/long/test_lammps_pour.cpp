@@ -33,6 +33,8 @@
 #include "../unit/test_support.hpp"
 
 namespace fs = std::filesystem;
+using tumble::test_support::find_lammps;
+using tumble::test_support::have;
 using tumble::test_support::run_command;
 
 namespace {
@@ -158,26 +160,6 @@ Interval confidence(const std::vector<double>& x) {
 std::string tail_of(const fs::path& file) {
     const std::string text = tumble::test_support::read_file(file);
     return text.size() > 2000 ? text.substr(text.size() - 2000) : text;
-}
-
-bool have(const std::string& program) { return run_command("command -v " + program).exit_code == 0; }
-
-// LAMMPS's `lmp`, installed from Debian's package when missing and root.
-// False when there is none; `why` then says why.
-bool find_lammps(std::string& why) {
-    if (have("lmp")) return true;
-    if (::geteuid() != 0) {
-        why = "LAMMPS (lmp) is not installed and the test is not root: install the Debian package "
-              "(apt-get install lammps) to run the LAMMPS comparison";
-        return false;
-    }
-    std::printf("[setup] lmp missing: apt-get install -y lammps\n");
-    const std::string install = "DEBIAN_FRONTEND=noninteractive apt-get install -y -q lammps";
-    if (run_command(install).exit_code != 0)
-        run_command("DEBIAN_FRONTEND=noninteractive apt-get update -q && " + install);
-    if (have("lmp")) return true;
-    why = "LAMMPS (lmp) is not installed and `apt-get install lammps` failed: install it to run the LAMMPS comparison";
-    return false;
 }
 
 }  // namespace

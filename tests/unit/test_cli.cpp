@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.hpp"
+#include "io/snapshots.hpp"
 #include "io/sweep.hpp"
 #include "tumble/core/isa.hpp"
 #include "tumble/core/parallel.hpp"
@@ -224,20 +225,29 @@ TEST_F(Cli, BenchLongDrumReportsEveryFieldAndKeepsTheSettledBed) {
     EXPECT_EQ(j.find("bed")->string, "read");  // the second run reads the bed the first made
     EXPECT_EQ(j.find("case")->string, "long-drum");
     for (const char* key : {"grains", "particles", "steps", "seconds", "grain_updates_per_second",
-                            "revolutions_per_hour", "steps_per_revolution", "dt", "bytes_per_particle", "threads"})
+                            "revolutions_per_hour", "steps_per_revolution", "dt", "bytes_per_particle", "threads",
+                            "kinetic_translational", "kinetic_rotational", "contacts"})
         EXPECT_TRUE(j.number_at(key).has_value()) << key << " missing in: " << json.output;
     EXPECT_NE(j.find("dt_limited_by")->string.find("viscous time"), std::string::npos) << json.output;
     // 5 rad/s at the automatic step: 2 pi / 5 / dt steps per revolution.
     EXPECT_NEAR(*j.number_at("steps_per_revolution"), 2.0 * 3.141592653589793 / 5.0 / *j.number_at("dt"), 1e-6);
     EXPECT_EQ(*j.number_at("steps"), 20.0);
     EXPECT_EQ(*j.number_at("threads"), tumble::parallel_build() ? 2.0 : 1.0);
+
+    // --export writes the stored bed, grains and wall, for a peer code and runs nothing.
+    const Result exported = run_tumble(arguments + " --export " + (dir_ / "bed").string());
+    ASSERT_EQ(exported.exit_code, 0) << exported.output;
+    EXPECT_EQ(exported.output.find("grain updates/s"), std::string::npos) << exported.output;
+    const tumble::io::SnapshotParticles bed = tumble::io::read_snapshot_csv(dir_ / "bed" / "snapshots" / "000000.csv");
+    EXPECT_EQ(static_cast<double>(bed.position.size()), *j.number_at("particles"));
 }
 
 TEST(CliBench, OptionsOfTheOtherCaseAreRefused) {
     const std::pair<const char*, const char*> cases[] = {{"bench --case long-drum --size 8", "--size"},
                                                          {"bench --length 0.1", "--length"},
                                                          {"bench --case drum", "--case"},
-                                                         {"bench --case long-drum --fill 0", "--fill"}};
+                                                         {"bench --case long-drum --fill 0", "--fill"},
+                                                         {"bench --export bed", "--export"}};
     for (const auto& [arguments, option] : cases) {
         const Result r = run_tumble(arguments);
         EXPECT_NE(r.exit_code, 0) << arguments;

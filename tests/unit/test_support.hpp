@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// What several unit tests share: running a command, reading a file, and a
-// scratch directory per test.
+// What several tests share: running a command, finding LAMMPS, reading a
+// file, and a scratch directory per test.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -29,6 +29,27 @@ inline CommandResult run_command(const std::string& command) {
     while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
     const int status = pclose(pipe);
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+inline bool have(const std::string& program) { return run_command("command -v " + program).exit_code == 0; }
+
+// LAMMPS's `lmp`, installed from Debian's package when missing and root
+// (the tests against LAMMPS in tests/long). False when there is none; `why`
+// then says why.
+inline bool find_lammps(std::string& why) {
+    if (have("lmp")) return true;
+    if (::geteuid() != 0) {
+        why = "LAMMPS (lmp) is not installed and the test is not root: install the Debian package "
+              "(apt-get install lammps) to run the LAMMPS comparison";
+        return false;
+    }
+    std::printf("[setup] lmp missing: apt-get install -y lammps\n");
+    const std::string install = "DEBIAN_FRONTEND=noninteractive apt-get install -y -q lammps";
+    if (run_command(install).exit_code != 0)
+        run_command("DEBIAN_FRONTEND=noninteractive apt-get update -q && " + install);
+    if (have("lmp")) return true;
+    why = "LAMMPS (lmp) is not installed and `apt-get install lammps` failed: install it to run the LAMMPS comparison";
+    return false;
 }
 
 inline std::string read_file(const std::filesystem::path& file) {
