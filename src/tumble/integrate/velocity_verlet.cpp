@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "tumble/integrate/velocity_verlet.hpp"
 
-#include "tumble/core/parallel.hpp"
+#include <algorithm>
 
 namespace tumble {
 
@@ -61,16 +61,16 @@ void drift_range(ParticleStore& p, IndexRange r, double dt) {
 
 }  // namespace
 
-void kick(ParticleStore& p, const Vec3& gravity, double half_dt, int chunks) {
-    for_each_chunk(chunks, [&](int c) { kick_range<false>(p, chunk_range(c, chunks, p.size()), gravity, half_dt); });
+void kick(ParticleStore& p, const Vec3& gravity, double half_dt, IndexRange r) {
+    kick_range<false>(p, r, gravity, half_dt);
 }
 
-void kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, int chunks) {
-    for_each_chunk(chunks, [&](int c) {
-        const IndexRange r = chunk_range(c, chunks, p.size());
-        kick_range<true>(p, r, gravity, half_dt);
-        drift_range(p, r, dt);
-    });
+void kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, IndexRange r) {
+    kick_range<true>(p, r, gravity, half_dt);
+    drift_range(p, r, dt);
+    const auto from = static_cast<std::ptrdiff_t>(r.begin), to = static_cast<std::ptrdiff_t>(r.end);
+    std::fill(p.force.begin() + from, p.force.begin() + to, Vec3{});
+    std::fill(p.torque.begin() + from, p.torque.begin() + to, Vec3{});
 }
 
 }  // namespace tumble

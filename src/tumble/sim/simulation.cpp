@@ -36,22 +36,40 @@ Simulation::Simulation(Scenario scenario, int threads) : scenario_(std::move(sce
     for (const RigidMotion& m : scenario_.motions) motions_.push_back({m, 0.0});
     const auto& walls = scenario_.domain.walls;
     if (walls[0] || walls[1] || walls[2]) wall_history_.resize(6 * particles_.size());
-    move_kinematic();
-    neighbors_.rebuild(particles_);
-    compute_forces();
+    move_kinematic(motions_now(time_), {0, particles_.size()});
+    prepare_chunks();
+    run_in_team(chunks(), [&](Team& team) {
+        neighbors_.rebuild(particles_, team);
+        compute_forces(team, [](int, IndexRange) {});
+    });
 }
 
-// One time step of velocity Verlet; see integrate/velocity_verlet.hpp.
-void Simulation::step() {
+// One time step of velocity Verlet (integrate/velocity_verlet.hpp) by the
+// threads of a team: each takes a part of the particles, then a part of the
+// pairs, then its part of the particles again, and waits for the others
+// after each (a rebuild of the neighbour list adds its own phases).
+void Simulation::step(Team& team) {
     const double half_dt = 0.5 * dt_;
-    kick_drift(particles_, scenario_.gravity, half_dt, dt_, threads_);  // v(t) -> v(t + dt/2), x(t) -> x(t + dt)
-    ++step_;
-    time_ = static_cast<double>(step_) * dt_;
-    move_kinematic();                                        // prescribed x, v, omega at t + dt
-    if (neighbors_.needs_rebuild(particles_, threads_)) neighbors_.rebuild(particles_);
-    compute_forces();                                        // F(t + dt), with v(t + dt/2) and v(t + dt) predicted
-    kick(particles_, scenario_.gravity, half_dt, threads_);  // v(t + dt/2) -> v(t + dt)
+    const std::int64_t next = step_ + 1;
+    const std::vector<MotionNow> now = motions_now(static_cast<double>(next) * dt_);
+    ParticleStore& p = particles_;
+    team.each([&](int c) {
+        const IndexRange r = team.range(c, p.size());
+        kick_drift(p, scenario_.gravity, half_dt, dt_, r);  // v(t) -> v(t + dt/2), x(t) -> x(t + dt); F = 0
+        move_kinematic(now, r);                              // prescribed x, v, omega at t + dt
+        moved_[static_cast<std::size_t>(c)] = neighbors_.moved_far(p, r);
+    });
+    if (std::find(moved_.begin(), moved_.end(), 1) != moved_.end()) neighbors_.rebuild(p, team);
+    compute_forces(team, [&](int c, IndexRange r) {  // F(t + dt), with v(t + dt/2) and v(t + dt) predicted
+        kick(p, scenario_.gravity, half_dt, r);             // v(t + dt/2) -> v(t + dt)
+        if (c == 0) {                                       // the clock, once
+            step_ = next;
+            time_ = static_cast<double>(next) * dt_;
+        }
+    });
 }
+
+void Simulation::step() { advance(1); }
 
 void Simulation::set_threads(int threads) {
     if (threads < 1 || threads > max_threads)
@@ -59,8 +77,25 @@ void Simulation::set_threads(int threads) {
     threads_ = threads;
 }
 
+// All the steps in one parallel region (core/parallel.hpp).
 void Simulation::advance(std::int64_t steps) {
-    for (std::int64_t s = 0; s < steps; ++s) step();
+    if (steps <= 0) return;
+    prepare_chunks();
+    run_in_team(chunks(), [&](Team& team) {
+        for (std::int64_t s = 0; s < steps; ++s) step(team);
+    });
+}
+
+// The arrays each chunk writes on its own, for the current chunk count.
+void Simulation::prepare_chunks() {
+    const auto count = static_cast<std::size_t>(chunks());
+    const std::size_t extra = (count - 1) * particles_.size();
+    if (chunk_force_.size() != extra) {
+        chunk_force_.assign(extra, Vec3{});
+        chunk_torque_.assign(extra, Vec3{});
+    }
+    touched_from_.resize(count);
+    moved_.resize(count);
 }
 
 namespace {
@@ -78,41 +113,35 @@ namespace {
 
 }  // namespace
 
-// Forces and torques on every particle from its contacts. Thread c takes
-// the c-th part of the pair list; thread 0 sums into the particles' arrays,
-// thread c >= 1 into its own, which the particles then add in thread order.
-// The sums are thus the same bitwise on every run with the same thread
-// count, and differ from one thread's only by the order of the additions
-// (round-off). Recording runs on one thread.
+// Forces and torques on every particle from its contacts, in two phases of
+// the team, then `then(c, r)` on each part r (chunk c) of the particles,
+// whose forces are complete by then. The forces must be zero on entry (kick_drift() leaves
+// them so).
 //
-// The list is sorted by first particle and j > i in every pair, so thread
+// Phase 1: chunk c takes the c-th part of the pair list; chunk 0 sums into
+// the particles' arrays, chunk c >= 1 into its own. Phase 2: chunk c takes
+// the c-th part of the particles and adds the other chunks' sums to theirs,
+// in chunk order, then the flat walls. The sums are thus the same bitwise
+// on every run with the same chunk count, and differ from one chunk's only
+// by the order of the additions (round-off). Recording runs on one chunk.
+//
+// The list is sorted by first particle and j > i in every pair, so chunk
 // c >= 1 touches only particles from the first particle of its part on
-// (touched_from[c]); its arrays are added from there only, and cleared as
+// (touched_from_[c]); its arrays are added from there only, and cleared as
 // they are read, so they are zero between calls. The parts left out are +0
 // (a sum begun at +0 is never -0), so adding them would change nothing.
-void Simulation::compute_forces() {
+template <class Then>
+void Simulation::compute_forces(Team& team, Then&& then) {
     ParticleStore& p = particles_;
     PairList& pairs = neighbors_.pairs();
     const std::size_t n = p.size();
-    const int chunks = recording_ ? 1 : threads_;
-    const auto extra = static_cast<std::size_t>(chunks - 1) * n;
-    if (chunk_force_.size() != extra) {
-        chunk_force_.assign(extra, Vec3{});
-        chunk_torque_.assign(extra, Vec3{});
-    }
-    std::vector<std::size_t> touched_from(static_cast<std::size_t>(chunks), n);
-    records_.clear();
-    for_each_chunk(chunks, [&](int c) {
-        const IndexRange range = chunk_range(c, chunks, pairs.size());
+    if (recording_) records_.clear();
+    team.each([&](int c) {
+        const IndexRange range = team.range(c, pairs.size());
         const auto part = static_cast<std::size_t>(c);
         Vec3* force = c == 0 ? p.force.data() : chunk_force_.data() + (part - 1) * n;
         Vec3* torque = c == 0 ? p.torque.data() : chunk_torque_.data() + (part - 1) * n;
-        if (c == 0) {
-            std::fill(force, force + n, Vec3{});
-            std::fill(torque, torque + n, Vec3{});
-        } else if (range.begin < range.end) {
-            touched_from[part] = pairs.first[range.begin];
-        }
+        touched_from_[part] = range.begin < range.end ? pairs.first[range.begin] : n;
         if (recording_)
             add_contact_forces<true>(p, pairs, range, neighbors_.images(), pair_table_, scenario_.model, dt_, force,
                                      torque, records_);
@@ -120,27 +149,28 @@ void Simulation::compute_forces() {
             add_contact_forces<false>(p, pairs, range, neighbors_.images(), pair_table_, scenario_.model, dt_, force,
                                       torque, records_);
     });
-    for (std::size_t part = 1; part < touched_from.size(); ++part) {
-        const std::size_t from = touched_from[part], offset = (part - 1) * n;
-        for_each_chunk(chunks, [&](int c) {
-            const IndexRange r = chunk_range(c, chunks, n - from);
-            const std::size_t begin = 3 * (from + r.begin), end = 3 * (from + r.end);  // 3 numbers per vector
-            add_and_clear(&p.force.data()->x, &(chunk_force_.data() + offset)->x, begin, end);
-            add_and_clear(&p.torque.data()->x, &(chunk_torque_.data() + offset)->x, begin, end);
-        });
-    }
-    if (!wall_history_.empty()) add_wall_forces(chunks);
+    team.each([&](int c) {
+        const IndexRange r = team.range(c, n);
+        for (std::size_t part = 1; part < touched_from_.size(); ++part) {
+            const std::size_t from = std::max(r.begin, touched_from_[part]), offset = (part - 1) * n;
+            if (from >= r.end) continue;
+            add_and_clear(&p.force.data()->x, &(chunk_force_.data() + offset)->x, 3 * from, 3 * r.end);  // 3 numbers per vector
+            add_and_clear(&p.torque.data()->x, &(chunk_torque_.data() + offset)->x, 3 * from, 3 * r.end);
+        }
+        if (!wall_history_.empty()) add_wall_forces(r);
+        then(c, r);
+    });
 }
 
-// Flat walls at both ends of each walled axis: every free sphere closer to a
-// wall than its radius is in contact with it (a sphere of infinite radius).
-// Each particle only touches its own forces and wall histories, so the
-// particles are split between the threads as they come.
-void Simulation::add_wall_forces(int chunks) {
+// Flat walls at both ends of each walled axis: every free sphere of range r
+// closer to a wall than its radius is in contact with it (a sphere of
+// infinite radius). Each particle only touches its own forces and wall
+// histories.
+void Simulation::add_wall_forces(IndexRange r) {
     ParticleStore& p = particles_;
     const Domain& box = scenario_.domain;
-    parallel_for(chunks, p.size(), [&](std::size_t i) {
-        if (p.is_kinematic(i)) return;
+    for (std::size_t i = r.begin; i < r.end; ++i) {
+        if (p.is_kinematic(i)) continue;
         for (int axis = 0; axis < 3; ++axis) {
             if (!box.walls[axis]) continue;
             for (int side = 0; side < 2; ++side) {
@@ -161,40 +191,33 @@ void Simulation::add_wall_forces(int chunks) {
                 if (recording_) records_.push_back({p.id[i], wall_id(face), g, f, history});
             }
         }
-    });
+    }
 }
 
-void Simulation::move_kinematic() {
-    // Per motion: where the axis is now and the rotation since the motion began.
-    struct Now {
-        Vec3 start_axis_point, axis_point, velocity;
-        Rotation turn;
-        double angular_velocity;
-    };
-    std::vector<Now> now;
+// Per motion: where the axis is now and the rotation since the motion
+// began, worked out once per step for all its particles.
+std::vector<Simulation::MotionNow> Simulation::motions_now(double time) const {
+    std::vector<MotionNow> now;
     for (const MotionClock& m : motions_) {
-        const double elapsed = time_ - m.start_time;
+        const double elapsed = time - m.start_time;
         const Vec3 u = (1.0 / norm(m.motion.axis_direction)) * m.motion.axis_direction;
         now.push_back({m.motion.axis_point, m.motion.axis_point + elapsed * m.motion.velocity, m.motion.velocity,
                        Rotation(u, m.motion.angular_velocity * elapsed), m.motion.angular_velocity});
     }
-    if (now.empty()) return;  // no kinematic particles
-    // The neighbour list stores them last (cell_order()): split their range
-    // between the threads, not all particles.
+    return now;
+}
+
+// The kinematic particles of range r where their motions put them now.
+void Simulation::move_kinematic(const std::vector<MotionNow>& now, IndexRange r) {
     ParticleStore& p = particles_;
-    const auto is_kinematic = [](std::int32_t motion) { return motion != free_motion; };
-    const auto first = std::find_if(p.motion.begin(), p.motion.end(), is_kinematic);
-    const auto last = std::find_if(p.motion.rbegin(), p.motion.rend(), is_kinematic).base();
-    const auto from = static_cast<std::size_t>(first - p.motion.begin());
-    parallel_for(threads_, first < last ? static_cast<std::size_t>(last - first) : 0, [&](std::size_t k) {
-        const std::size_t i = from + k;
-        if (!p.is_kinematic(i)) return;
-        const Now& m = now[static_cast<std::size_t>(p.motion[i])];
+    for (std::size_t i = r.begin; i < r.end; ++i) {
+        if (!p.is_kinematic(i)) continue;
+        const MotionNow& m = now[static_cast<std::size_t>(p.motion[i])];
         const Vec3 arm = rotate(p.reference_position[i] - m.start_axis_point, m.turn);
         p.position[i] = m.axis_point + arm + p.image_shift[i];
         p.velocity[i] = m.velocity + m.angular_velocity * cross(m.turn.u, arm);
         p.angular_velocity[i] = m.angular_velocity * m.turn.u;
-    });
+    }
 }
 
 void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
@@ -205,7 +228,7 @@ void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
         if (p.motion[i] == static_cast<std::int32_t>(k)) p.reference_position[i] = p.position[i] - p.image_shift[i];
     motions_[k] = {motion, time_};
     scenario_.motions[k] = motion;
-    move_kinematic();
+    move_kinematic(motions_now(time_), {0, p.size()});
 }
 
 SimulationState Simulation::capture() const {

@@ -10,7 +10,9 @@
 #include "tumble/sim/time_step.hpp"
 #include "tumble/materials/pair_table.hpp"
 #include "tumble/neighbor/verlet_list.hpp"
+#include "tumble/core/parallel.hpp"
 #include "tumble/particles/particle_store.hpp"
+#include "tumble/particles/rigid_motion.hpp"
 #include "tumble/sim/pair_loop.hpp"
 #include "tumble/sim/scenario.hpp"
 #include "tumble/sim/simulation_state.hpp"
@@ -86,9 +88,20 @@ public:
     const std::vector<ContactRecord>& contact_records() const { return records_; }
 
 private:
-    void compute_forces();
-    void add_wall_forces(int chunks);
-    void move_kinematic();
+    // Where each prescribed motion is at a time (move_kinematic()).
+    struct MotionNow {
+        Vec3 start_axis_point, axis_point, velocity;
+        Rotation turn;
+        double angular_velocity;
+    };
+    int chunks() const { return recording_ ? 1 : threads_; }
+    void prepare_chunks();
+    template <class Then>
+    void compute_forces(Team& team, Then&& then);
+    void add_wall_forces(IndexRange r);
+    std::vector<MotionNow> motions_now(double time) const;
+    void step(Team& team);
+    void move_kinematic(const std::vector<MotionNow>& now, IndexRange r);
 
     Scenario scenario_;
     PairTable pair_table_;
@@ -102,10 +115,14 @@ private:
     bool recording_ = false;
     std::vector<ContactRecord> records_;
     int threads_ = 1;
-    // Contact forces and torques summed by threads 1, 2, ... (thread 0 sums
-    // into the particles' own arrays): (threads - 1) x N each, zero between
-    // steps (compute_forces()).
+    // Contact forces and torques summed by chunks 1, 2, ... (chunk 0 sums
+    // into the particles' own arrays): (chunks - 1) x N each, zero between
+    // steps (compute_forces()); per chunk, the first particle its part of
+    // the pairs touches, and whether a particle of its part of the particles
+    // moved far enough for a rebuild.
     std::vector<Vec3> chunk_force_, chunk_torque_;
+    std::vector<std::size_t> touched_from_;
+    std::vector<char> moved_;
     // History of the contacts with the six flat walls, at 6 id + face (ids are
     // dense, 0 .. N-1); empty when the domain has no walls.
     std::vector<ContactHistory> wall_history_;
