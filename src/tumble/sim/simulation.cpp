@@ -40,9 +40,42 @@ Simulation::Simulation(Scenario scenario, int threads) : scenario_(std::move(sce
     prepare_chunks();
     run_in_team(chunks(), [&](Team& team) {
         neighbors_.rebuild(particles_, team);
+        locate_kinds(team);
         compute_forces(team, [](int, IndexRange) {});
     });
 }
+
+// Where the free and the kinematic particles lie in the store, after a
+// rebuild (which may have re-sorted it) or a restore: each chunk looks at its
+// part, then one thread combines the parts (a few numbers each).
+void Simulation::locate_kinds(Team& team) {
+    const ParticleStore& p = particles_;
+    team.each([&](int c) {
+        const IndexRange r = team.range(c, p.size());
+        IndexRange& kinds = chunk_kinds_[static_cast<std::size_t>(c)];
+        kinds = {p.size(), 0};  // first kinematic, one past the last free
+        for (std::size_t i = r.begin; i < r.end; ++i)
+            if (p.is_kinematic(i))
+                kinds.begin = std::min(kinds.begin, i);
+            else
+                kinds.end = i + 1;
+    });
+    team.one([&] {
+        kinematic_begin_ = p.size();
+        free_end_ = 0;
+        for (const IndexRange& kinds : chunk_kinds_) {
+            kinematic_begin_ = std::min(kinematic_begin_, kinds.begin);
+            free_end_ = std::max(free_end_, kinds.end);
+        }
+    });
+}
+
+IndexRange Simulation::free_part(IndexRange r) const {
+    const std::size_t end = std::min(r.end, free_end_);
+    return {std::min(r.begin, end), end};
+}
+
+IndexRange Simulation::kinematic_part(IndexRange r) const { return {std::max(r.begin, kinematic_begin_), r.end}; }
 
 // One time step of velocity Verlet (integrate/velocity_verlet.hpp) by the
 // threads of a team: each takes a part of the particles, then a part of the
@@ -55,13 +88,16 @@ void Simulation::step(Team& team) {
     ParticleStore& p = particles_;
     team.each([&](int c) {
         const IndexRange r = team.range(c, p.size());
-        kick_drift(p, scenario_.gravity, half_dt, dt_, r);  // v(t) -> v(t + dt/2), x(t) -> x(t + dt); F = 0
-        move_kinematic(now, r);                              // prescribed x, v, omega at t + dt
+        kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r));  // v(t) -> v(t + dt/2), x(t) -> x(t + dt); F = 0
+        move_kinematic(now, kinematic_part(r));                         // prescribed x, v, omega at t + dt; F = 0
         moved_[static_cast<std::size_t>(c)] = neighbors_.moved_far(p, r);
     });
-    if (std::find(moved_.begin(), moved_.end(), 1) != moved_.end()) neighbors_.rebuild(p, team);
+    if (std::find(moved_.begin(), moved_.end(), 1) != moved_.end()) {
+        neighbors_.rebuild(p, team);
+        locate_kinds(team);
+    }
     compute_forces(team, [&](int c, IndexRange r) {  // F(t + dt), with v(t + dt/2) and v(t + dt) predicted
-        kick(p, scenario_.gravity, half_dt, r);             // v(t + dt/2) -> v(t + dt)
+        kick(p, scenario_.gravity, half_dt, free_part(r));  // v(t + dt/2) -> v(t + dt)
         if (c == 0) {                                       // the clock, once
             step_ = next;
             time_ = static_cast<double>(next) * dt_;
@@ -96,6 +132,7 @@ void Simulation::prepare_chunks() {
     }
     touched_from_.resize(count);
     moved_.resize(count);
+    chunk_kinds_.resize(count);
 }
 
 namespace {
@@ -207,7 +244,8 @@ std::vector<Simulation::MotionNow> Simulation::motions_now(double time) const {
     return now;
 }
 
-// The kinematic particles of range r where their motions put them now.
+// The kinematic particles of range r where their motions put them now; the
+// sums of the forces the grains exert on them start again from zero.
 void Simulation::move_kinematic(const std::vector<MotionNow>& now, IndexRange r) {
     ParticleStore& p = particles_;
     for (std::size_t i = r.begin; i < r.end; ++i) {
@@ -217,6 +255,8 @@ void Simulation::move_kinematic(const std::vector<MotionNow>& now, IndexRange r)
         p.position[i] = m.axis_point + arm + p.image_shift[i];
         p.velocity[i] = m.velocity + m.angular_velocity * cross(m.turn.u, arm);
         p.angular_velocity[i] = m.angular_velocity * m.turn.u;
+        p.force[i] = Vec3{};
+        p.torque[i] = Vec3{};
     }
 }
 
@@ -304,6 +344,8 @@ void Simulation::restore(SimulationState state) {
     for (std::size_t k = 0; k < motions_.size(); ++k) scenario_.motions[k] = motions_[k].motion;
     time_ = state.time;
     step_ = state.step;
+    prepare_chunks();
+    run_in_team(chunks(), [&](Team& team) { locate_kinds(team); });
 }
 
 Observables Simulation::observe() const {

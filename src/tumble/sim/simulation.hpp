@@ -102,6 +102,10 @@ private:
     std::vector<MotionNow> motions_now(double time) const;
     void step(Team& team);
     void move_kinematic(const std::vector<MotionNow>& now, IndexRange r);
+    void locate_kinds(Team& team);
+    // The part of range r where free (kinematic) particles can be.
+    IndexRange free_part(IndexRange r) const;
+    IndexRange kinematic_part(IndexRange r) const;
 
     Scenario scenario_;
     PairTable pair_table_;
@@ -123,6 +127,14 @@ private:
     std::vector<Vec3> chunk_force_, chunk_torque_;
     std::vector<std::size_t> touched_from_;
     std::vector<char> moved_;
+    // The free particles lie below free_end_, the kinematic ones from
+    // kinematic_begin_ on (with the store in cell order, the kinematic ones
+    // after all the free ones: the ranges do not overlap), so that the
+    // per-particle loops of a step pass over the wall spheres only to move
+    // them, and over the grains only to move those. Per chunk while they are
+    // worked out (locate_kinds()).
+    std::size_t free_end_ = 0, kinematic_begin_ = 0;
+    std::vector<IndexRange> chunk_kinds_;
     // History of the contacts with the six flat walls, at 6 id + face (ids are
     // dense, 0 .. N-1); empty when the domain has no walls.
     std::vector<ContactHistory> wall_history_;
