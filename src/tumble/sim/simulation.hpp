@@ -58,6 +58,9 @@ public:
     void set_threads(int threads);
     int threads() const { return threads_; }
 
+    // One time step; `steps` of them. advance() runs its steps in one
+    // parallel region, so on several threads advance(n) costs less than n
+    // calls of step().
     void step();
     void advance(std::int64_t steps);
 
