@@ -122,6 +122,21 @@ public:
         }
         wait();
     }
+    // each(f) without the wait, for a phase after which every chunk goes on
+    // with its own data only (the next phase must not read what another
+    // chunk writes here): a thread may then start the next phase of its
+    // chunks while others finish this one.
+    template <class F>
+    void each_own(F&& f) {
+        for (int c = threads_ == 1 ? 0 : rank_; c < chunks_; c += threads_) {
+            try {
+                f(c);
+            } catch (...) {
+                if (threads_ == 1) throw;
+                fail(std::current_exception());  // seen at the next wait
+            }
+        }
+    }
     // f() once, on one thread; then all wait.
     template <class F>
     void one(F&& f) {

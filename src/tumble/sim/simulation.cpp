@@ -77,13 +77,14 @@ IndexRange Simulation::free_part(IndexRange r) const {
 
 IndexRange Simulation::kinematic_part(IndexRange r) const { return {std::max(r.begin, kinematic_begin_), r.end}; }
 
-// One time step of velocity Verlet (integrate/velocity_verlet.hpp) by the
-// threads of a team: each takes a part of the particles, then a part of the
-// pairs, then its part of the particles again, and waits for the others
-// after each (a rebuild of the neighbour list adds its own phases).
-void Simulation::step(Team& team) {
+// Time step `next` of velocity Verlet (integrate/velocity_verlet.hpp) by
+// the threads of a team: each takes a part of the particles, then a part of
+// the pairs, then its part of the particles again, and waits for the others
+// after the first two (a rebuild of the neighbour list adds its own
+// phases). The last phase and the first of the next step touch only the
+// chunk's own particles, so no wait is needed between them.
+void Simulation::step(Team& team, std::int64_t next) {
     const double half_dt = 0.5 * dt_;
-    const std::int64_t next = step_ + 1;
     const std::vector<MotionNow> now = motions_now(static_cast<double>(next) * dt_);
     ParticleStore& p = particles_;
     team.each([&](int c) {
@@ -117,8 +118,9 @@ void Simulation::set_threads(int threads) {
 void Simulation::advance(std::int64_t steps) {
     if (steps <= 0) return;
     prepare_chunks();
+    const std::int64_t first = step_;  // step_ is written while the team runs: each step is given its number
     run_in_team(chunks(), [&](Team& team) {
-        for (std::int64_t s = 0; s < steps; ++s) step(team);
+        for (std::int64_t s = 1; s <= steps; ++s) step(team, first + s);
     });
 }
 
@@ -152,7 +154,9 @@ namespace {
 
 // Forces and torques on every particle from its contacts, in two phases of
 // the team, then `then(c, r)` on each part r (chunk c) of the particles,
-// whose forces are complete by then. The forces must be zero on entry (kick_drift() leaves
+// whose forces are complete by then. The second phase does not wait at its
+// end: what comes next must begin with a phase on the same parts of the
+// particles (or end the team). The forces must be zero on entry (kick_drift() leaves
 // them so).
 //
 // Phase 1: chunk c takes the c-th part of the pair list; chunk 0 sums into
@@ -186,7 +190,7 @@ void Simulation::compute_forces(Team& team, Then&& then) {
             add_contact_forces<false>(p, pairs, range, neighbors_.images(), pair_table_, scenario_.model, dt_, force,
                                       torque, records_);
     });
-    team.each([&](int c) {
+    team.each_own([&](int c) {
         const IndexRange r = team.range(c, n);
         for (std::size_t part = 1; part < touched_from_.size(); ++part) {
             const std::size_t from = std::max(r.begin, touched_from_[part]), offset = (part - 1) * n;

@@ -103,7 +103,7 @@ private:
     void compute_forces(Team& team, Then&& then);
     void add_wall_forces(IndexRange r);
     std::vector<MotionNow> motions_now(double time) const;
-    void step(Team& team);
+    void step(Team& team, std::int64_t next);
     void move_kinematic(const std::vector<MotionNow>& now, IndexRange r);
     void locate_kinds(Team& team);
     // The part of range r where free (kinematic) particles can be.
