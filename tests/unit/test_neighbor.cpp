@@ -169,16 +169,42 @@ TEST(Neighbor, CellListRefusesAPeriodicAxisShorterThanThreeRanges) {
 
 // A blown-up run reaching a rebuild before its health check: NaN positions
 // would ask for a grid of ~10^18 cells (std::bad_alloc); a clear error instead.
+// The parallel build: split into 2, 3 or 7 chunks (threads), the list and
+// the sort order are those of one chunk, element for element (each chunk
+// counts and places its own particles, the parts are joined in order). The
+// store is shuffled, with kinematic particles among the free ones, so that
+// the pairs of a part start anywhere.
+TEST(Neighbor, CellListAndOrderDoNotDependOnTheChunkCount) {
+    for (const auto periodic : {std::array<bool, 3>{false, false, false}, std::array<bool, 3>{true, false, true}}) {
+        const Domain d = box(edge, periodic);
+        const ParticleStore p = random_store(d, 1000, r_min, r_max, 11);
+        PairList one;
+        cell_list_pairs(p, d, skin, one);
+        ASSERT_GT(one.size(), p.size() / 4);  // pairs must exist, or the comparison proves nothing
+        const std::vector<std::uint32_t> order = cell_order(p, d, skin);
+        for (int chunks : {2, 3, 7}) {
+            PairList many;
+            cell_list_pairs(p, d, skin, many, chunks);
+            EXPECT_EQ(many.first, one.first) << chunks << " chunks";
+            EXPECT_EQ(many.second, one.second) << chunks << " chunks";
+            EXPECT_EQ(many.image, one.image) << chunks << " chunks";
+            EXPECT_EQ(cell_order(p, d, skin, chunks), order) << chunks << " chunks";
+        }
+    }
+}
+
 TEST(Neighbor, CellListRefusesANonFinitePosition) {
     const Domain d = box(edge, {false, false, false});
     ParticleStore p = random_store(d, 20, r_min, r_max, 8);
     p.position[7].y = std::nan("");
     PairList out;
-    try {
-        cell_list_pairs(p, d, skin, out);
-        FAIL() << "a NaN position was accepted";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("a particle position is not finite"), std::string::npos) << e.what();
+    for (int chunks : {1, 3}) {  // 3: thrown on every thread of a team, caught and thrown again once
+        try {
+            cell_list_pairs(p, d, skin, out, chunks);
+            FAIL() << "a NaN position was accepted";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("a particle position is not finite"), std::string::npos) << e.what();
+        }
     }
 }
 

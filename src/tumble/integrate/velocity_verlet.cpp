@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "tumble/integrate/velocity_verlet.hpp"
 
+#include <algorithm>
+
 #include "tumble/core/isa.hpp"
-#include "tumble/core/parallel.hpp"
 
 namespace tumble {
 
@@ -60,20 +61,19 @@ void drift_range(ParticleStore& p, IndexRange r, double dt) {
 
 }  // namespace
 
-void kick(ParticleStore& p, const Vec3& gravity, double half_dt, int chunks) {
-    for_each_chunk(chunks, [&](int c) {
-        run_for_isa([&] { kick_range<false>(p, chunk_range(c, chunks, p.size()), gravity, half_dt); });
-    });
+// The loops run in the copy for the processor's instruction set (core/isa.hpp).
+void kick(ParticleStore& p, const Vec3& gravity, double half_dt, IndexRange r) {
+    run_for_isa([&] { kick_range<false>(p, r, gravity, half_dt); });
 }
 
-void kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, int chunks) {
-    for_each_chunk(chunks, [&](int c) {
-        const IndexRange r = chunk_range(c, chunks, p.size());
-        run_for_isa([&] {
-            kick_range<true>(p, r, gravity, half_dt);
-            drift_range(p, r, dt);
-        });
+void kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, IndexRange r) {
+    run_for_isa([&] {
+        kick_range<true>(p, r, gravity, half_dt);
+        drift_range(p, r, dt);
     });
+    const auto from = static_cast<std::ptrdiff_t>(r.begin), to = static_cast<std::ptrdiff_t>(r.end);
+    std::fill(p.force.begin() + from, p.force.begin() + to, Vec3{});
+    std::fill(p.torque.begin() + from, p.torque.begin() + to, Vec3{});
 }
 
 }  // namespace tumble

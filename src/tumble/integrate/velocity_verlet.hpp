@@ -8,20 +8,23 @@
 // prediction halves the stability bound of the explicit damping, to
 // dt < m*/c (sim/time_step.hpp). With the velocity-dependent terms off
 // the scheme is symplectic. Spheres need no orientation.
-// Each particle is updated on its own, so `chunks` threads give the same
-// numbers as one.
+// Each particle is updated on its own: the functions take a range of the
+// particles, and the threads that share the particles give the same numbers
+// as one.
 #pragma once
 
+#include "tumble/core/parallel.hpp"
 #include "tumble/particles/particle_store.hpp"
 
 namespace tumble {
 
-// v += half_dt (F/m + g), omega += half_dt T/I, for free particles;
-// half_kick = 0.
-void kick(ParticleStore& p, const Vec3& gravity, double half_dt, int chunks = 1);
+// v += half_dt (F/m + g), omega += half_dt T/I, for the free particles of
+// range r; half_kick = 0.
+void kick(ParticleStore& p, const Vec3& gravity, double half_dt, IndexRange r);
 
 // kick() with half_kick = the velocity change of the kick, then x += dt v
-// for free particles (the drift), in one pass.
-void kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, int chunks = 1);
+// for free particles (the drift), over range r. The forces and torques are
+// then spent and set to zero, ready for the sums of the next evaluation.
+void kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, IndexRange r);
 
 }  // namespace tumble

@@ -14,37 +14,37 @@ bool both_kinematic(const ParticleStore& p, std::size_t i, std::size_t j) {
     return p.is_kinematic(i) && p.is_kinematic(j);
 }
 
-double largest_radius(const ParticleStore& p) {
-    double r = 0.0;
-    for (double radius : p.radius) r = std::max(r, radius);
-    return r;
-}
-
 // The cell grid: on periodic axes it spans the box, on open axes the
-// particles' bounding box. Cells are at least `cutoff` wide.
+// particles' bounding box (the union of the chunks' extents). Cells are at
+// least `cutoff` wide.
 struct CellGrid {
     Vec3 origin;
     Vec3 cell_size;
     std::array<int, 3> count{1, 1, 1};
     std::array<bool, 3> periodic{};
 
-    CellGrid(const ParticleStore& p, const Domain& domain, double cutoff) {
+    CellGrid(const std::vector<CellSearch::Extent>& extents, std::size_t particles, const Domain& domain,
+             double cutoff) {
         Vec3 lo = domain.lo, hi = domain.hi;
+        bool any = false, finite = true;
+        for (const CellSearch::Extent& e : extents) {
+            if (e.empty) continue;
+            for (int k = 0; k < 3; ++k) {
+                if (domain.periodic[k]) continue;
+                lo[k] = any ? std::min(lo[k], e.lo[k]) : e.lo[k];
+                hi[k] = any ? std::max(hi[k], e.hi[k]) : e.hi[k];
+            }
+            finite = finite && e.finite;
+            any = true;
+        }
         for (int k = 0; k < 3; ++k) {
             periodic[k] = domain.periodic[k];
-            if (periodic[k]) continue;
-            lo[k] = hi[k] = p.size() ? p.position[0][k] : 0.0;
-            bool finite = true;
-            for (const Vec3& x : p.position) {
-                lo[k] = std::min(lo[k], x[k]);
-                hi[k] = std::max(hi[k], x[k]);
-                finite = finite && std::isfinite(x[k]);  // min and max pass over a NaN
-            }
-            // NaN or Inf would make a grid of ~10^18 cells.
-            if (!finite)
-                throw Error("neighbour search: a particle position is not finite: the simulation blew up (check "
-                            "the time step and the input)");
+            if (!periodic[k] && !any) lo[k] = hi[k] = 0.0;
         }
+        // NaN or Inf would make a grid of ~10^18 cells.
+        if (!finite)
+            throw Error("neighbour search: a particle position is not finite: the simulation blew up (check "
+                        "the time step and the input)");
         origin = lo;
         // Periodic axes: a whole number of cells of at least one cutoff.
         double periodic_cells = 1.0;
@@ -63,7 +63,7 @@ struct CellGrid {
         // wider if needed so that a stray particle far away cannot blow the
         // grid up (at most ~2 cells per particle). Coordinates are clamped,
         // which is safe because every cell is at least one cutoff wide.
-        const double max_cells = std::max(64.0, 2.0 * static_cast<double>(p.size()));
+        const double max_cells = std::max(64.0, 2.0 * static_cast<double>(particles));
         double width = cutoff;
         for (;;) {
             double total = periodic_cells;
@@ -89,19 +89,10 @@ struct CellGrid {
     std::size_t cells() const { return static_cast<std::size_t>(count[0]) * count[1] * count[2]; }
 };
 
-// Counting sort of particle indices by cell: start[c]..start[c+1] in `order`.
-void bin(const ParticleStore& p, const CellGrid& grid, std::vector<std::uint32_t>& start,
-         std::vector<std::uint32_t>& order) {
-    std::vector<std::size_t> cell(p.size());
-    start.assign(grid.cells() + 1, 0);
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        cell[i] = grid.cell_of(p.position[i]);
-        ++start[cell[i] + 1];
-    }
-    for (std::size_t c = 0; c < grid.cells(); ++c) start[c + 1] += start[c];
-    order.resize(p.size());
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < p.size(); ++i) order[fill[cell[i]]++] = static_cast<std::uint32_t>(i);
+double largest_radius(const std::vector<CellSearch::Extent>& extents) {
+    double r = 0.0;
+    for (const CellSearch::Extent& e : extents) r = std::max(r, e.largest_radius);
+    return r;
 }
 
 }  // namespace
@@ -127,68 +118,198 @@ void brute_force_pairs(const ParticleStore& p, const Domain& domain, double skin
     }
 }
 
-std::vector<std::uint32_t> cell_order(const ParticleStore& p, const Domain& domain, double skin) {
-    const CellGrid grid(p, domain, 2.0 * largest_radius(p) + skin);
-    std::vector<std::uint32_t> start, order;
-    bin(p, grid, start, order);
-    std::stable_partition(order.begin(), order.end(), [&](std::uint32_t i) { return !p.is_kinematic(i); });
-    return order;
+void CellSearch::measure(const ParticleStore& p, Team& team) {
+    team.one([&] {
+        extents_.resize(static_cast<std::size_t>(team.chunks()));
+        parts_.resize(extents_.size());
+        count_.resize(extents_.size());
+        chunk_total_.resize(extents_.size());
+        key_.resize(p.size());
+        members_.resize(p.size());
+    });
+    team.each([&](int c) {
+        const IndexRange r = team.range(c, p.size());
+        Extent e;
+        e.empty = r.begin == r.end;
+        if (!e.empty) e.lo = e.hi = p.position[r.begin];
+        for (std::size_t i = r.begin; i < r.end; ++i) {
+            const Vec3& x = p.position[i];
+            for (int k = 0; k < 3; ++k) {
+                e.lo[k] = std::min(e.lo[k], x[k]);
+                e.hi[k] = std::max(e.hi[k], x[k]);
+                e.finite = e.finite && std::isfinite(x[k]);  // min and max pass over a NaN
+            }
+            e.largest_radius = std::max(e.largest_radius, p.radius[i]);
+            if (!p.is_kinematic(i)) e.free_end = i + 1;
+        }
+        extents_[static_cast<std::size_t>(c)] = e;
+    });
 }
 
-void cell_list_pairs(const ParticleStore& p, const Domain& domain, double skin, PairList& out) {
-    out.clear();
-    if (p.size() == 0) return;
-    const CellGrid grid(p, domain, 2.0 * largest_radius(p) + skin);
-    std::vector<std::uint32_t> start, members;
-    bin(p, grid, start, members);
-    const Vec3 L = domain.length();
-    std::vector<std::uint32_t> near;  // candidates j > i with their image codes
-    std::vector<std::uint8_t> near_image;
+// Three phases: each chunk counts its particles per bin; the counts are
+// added up bin by bin, in chunk order within a bin, each chunk of the team
+// taking a part of the bins (first their sums, then, from the sums of the
+// parts before it, the place where each chunk's first particle of each bin
+// goes); each chunk puts its particles there, in their order. Stable, and
+// the same for every chunk count.
+void CellSearch::counting_sort(std::size_t particles, std::size_t bins, Team& team,
+                               std::vector<std::uint32_t>& sorted) {
+    const auto chunks = static_cast<std::size_t>(team.chunks());
+    team.each([&](int c) {
+        std::vector<std::uint32_t>& count = count_[static_cast<std::size_t>(c)];
+        count.assign(bins, 0);
+        const IndexRange r = team.range(c, particles);
+        for (std::size_t i = r.begin; i < r.end; ++i) ++count[key_[i]];
+        if (c == 0) start_.resize(bins + 1);
+    });
+    team.each([&](int c) {
+        const IndexRange b = team.range(c, bins);
+        std::size_t total = 0;
+        for (std::size_t bin = b.begin; bin < b.end; ++bin)
+            for (std::size_t t = 0; t < chunks; ++t) total += count_[t][bin];
+        chunk_total_[static_cast<std::size_t>(c)] = total;
+    });
+    team.each([&](int c) {
+        std::size_t place = 0;
+        for (int before = 0; before < c; ++before) place += chunk_total_[static_cast<std::size_t>(before)];
+        const IndexRange b = team.range(c, bins);
+        for (std::size_t bin = b.begin; bin < b.end; ++bin) {
+            start_[bin] = static_cast<std::uint32_t>(place);
+            for (std::size_t t = 0; t < chunks; ++t) {
+                const std::uint32_t n = count_[t][bin];
+                count_[t][bin] = static_cast<std::uint32_t>(place);
+                place += n;
+            }
+        }
+        if (c == team.chunks() - 1) start_[bins] = static_cast<std::uint32_t>(particles);
+    });
+    team.each([&](int c) {
+        std::vector<std::uint32_t>& next = count_[static_cast<std::size_t>(c)];
+        const IndexRange r = team.range(c, particles);
+        for (std::size_t i = r.begin; i < r.end; ++i) sorted[next[key_[i]]++] = static_cast<std::uint32_t>(i);
+    });
+}
 
-    for (std::uint32_t i = 0; i < p.size(); ++i) {
-        const Vec3& xi = p.position[i];
-        const int c[3] = {grid.coordinate(xi, 0), grid.coordinate(xi, 1), grid.coordinate(xi, 2)};
-        near.clear();
-        near_image.clear();
-        for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const int delta[3] = {dx, dy, dz};
-                    int nc[3], s[3];
-                    bool outside = false;
-                    for (int k = 0; k < 3; ++k) {
-                        nc[k] = c[k] + delta[k];
-                        s[k] = 0;
-                        if (nc[k] < 0 || nc[k] >= grid.count[k]) {
-                            if (!grid.periodic[k]) { outside = true; break; }
-                            // j lives across the boundary: shift its image toward i.
-                            s[k] = nc[k] < 0 ? -1 : 1;
-                            nc[k] -= s[k] * grid.count[k];
+void CellSearch::sort_order(const ParticleStore& p, const Domain& domain, double skin, Team& team,
+                            std::vector<std::uint32_t>& order) {
+    measure(p, team);
+    const CellGrid grid(extents_, p.size(), domain, 2.0 * largest_radius(extents_) + skin);
+    // Bin: the cell, the kinematic particles in a second set of cells after
+    // the first, so that they come after all the free ones.
+    team.each([&](int c) {
+        const IndexRange r = team.range(c, p.size());
+        for (std::size_t i = r.begin; i < r.end; ++i)
+            key_[i] = static_cast<std::uint32_t>(grid.cell_of(p.position[i]) + (p.is_kinematic(i) ? grid.cells() : 0));
+        if (c == 0) order.resize(p.size());
+    });
+    counting_sort(p.size(), 2 * grid.cells(), team, order);
+}
+
+void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double skin, Team& team, PairList& out) {
+    measure(p, team);
+    const CellGrid grid(extents_, p.size(), domain, 2.0 * largest_radius(extents_) + skin);
+    team.each([&](int c) {
+        const IndexRange r = team.range(c, p.size());
+        for (std::size_t i = r.begin; i < r.end; ++i) key_[i] = static_cast<std::uint32_t>(grid.cell_of(p.position[i]));
+    });
+    counting_sort(p.size(), grid.cells(), team, members_);
+    // A pair has a free particle and j > i: no pair starts after the last
+    // free particle (with the store in cell_order(), the kinematic ones).
+    std::size_t free_end = 0;
+    for (const Extent& e : extents_) free_end = std::max(free_end, e.free_end);
+    const Vec3 L = domain.length();
+    team.each([&](int c) {
+        Part& part = parts_[static_cast<std::size_t>(c)];
+        part.first.clear();
+        part.second.clear();
+        part.image.clear();
+        std::vector<std::uint32_t> near;  // candidates j > i with their image codes
+        std::vector<std::uint8_t> near_image;
+        std::vector<std::size_t> by_j;
+        const IndexRange range = team.range(c, free_end);
+        for (auto i = static_cast<std::uint32_t>(range.begin); i < range.end; ++i) {
+            const Vec3& xi = p.position[i];
+            const int cell_i[3] = {grid.coordinate(xi, 0), grid.coordinate(xi, 1), grid.coordinate(xi, 2)};
+            near.clear();
+            near_image.clear();
+            for (int dz = -1; dz <= 1; ++dz)
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const int delta[3] = {dx, dy, dz};
+                        int nc[3], s[3];
+                        bool outside = false;
+                        for (int k = 0; k < 3; ++k) {
+                            nc[k] = cell_i[k] + delta[k];
+                            s[k] = 0;
+                            if (nc[k] < 0 || nc[k] >= grid.count[k]) {
+                                if (!grid.periodic[k]) { outside = true; break; }
+                                // j lives across the boundary: shift its image toward i.
+                                s[k] = nc[k] < 0 ? -1 : 1;
+                                nc[k] -= s[k] * grid.count[k];
+                            }
+                        }
+                        if (outside) continue;
+                        const std::size_t cell = grid.index(nc[0], nc[1], nc[2]);
+                        const std::uint8_t code = image_code(-s[0], -s[1], -s[2]);
+                        // d = X_i - X_j + shift: j sits at X_j + s L seen from i,
+                        // so shift = -s L, the image code of (-s).
+                        for (std::uint32_t m = start_[cell]; m < start_[cell + 1]; ++m) {
+                            const std::uint32_t j = members_[m];
+                            if (j <= i || both_kinematic(p, i, j)) continue;
+                            Vec3 d = xi - p.position[j];
+                            for (int k = 0; k < 3; ++k) d[k] -= s[k] * L[k];
+                            const double range_ij = p.radius[i] + p.radius[j] + skin;
+                            if (norm2(d) < range_ij * range_ij) {
+                                near.push_back(j);
+                                near_image.push_back(code);
+                            }
                         }
                     }
-                    if (outside) continue;
-                    const std::size_t cell = grid.index(nc[0], nc[1], nc[2]);
-                    const std::uint8_t code = image_code(-s[0], -s[1], -s[2]);
-                    // d = X_i - X_j + shift: j sits at X_j + s L seen from i,
-                    // so shift = -s L, the image code of (-s).
-                    for (std::uint32_t m = start[cell]; m < start[cell + 1]; ++m) {
-                        const std::uint32_t j = members[m];
-                        if (j <= i || both_kinematic(p, i, j)) continue;
-                        Vec3 d = xi - p.position[j];
-                        for (int k = 0; k < 3; ++k) d[k] -= s[k] * L[k];
-                        const double range = p.radius[i] + p.radius[j] + skin;
-                        if (norm2(d) < range * range) {
-                            near.push_back(j);
-                            near_image.push_back(code);
-                        }
-                    }
-                }
-        // Ascending j within each i: the pair order does not depend on cell layout.
-        std::vector<std::size_t> idx(near.size());
-        for (std::size_t k = 0; k < idx.size(); ++k) idx[k] = k;
-        std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return near[a] < near[b]; });
-        for (std::size_t k : idx) out.add(i, near[k], near_image[k]);
-    }
+            // Ascending j within each i: the pair order does not depend on cell layout.
+            by_j.resize(near.size());
+            for (std::size_t k = 0; k < by_j.size(); ++k) by_j[k] = k;
+            std::sort(by_j.begin(), by_j.end(), [&](std::size_t a, std::size_t b) { return near[a] < near[b]; });
+            for (std::size_t k : by_j) {
+                part.first.push_back(i);
+                part.second.push_back(near[k]);
+                part.image.push_back(near_image[k]);
+            }
+        }
+    });
+    // The parts one after the other. Resizing keeps what the list held (its
+    // length changes little from one build to the next), so the one thread
+    // that does it writes only the difference.
+    std::size_t total = 0;
+    for (const Part& part : parts_) total += part.first.size();
+    team.one([&] {
+        out.first.resize(total);
+        out.second.resize(total);
+        out.image.resize(total);
+        out.slip.resize(total);
+        out.angular_slip.resize(total);
+    });
+    team.each([&](int c) {
+        std::size_t at = 0;
+        for (int before = 0; before < c; ++before) at += parts_[static_cast<std::size_t>(before)].first.size();
+        const Part& part = parts_[static_cast<std::size_t>(c)];
+        std::copy(part.first.begin(), part.first.end(), out.first.begin() + static_cast<std::ptrdiff_t>(at));
+        std::copy(part.second.begin(), part.second.end(), out.second.begin() + static_cast<std::ptrdiff_t>(at));
+        std::copy(part.image.begin(), part.image.end(), out.image.begin() + static_cast<std::ptrdiff_t>(at));
+        std::fill_n(out.slip.begin() + static_cast<std::ptrdiff_t>(at), part.first.size(), Vec3{});
+        std::fill_n(out.angular_slip.begin() + static_cast<std::ptrdiff_t>(at), part.first.size(), 0.0);
+    });
+}
+
+void cell_list_pairs(const ParticleStore& p, const Domain& domain, double skin, PairList& out, int chunks) {
+    CellSearch search;
+    run_in_team(chunks, [&](Team& team) { search.find_pairs(p, domain, skin, team, out); });
+}
+
+std::vector<std::uint32_t> cell_order(const ParticleStore& p, const Domain& domain, double skin, int chunks) {
+    CellSearch search;
+    std::vector<std::uint32_t> order;
+    run_in_team(chunks, [&](Team& team) { search.sort_order(p, domain, skin, team, order); });
+    return order;
 }
 
 }  // namespace tumble

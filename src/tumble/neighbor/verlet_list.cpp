@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 #include <utility>
 
 #include "tumble/core/parallel.hpp"
@@ -13,19 +12,12 @@ namespace tumble {
 
 namespace {
 
-// Key of an unordered pair of global ids (ids are below 2^32, see
-// scenario_problem()).
-std::uint64_t pair_key(std::int64_t a, std::int64_t b) {
-    const auto lo = static_cast<std::uint64_t>(std::min(a, b));
-    const auto hi = static_cast<std::uint64_t>(std::max(a, b));
-    return (lo << 32) | hi;
-}
-
-// Periodic axes: bring every position back into [lo, hi). Kinematic
-// particles remember the shift so their prescribed motion stays continuous.
-void wrap_into_box(ParticleStore& p, const Domain& domain) {
+// Periodic axes: bring every position of range r back into [lo, hi).
+// Kinematic particles remember the shift so their prescribed motion stays
+// continuous.
+void wrap_into_box(ParticleStore& p, const Domain& domain, IndexRange r) {
     const Vec3 L = domain.length();
-    for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t i = r.begin; i < r.end; ++i)
         for (int k = 0; k < 3; ++k) {
             if (!domain.periodic[k]) continue;
             const double wraps = std::floor((p.position[i][k] - domain.lo[k]) / L[k]);
@@ -41,45 +33,70 @@ void wrap_into_box(ParticleStore& p, const Domain& domain) {
 VerletList::VerletList(const Domain& domain, double skin, int sort_every)
     : domain_(domain), skin_(skin), sort_every_(sort_every), images_(domain.length()) {}
 
-bool VerletList::needs_rebuild(const ParticleStore& p, int chunks) const {
+bool VerletList::moved_far(const ParticleStore& p, IndexRange r) const {
     if (position_at_build_.size() != p.size()) return true;
     const double limit2 = 0.25 * skin_ * skin_;  // (skin/2)^2
-    std::vector<char> moved(static_cast<std::size_t>(chunks), 0);
-    for_each_chunk(chunks, [&](int c) {
-        const IndexRange r = chunk_range(c, chunks, p.size());
-        for (std::size_t i = r.begin; i < r.end; ++i)
-            if (norm2(p.position[i] - position_at_build_[i]) > limit2) {
-                moved[static_cast<std::size_t>(c)] = 1;
-                return;
-            }
-    });
-    return std::find(moved.begin(), moved.end(), 1) != moved.end();
+    for (std::size_t i = r.begin; i < r.end; ++i)
+        if (norm2(p.position[i] - position_at_build_[i]) > limit2) return true;
+    return false;
 }
 
 void VerletList::rebuild(ParticleStore& p) {
-    // Remember the history of every live contact by the global ids of its pair,
-    // oriented as (lower id, higher id).
-    std::unordered_map<std::uint64_t, ContactHistory> live;
-    for (std::size_t k = 0; k < pairs_.size(); ++k) {
-        const ContactHistory h = pairs_.history(k);
-        if (h.is_zero()) continue;
-        const std::int64_t a = p.id[pairs_.first[k]], b = p.id[pairs_.second[k]];
-        live.emplace(pair_key(a, b), a < b ? h : h.swapped());
+    run_in_team(1, [&](Team& team) { rebuild(p, team); });
+}
+
+// Every phase splits particles or pairs between the chunks; none has a part
+// that one thread does for all particles. The contact history is carried
+// over by array index, not by a table of global ids: the old list is kept,
+// with where each particle's pairs begin in it, and the new pair (i, j) finds
+// the old pair of the same two particles (their indices before the sort,
+// order_) by a binary search among the few pairs of the lower one.
+void VerletList::rebuild(ParticleStore& p, Team& team) {
+    const std::size_t n = p.size();
+    const bool sort = sort_every_ > 0 && builds_ % sort_every_ == 0;
+    team.one([&] {
+        std::swap(pairs_, previous_);
+        previous_start_.resize(n + 1);
+        position_at_build_.resize(n);
+        if (sort && sorted_.size() != n) sorted_ = p;  // the arrays to sort into, same size as p from then on
+    });
+    team.each([&](int c) {
+        const IndexRange r = team.range(c, n);
+        wrap_into_box(p, domain_, r);
+        for (std::size_t i = r.begin; i < r.end; ++i)
+            previous_start_[i] = static_cast<std::size_t>(
+                std::lower_bound(previous_.first.begin(), previous_.first.end(), static_cast<std::uint32_t>(i)) -
+                previous_.first.begin());
+        if (c == team.chunks() - 1) previous_start_[n] = previous_.size();
+    });
+    if (sort) {
+        search_.sort_order(p, domain_, skin_, team, order_);
+        team.each([&](int c) { sorted_.gather(p, order_, team.range(c, n)); });
+        team.one([&] { std::swap(p, sorted_); });
     }
-
-    wrap_into_box(p, domain_);
-    if (sort_every_ > 0 && builds_ % sort_every_ == 0) p.permute(cell_order(p, domain_, skin_));
-    cell_list_pairs(p, domain_, skin_, pairs_);
-
-    if (!live.empty())
-        for (std::size_t k = 0; k < pairs_.size(); ++k) {
-            const std::int64_t a = p.id[pairs_.first[k]], b = p.id[pairs_.second[k]];
-            const auto found = live.find(pair_key(a, b));
-            if (found != live.end()) pairs_.set_history(k, a < b ? found->second : found->second.swapped());
+    search_.find_pairs(p, domain_, skin_, team, pairs_);
+    team.each([&](int c) {
+        const IndexRange r = team.range(c, pairs_.size());
+        for (std::size_t k = r.begin; k < r.end; ++k) {
+            const std::uint32_t a = sort ? order_[pairs_.first[k]] : pairs_.first[k];
+            const std::uint32_t b = sort ? order_[pairs_.second[k]] : pairs_.second[k];
+            const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
+            const auto group = previous_.second.begin();
+            const auto from = group + static_cast<std::ptrdiff_t>(previous_start_[lo]);
+            const auto to = group + static_cast<std::ptrdiff_t>(previous_start_[lo + 1]);
+            const auto found = std::lower_bound(from, to, hi);
+            if (found == to || *found != hi) continue;  // a new pair: zero history
+            // The old pair had the lower old index first; its history is seen
+            // from that particle.
+            const ContactHistory h = previous_.history(static_cast<std::size_t>(found - group));
+            pairs_.set_history(k, a < b ? h : h.swapped());
         }
-
-    position_at_build_ = p.position;
-    ++builds_;
+        const IndexRange particles = team.range(c, n);
+        std::copy(p.position.begin() + static_cast<std::ptrdiff_t>(particles.begin),
+                  p.position.begin() + static_cast<std::ptrdiff_t>(particles.end),
+                  position_at_build_.begin() + static_cast<std::ptrdiff_t>(particles.begin));
+        if (c == 0) ++builds_;
+    });
 }
 
 void VerletList::restore(NeighborState state) {

@@ -2,14 +2,16 @@
 // Verlet list with a skin over linked cells. Rebuilt only when some particle
 // has moved more than half the skin since the last build (then no pair can
 // have come into contact unseen). At a rebuild the particles may be re-sorted
-// in cell order for cache reuse; contact history is carried over by the
-// global ids of the two particles, so neither re-sorting nor rebuilding loses
-// it.
+// in cell order for cache reuse; contact history is carried over from the
+// pair of the same two particles in the old list, so neither re-sorting nor
+// rebuilding loses it.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "tumble/core/parallel.hpp"
+#include "tumble/neighbor/candidate_pairs.hpp"
 #include "tumble/neighbor/pair_list.hpp"
 #include "tumble/neighbor/periodic_images.hpp"
 #include "tumble/core/domain.hpp"
@@ -31,11 +33,15 @@ public:
     VerletList() = default;
     VerletList(const Domain& domain, double skin, int sort_every);
 
-    // Whether some particle has moved more than skin/2 since the last build
-    // (checked in `chunks` parts on as many threads).
-    bool needs_rebuild(const ParticleStore& p, int chunks = 1) const;
+    // Whether some particle of range r has moved more than skin/2 since the
+    // last build (true before the first build).
+    bool moved_far(const ParticleStore& p, IndexRange r) const;
+    bool needs_rebuild(const ParticleStore& p) const { return moved_far(p, {0, p.size()}); }
     // Wraps positions into periodic axes, sorts (every sort_every-th build),
-    // rebuilds the pairs and carries the contact history over.
+    // rebuilds the pairs and carries the contact history over: as phases of
+    // a team (core/parallel.hpp), or on one thread. The list and the
+    // particle order are the same for every number of chunks.
+    void rebuild(ParticleStore& p, Team& team);
     void rebuild(ParticleStore& p);
 
     PairList& pairs() { return pairs_; }
@@ -56,6 +62,14 @@ private:
     PairList pairs_;
     std::vector<Vec3> position_at_build_;
     std::int64_t builds_ = 0;
+    // Working arrays of a build, kept for the next: the cell search's, the
+    // list before the build with where each particle's pairs begin in it,
+    // the sort's order and the store it sorts into.
+    CellSearch search_;
+    PairList previous_;
+    std::vector<std::size_t> previous_start_;
+    std::vector<std::uint32_t> order_;
+    ParticleStore sorted_;
 };
 
 }  // namespace tumble

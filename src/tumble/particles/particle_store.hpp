@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "tumble/core/parallel.hpp"
 #include "tumble/core/vec3.hpp"
 
 namespace tumble {
@@ -45,6 +46,9 @@ struct ParticleStore {
 
     // Reorder every field: new index k holds the particle that was at order[k].
     void permute(const std::vector<std::uint32_t>& order);
+    // The same for the indices k of range r, from `from` (a store of the
+    // same size): the part of a permutation one thread does.
+    void gather(const ParticleStore& from, const std::vector<std::uint32_t>& order, IndexRange r);
 };
 
 }  // namespace tumble

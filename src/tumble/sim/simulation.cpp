@@ -38,22 +38,77 @@ Simulation::Simulation(Scenario scenario, int threads) : scenario_(std::move(sce
     for (const RigidMotion& m : scenario_.motions) motions_.push_back({m, 0.0});
     const auto& walls = scenario_.domain.walls;
     if (walls[0] || walls[1] || walls[2]) wall_history_.resize(6 * particles_.size());
-    move_kinematic();
-    neighbors_.rebuild(particles_);
-    compute_forces();
+    move_kinematic(motions_now(time_), {0, particles_.size()});
+    prepare_chunks();
+    run_in_team(chunks(), [&](Team& team) {
+        neighbors_.rebuild(particles_, team);
+        locate_kinds(team);
+        compute_forces(team, [](int, IndexRange) {});
+    });
 }
 
-// One time step of velocity Verlet; see integrate/velocity_verlet.hpp.
-void Simulation::step() {
-    const double half_dt = 0.5 * dt_;
-    kick_drift(particles_, scenario_.gravity, half_dt, dt_, threads_);  // v(t) -> v(t + dt/2), x(t) -> x(t + dt)
-    ++step_;
-    time_ = static_cast<double>(step_) * dt_;
-    move_kinematic();                                        // prescribed x, v, omega at t + dt
-    if (neighbors_.needs_rebuild(particles_, threads_)) neighbors_.rebuild(particles_);
-    compute_forces();                                        // F(t + dt), with v(t + dt/2) and v(t + dt) predicted
-    kick(particles_, scenario_.gravity, half_dt, threads_);  // v(t + dt/2) -> v(t + dt)
+// Where the free and the kinematic particles lie in the store, after a
+// rebuild (which may have re-sorted it) or a restore: each chunk looks at its
+// part, then one thread combines the parts (a few numbers each).
+void Simulation::locate_kinds(Team& team) {
+    const ParticleStore& p = particles_;
+    team.each([&](int c) {
+        const IndexRange r = team.range(c, p.size());
+        IndexRange& kinds = chunk_kinds_[static_cast<std::size_t>(c)];
+        kinds = {p.size(), 0};  // first kinematic, one past the last free
+        for (std::size_t i = r.begin; i < r.end; ++i)
+            if (p.is_kinematic(i))
+                kinds.begin = std::min(kinds.begin, i);
+            else
+                kinds.end = i + 1;
+    });
+    team.one([&] {
+        kinematic_begin_ = p.size();
+        free_end_ = 0;
+        for (const IndexRange& kinds : chunk_kinds_) {
+            kinematic_begin_ = std::min(kinematic_begin_, kinds.begin);
+            free_end_ = std::max(free_end_, kinds.end);
+        }
+    });
 }
+
+IndexRange Simulation::free_part(IndexRange r) const {
+    const std::size_t end = std::min(r.end, free_end_);
+    return {std::min(r.begin, end), end};
+}
+
+IndexRange Simulation::kinematic_part(IndexRange r) const { return {std::max(r.begin, kinematic_begin_), r.end}; }
+
+// Time step `next` of velocity Verlet (integrate/velocity_verlet.hpp) by
+// the threads of a team: each takes a part of the particles, then a part of
+// the pairs, then its part of the particles again, and waits for the others
+// after the first two (a rebuild of the neighbour list adds its own
+// phases). The last phase and the first of the next step touch only the
+// chunk's own particles, so no wait is needed between them.
+void Simulation::step(Team& team, std::int64_t next) {
+    const double half_dt = 0.5 * dt_;
+    const std::vector<MotionNow> now = motions_now(static_cast<double>(next) * dt_);
+    ParticleStore& p = particles_;
+    team.each([&](int c) {
+        const IndexRange r = team.range(c, p.size());
+        kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r));  // v(t) -> v(t + dt/2), x(t) -> x(t + dt); F = 0
+        move_kinematic(now, kinematic_part(r));                         // prescribed x, v, omega at t + dt; F = 0
+        moved_[static_cast<std::size_t>(c)] = neighbors_.moved_far(p, r);
+    });
+    if (std::find(moved_.begin(), moved_.end(), 1) != moved_.end()) {
+        neighbors_.rebuild(p, team);
+        locate_kinds(team);
+    }
+    compute_forces(team, [&](int c, IndexRange r) {  // F(t + dt), with v(t + dt/2) and v(t + dt) predicted
+        kick(p, scenario_.gravity, half_dt, free_part(r));  // v(t + dt/2) -> v(t + dt)
+        if (c == 0) {                                       // the clock, once
+            step_ = next;
+            time_ = static_cast<double>(next) * dt_;
+        }
+    });
+}
+
+void Simulation::step() { advance(1); }
 
 void Simulation::set_threads(int threads) {
     if (threads < 1 || threads > max_threads)
@@ -61,8 +116,27 @@ void Simulation::set_threads(int threads) {
     threads_ = threads;
 }
 
+// All the steps in one parallel region (core/parallel.hpp).
 void Simulation::advance(std::int64_t steps) {
-    for (std::int64_t s = 0; s < steps; ++s) step();
+    if (steps <= 0) return;
+    prepare_chunks();
+    const std::int64_t first = step_;  // step_ is written while the team runs: each step is given its number
+    run_in_team(chunks(), [&](Team& team) {
+        for (std::int64_t s = 1; s <= steps; ++s) step(team, first + s);
+    });
+}
+
+// The arrays each chunk writes on its own, for the current chunk count.
+void Simulation::prepare_chunks() {
+    const auto count = static_cast<std::size_t>(chunks());
+    const std::size_t extra = (count - 1) * particles_.size();
+    if (chunk_force_.size() != extra) {
+        chunk_force_.assign(extra, Vec3{});
+        chunk_torque_.assign(extra, Vec3{});
+    }
+    touched_from_.resize(count);
+    moved_.resize(count);
+    chunk_kinds_.resize(count);
 }
 
 namespace {
@@ -79,41 +153,37 @@ void add_and_clear(double* __restrict sum, double* __restrict part, std::size_t 
 
 }  // namespace
 
-// Forces and torques on every particle from its contacts. Thread c takes
-// the c-th part of the pair list; thread 0 sums into the particles' arrays,
-// thread c >= 1 into its own, which the particles then add in thread order.
-// The sums are thus the same bitwise on every run with the same thread
-// count, and differ from one thread's only by the order of the additions
-// (round-off). Recording runs on one thread.
+// Forces and torques on every particle from its contacts, in two phases of
+// the team, then `then(c, r)` on each part r (chunk c) of the particles,
+// whose forces are complete by then. The second phase does not wait at its
+// end: what comes next must begin with a phase on the same parts of the
+// particles (or end the team). The forces must be zero on entry (kick_drift() leaves
+// them so).
 //
-// The list is sorted by first particle and j > i in every pair, so thread
+// Phase 1: chunk c takes the c-th part of the pair list; chunk 0 sums into
+// the particles' arrays, chunk c >= 1 into its own. Phase 2: chunk c takes
+// the c-th part of the particles and adds the other chunks' sums to theirs,
+// in chunk order, then the flat walls. The sums are thus the same bitwise
+// on every run with the same chunk count, and differ from one chunk's only
+// by the order of the additions (round-off). Recording runs on one chunk.
+//
+// The list is sorted by first particle and j > i in every pair, so chunk
 // c >= 1 touches only particles from the first particle of its part on
-// (touched_from[c]); its arrays are added from there only, and cleared as
+// (touched_from_[c]); its arrays are added from there only, and cleared as
 // they are read, so they are zero between calls. The parts left out are +0
 // (a sum begun at +0 is never -0), so adding them would change nothing.
-void Simulation::compute_forces() {
+template <class Then>
+void Simulation::compute_forces(Team& team, Then&& then) {
     ParticleStore& p = particles_;
     PairList& pairs = neighbors_.pairs();
     const std::size_t n = p.size();
-    const int chunks = recording_ ? 1 : threads_;
-    const auto extra = static_cast<std::size_t>(chunks - 1) * n;
-    if (chunk_force_.size() != extra) {
-        chunk_force_.assign(extra, Vec3{});
-        chunk_torque_.assign(extra, Vec3{});
-    }
-    std::vector<std::size_t> touched_from(static_cast<std::size_t>(chunks), n);
-    records_.clear();
-    for_each_chunk(chunks, [&](int c) {
-        const IndexRange range = chunk_range(c, chunks, pairs.size());
+    if (recording_) records_.clear();
+    team.each([&](int c) {
+        const IndexRange range = team.range(c, pairs.size());
         const auto part = static_cast<std::size_t>(c);
         Vec3* force = c == 0 ? p.force.data() : chunk_force_.data() + (part - 1) * n;
         Vec3* torque = c == 0 ? p.torque.data() : chunk_torque_.data() + (part - 1) * n;
-        if (c == 0) {
-            std::fill(force, force + n, Vec3{});
-            std::fill(torque, torque + n, Vec3{});
-        } else if (range.begin < range.end) {
-            touched_from[part] = pairs.first[range.begin];
-        }
+        touched_from_[part] = range.begin < range.end ? pairs.first[range.begin] : n;
         run_for_isa([&] {
             if (recording_)
                 add_contact_forces<true>(p, pairs, range, neighbors_.images(), pair_table_, scenario_.model, dt_,
@@ -123,29 +193,30 @@ void Simulation::compute_forces() {
                                           force, torque, records_);
         });
     });
-    for (std::size_t part = 1; part < touched_from.size(); ++part) {
-        const std::size_t from = touched_from[part], offset = (part - 1) * n;
-        for_each_chunk(chunks, [&](int c) {
-            const IndexRange r = chunk_range(c, chunks, n - from);
-            const std::size_t begin = 3 * (from + r.begin), end = 3 * (from + r.end);  // 3 numbers per vector
+    team.each_own([&](int c) {
+        const IndexRange r = team.range(c, n);
+        for (std::size_t part = 1; part < touched_from_.size(); ++part) {
+            const std::size_t from = std::max(r.begin, touched_from_[part]), offset = (part - 1) * n;
+            if (from >= r.end) continue;
             run_for_isa([&] {
-                add_and_clear(&p.force.data()->x, &(chunk_force_.data() + offset)->x, begin, end);
-                add_and_clear(&p.torque.data()->x, &(chunk_torque_.data() + offset)->x, begin, end);
+                add_and_clear(&p.force.data()->x, &(chunk_force_.data() + offset)->x, 3 * from, 3 * r.end);  // 3 numbers per vector
+                add_and_clear(&p.torque.data()->x, &(chunk_torque_.data() + offset)->x, 3 * from, 3 * r.end);
             });
-        });
-    }
-    if (!wall_history_.empty()) add_wall_forces(chunks);
+        }
+        if (!wall_history_.empty()) add_wall_forces(r);
+        then(c, r);
+    });
 }
 
-// Flat walls at both ends of each walled axis: every free sphere closer to a
-// wall than its radius is in contact with it (a sphere of infinite radius).
-// Each particle only touches its own forces and wall histories, so the
-// particles are split between the threads as they come.
-void Simulation::add_wall_forces(int chunks) {
+// Flat walls at both ends of each walled axis: every free sphere of range r
+// closer to a wall than its radius is in contact with it (a sphere of
+// infinite radius). Each particle only touches its own forces and wall
+// histories.
+void Simulation::add_wall_forces(IndexRange r) {
     ParticleStore& p = particles_;
     const Domain& box = scenario_.domain;
-    parallel_for(chunks, p.size(), [&](std::size_t i) {
-        if (p.is_kinematic(i)) return;
+    for (std::size_t i = r.begin; i < r.end; ++i) {
+        if (p.is_kinematic(i)) continue;
         for (int axis = 0; axis < 3; ++axis) {
             if (!box.walls[axis]) continue;
             for (int side = 0; side < 2; ++side) {
@@ -166,40 +237,36 @@ void Simulation::add_wall_forces(int chunks) {
                 if (recording_) records_.push_back({p.id[i], wall_id(face), g, f, history});
             }
         }
-    });
+    }
 }
 
-void Simulation::move_kinematic() {
-    // Per motion: where the axis is now and the rotation since the motion began.
-    struct Now {
-        Vec3 start_axis_point, axis_point, velocity;
-        Rotation turn;
-        double angular_velocity;
-    };
-    std::vector<Now> now;
+// Per motion: where the axis is now and the rotation since the motion
+// began, worked out once per step for all its particles.
+std::vector<Simulation::MotionNow> Simulation::motions_now(double time) const {
+    std::vector<MotionNow> now;
     for (const MotionClock& m : motions_) {
-        const double elapsed = time_ - m.start_time;
+        const double elapsed = time - m.start_time;
         const Vec3 u = (1.0 / norm(m.motion.axis_direction)) * m.motion.axis_direction;
         now.push_back({m.motion.axis_point, m.motion.axis_point + elapsed * m.motion.velocity, m.motion.velocity,
                        Rotation(u, m.motion.angular_velocity * elapsed), m.motion.angular_velocity});
     }
-    if (now.empty()) return;  // no kinematic particles
-    // The neighbour list stores them last (cell_order()): split their range
-    // between the threads, not all particles.
+    return now;
+}
+
+// The kinematic particles of range r where their motions put them now; the
+// sums of the forces the grains exert on them start again from zero.
+void Simulation::move_kinematic(const std::vector<MotionNow>& now, IndexRange r) {
     ParticleStore& p = particles_;
-    const auto is_kinematic = [](std::int32_t motion) { return motion != free_motion; };
-    const auto first = std::find_if(p.motion.begin(), p.motion.end(), is_kinematic);
-    const auto last = std::find_if(p.motion.rbegin(), p.motion.rend(), is_kinematic).base();
-    const auto from = static_cast<std::size_t>(first - p.motion.begin());
-    parallel_for(threads_, first < last ? static_cast<std::size_t>(last - first) : 0, [&](std::size_t k) {
-        const std::size_t i = from + k;
-        if (!p.is_kinematic(i)) return;
-        const Now& m = now[static_cast<std::size_t>(p.motion[i])];
+    for (std::size_t i = r.begin; i < r.end; ++i) {
+        if (!p.is_kinematic(i)) continue;
+        const MotionNow& m = now[static_cast<std::size_t>(p.motion[i])];
         const Vec3 arm = rotate(p.reference_position[i] - m.start_axis_point, m.turn);
         p.position[i] = m.axis_point + arm + p.image_shift[i];
         p.velocity[i] = m.velocity + m.angular_velocity * cross(m.turn.u, arm);
         p.angular_velocity[i] = m.angular_velocity * m.turn.u;
-    });
+        p.force[i] = Vec3{};
+        p.torque[i] = Vec3{};
+    }
 }
 
 void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
@@ -210,7 +277,7 @@ void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
         if (p.motion[i] == static_cast<std::int32_t>(k)) p.reference_position[i] = p.position[i] - p.image_shift[i];
     motions_[k] = {motion, time_};
     scenario_.motions[k] = motion;
-    move_kinematic();
+    move_kinematic(motions_now(time_), {0, p.size()});
 }
 
 SimulationState Simulation::capture() const {
@@ -286,6 +353,8 @@ void Simulation::restore(SimulationState state) {
     for (std::size_t k = 0; k < motions_.size(); ++k) scenario_.motions[k] = motions_[k].motion;
     time_ = state.time;
     step_ = state.step;
+    prepare_chunks();
+    run_in_team(chunks(), [&](Team& team) { locate_kinds(team); });
 }
 
 Observables Simulation::observe() const {

@@ -10,7 +10,9 @@
 #include "tumble/sim/time_step.hpp"
 #include "tumble/materials/pair_table.hpp"
 #include "tumble/neighbor/verlet_list.hpp"
+#include "tumble/core/parallel.hpp"
 #include "tumble/particles/particle_store.hpp"
+#include "tumble/particles/rigid_motion.hpp"
 #include "tumble/sim/pair_loop.hpp"
 #include "tumble/sim/scenario.hpp"
 #include "tumble/sim/simulation_state.hpp"
@@ -56,6 +58,9 @@ public:
     void set_threads(int threads);
     int threads() const { return threads_; }
 
+    // One time step; `steps` of them. advance() runs its steps in one
+    // parallel region, so on several threads advance(n) costs less than n
+    // calls of step().
     void step();
     void advance(std::int64_t steps);
 
@@ -86,9 +91,24 @@ public:
     const std::vector<ContactRecord>& contact_records() const { return records_; }
 
 private:
-    void compute_forces();
-    void add_wall_forces(int chunks);
-    void move_kinematic();
+    // Where each prescribed motion is at a time (move_kinematic()).
+    struct MotionNow {
+        Vec3 start_axis_point, axis_point, velocity;
+        Rotation turn;
+        double angular_velocity;
+    };
+    int chunks() const { return recording_ ? 1 : threads_; }
+    void prepare_chunks();
+    template <class Then>
+    void compute_forces(Team& team, Then&& then);
+    void add_wall_forces(IndexRange r);
+    std::vector<MotionNow> motions_now(double time) const;
+    void step(Team& team, std::int64_t next);
+    void move_kinematic(const std::vector<MotionNow>& now, IndexRange r);
+    void locate_kinds(Team& team);
+    // The part of range r where free (kinematic) particles can be.
+    IndexRange free_part(IndexRange r) const;
+    IndexRange kinematic_part(IndexRange r) const;
 
     Scenario scenario_;
     PairTable pair_table_;
@@ -102,10 +122,22 @@ private:
     bool recording_ = false;
     std::vector<ContactRecord> records_;
     int threads_ = 1;
-    // Contact forces and torques summed by threads 1, 2, ... (thread 0 sums
-    // into the particles' own arrays): (threads - 1) x N each, zero between
-    // steps (compute_forces()).
+    // Contact forces and torques summed by chunks 1, 2, ... (chunk 0 sums
+    // into the particles' own arrays): (chunks - 1) x N each, zero between
+    // steps (compute_forces()); per chunk, the first particle its part of
+    // the pairs touches, and whether a particle of its part of the particles
+    // moved far enough for a rebuild.
     std::vector<Vec3> chunk_force_, chunk_torque_;
+    std::vector<std::size_t> touched_from_;
+    std::vector<char> moved_;
+    // The free particles lie below free_end_, the kinematic ones from
+    // kinematic_begin_ on (with the store in cell order, the kinematic ones
+    // after all the free ones: the ranges do not overlap), so that the
+    // per-particle loops of a step pass over the wall spheres only to move
+    // them, and over the grains only to move those. Per chunk while they are
+    // worked out (locate_kinds()).
+    std::size_t free_end_ = 0, kinematic_begin_ = 0;
+    std::vector<IndexRange> chunk_kinds_;
     // History of the contacts with the six flat walls, at 6 id + face (ids are
     // dense, 0 .. N-1); empty when the domain has no walls.
     std::vector<ContactHistory> wall_history_;
