@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Issue 13: the drum's observables at the automatic step against a quarter of
 # it. The paper's default drum (two components, 1000 grains, 5 rad/s), six
-# revolutions after settling, seeds 1-4, each at the step `tumble drum`
+# revolutions after settling, seeds 1-8 (SEEDS="..." to choose), each at the step `tumble drum`
 # chooses and at a quarter of it. Resumable: run it again and every run
 # continues from its newest checkpoint; finished runs are skipped. Then
 # `/usr/bin/python3 studies/time_step/compare.py` writes results.md.
@@ -24,7 +24,7 @@ one() {  # one run: $1 = name, $2 = step, $3 = seed
 }
 export -f one
 export out
-for seed in 1 2 3 4; do
+for seed in ${SEEDS:-1 2 3 4 5 6 7 8}; do
   echo "quarter $quarter $seed"
   echo "auto $dt $seed"
 done | xargs -P "${JOBS:-2}" -L 1 bash -c 'one "$0" "$1" "$2"'
