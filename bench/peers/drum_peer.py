@@ -146,12 +146,7 @@ def table(path):
                     f"{rs[-1]['kinetic_translational']:.3g}", f"{rs[-1]['kinetic_rotational']:.3g}",
                     f"{rs[-1]['contacts']:.0f}", str(rs[-1]["neighbor_builds"]),
                     f"{wall[t] / wall[k]:.2f}" if peer else "-", f"{cpu[t] / cpu[k]:.2f}" if peer else "-"))
-    widths = [max(len(h), *(len(r[i]) for r in out)) for i, h in enumerate(hdr)]
-    line = lambda cells: "  ".join(c.ljust(w) for c, w in zip(cells, widths)).rstrip()
-    print(line(hdr))
-    print(line(["-" * w for w in widths]))
-    for r in out:
-        print(line(r))
+    peerlib.print_table(hdr, out)
     for (code, procs), rs in sorted(groups.items()):
         if procs > 1 and (code, 1) in wall:
             print(f"{code}: {procs} cores {wall[(code, procs)] / wall[(code, 1)]:.2f}x one (wall time)")

@@ -169,12 +169,7 @@ def table(path):
                     "?" if s["z"] is None else f"{s['z']:.3f}",
                     "?" if s["builds"] is None else str(s["builds"]),
                     "?" if s["memory"] is None else f"{s['memory']:.0f}", ratio))
-    widths = [max(len(h), *(len(r[i]) for r in out)) for i, h in enumerate(hdr)]
-    line = lambda cells: "  ".join(c.ljust(w) for c, w in zip(cells, widths)).rstrip()
-    print(line(hdr))
-    print(line(["-" * w for w in widths]))
-    for r in out:
-        print(line(r))
+    print_table(hdr, out)
     bad = [s for s in summary if s["lost"]]
     for s in bad:
         print(f"WARNING: {s['code']} {s['config']} N={s['particles']}: atom count changed during the run")
@@ -206,3 +201,13 @@ def main(argv):
 
 if __name__ == "__main__":
     main(sys.argv)
+
+
+def print_table(header, rows):
+    """Prints rows of strings under a header, columns padded to their widest cell."""
+    widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(header)]
+    line = lambda cells: "  ".join(c.ljust(w) for c, w in zip(cells, widths)).rstrip()
+    print(line(header))
+    print(line(["-" * w for w in widths]))
+    for r in rows:
+        print(line(r))
