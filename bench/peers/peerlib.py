@@ -128,6 +128,16 @@ def fmt_rate(x):
     return f"{x / 1e6:.3f} M" if x >= 1e6 else f"{x / 1e3:.1f} k"
 
 
+def print_table(header, rows):
+    """Prints rows of strings under a header, columns padded to their widest cell."""
+    widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(header)]
+    line = lambda cells: "  ".join(c.ljust(w) for c, w in zip(cells, widths)).rstrip()
+    print(line(header))
+    print(line(["-" * w for w in widths]))
+    for r in rows:
+        print(line(r))
+
+
 def table(path):
     rows = [json.loads(l) for l in open(path, encoding="utf-8") if l.strip()]
     if not rows:
@@ -202,12 +212,3 @@ def main(argv):
 if __name__ == "__main__":
     main(sys.argv)
 
-
-def print_table(header, rows):
-    """Prints rows of strings under a header, columns padded to their widest cell."""
-    widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(header)]
-    line = lambda cells: "  ".join(c.ljust(w) for c, w in zip(cells, widths)).rstrip()
-    print(line(header))
-    print(line(["-" * w for w in widths]))
-    for r in rows:
-        print(line(r))
