@@ -32,7 +32,8 @@ def observables(run):
 
 
 def runs(step):
-    found = sorted(d for d in OUT.glob(f"{step}_seed*") if (d / "summary.json").exists())
+    found = sorted((d for d in OUT.glob(f"{step}_seed*") if (d / "summary.json").exists()),
+                   key=lambda d: int(d.name.split("seed")[1]))
     return found, [observables(d) for d in found]
 
 
@@ -55,9 +56,9 @@ def main():
         f" ({steps}; seeds {', '.join(d.name.split('seed')[1] for d in auto_dirs)} and"
         f" {', '.join(d.name.split('seed')[1] for d in quarter_dirs)}). Each run: the default drum (two components,"
         " 1000 grains, 5 rad/s), 6 revolutions after settling; means over N >= 1. +- is the 95 % Student"
-        " interval over seeds; p is Welch's two-sided test of equal means.",
+        " interval over seeds; the difference's interval and p are Welch's (p: two-sided test of equal means).",
         "",
-        "| observable | at the step | at a quarter | difference (quarter = 1) | p |",
+        "| observable | at the step | at a quarter | difference [95 % interval], of the quarter's mean | p |",
         "|---|---|---|---|---|",
     ]
     verdicts = []
@@ -66,7 +67,11 @@ def main():
         q = [v[key] for v in quarter]
         (ma, sa, ha), (mq, sq, hq) = interval(a), interval(q)
         p = stats.ttest_ind(a, q, equal_var=False).pvalue
-        lines.append(f"| {key} | {ma:.4g} +- {ha:.2g} | {mq:.4g} +- {hq:.2g} | {100 * (ma / mq - 1):+.1f} % | {p:.2f} |")
+        # Welch's 95 % interval of the difference, relative to the quarter step's mean.
+        df = (sa**2 + sq**2) ** 2 / (sa**4 / (len(a) - 1) + sq**4 / (len(q) - 1))
+        half = stats.t.ppf(0.975, df) * np.hypot(sa, sq)
+        lines.append(f"| {key} | {ma:.4g} +- {ha:.2g} | {mq:.4g} +- {hq:.2g} | {100 * (ma / mq - 1):+.1f} % "
+                     f"[{100 * (ma - mq - half) / mq:+.1f}, {100 * (ma - mq + half) / mq:+.1f}] | {p:.2f} |")
         verdicts.append((key, p))
     lines += ["", "Per run:", "", "| run | " + " | ".join(auto[0]) + " |", "|---" * (len(auto[0]) + 1) + "|"]
     for d, v in zip(auto_dirs + quarter_dirs, auto + quarter):
