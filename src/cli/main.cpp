@@ -161,6 +161,9 @@ int main(int argc, char** argv) {
         ->check(CLI::NonNegativeNumber);
     drum_cmd->add_option("--threads", drum.threads, threads_help)->check(CLI::NonNegativeNumber);
     drum_cmd->add_option("--max-memory", drum.max_memory_gib, memory_help)->check(finite_positive);
+    drum_cmd->add_flag("--large-drum", drum.large_drum,
+                       "Accept a drum whose wall takes more than 50 times as many spheres as it holds grains and more "
+                       "than 100,000 (refused otherwise: usually a size in cm given as m)");
     for (CLI::Option* option : drum_cmd->get_options())
         if (option->get_expected_min() > 0) option->check(not_empty);
 

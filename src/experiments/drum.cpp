@@ -300,6 +300,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
                    omega * omega * inner_radius / 9.81);
 
     const int threads = resolve_threads(options.threads);
+    check_drum_size(s.geometry, static_cast<double>(s.grain_count()), options.large_drum, "command line");
     check_memory(drum_memory(s.geometry, static_cast<double>(s.grain_count()), threads),
                  memory_limit_bytes(options.max_memory_gib), "command line");
     DrumSetup setup = build_drum(s, options.allow_unsafe_dt);

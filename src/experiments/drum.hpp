@@ -24,6 +24,7 @@ struct DrumRunOptions {
     bool allow_unsafe_dt = false;  // accept a dt above the safe maximum (then only the blow-up check guards the run)
     int threads = 1;               // 0: every core of the machine (resolve_threads)
     double max_memory_gib = 0.0;   // refuse a run estimated to need more; 0: half the machine's (limits.hpp)
+    bool large_drum = false;       // accept a wall far larger than its grains (check_drum_size)
 };
 
 // How a run ended: exit_code 0 (finished and analysed), exit_stopped (a

@@ -70,13 +70,29 @@ MemoryNeed scenario_memory(const Scenario& s, int threads) {
     return need;
 }
 
-MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads) {
-    // As build_drum_wall lays them out, in floating point (no overflow).
+double drum_wall_spheres(const DrumGeometry& g) {
+    // As build_drum_wall lays them out: rings of touching spheres along the
+    // mantle, the caps filled at a little above the square packing.
     const double s = 2.0 * g.wall_radius, Rc = 0.5 * g.diameter + g.wall_radius;
     const double per_ring = s >= 2.0 * Rc ? 2.0 : pi / std::asin(s / (2.0 * Rc)) + 1.0;
     const double rings = (g.length + s) / s + 2.0;
     const double caps = 2.0 * (pi * Rc * Rc / (s * s) * 1.2 + Rc / s + 1.0);
-    const double wall = per_ring * rings + caps;
+    return per_ring * rings + caps;
+}
+
+void check_drum_size(const DrumGeometry& g, double grains, bool allowed, const std::string& source) {
+    constexpr double per_grain = 50.0, floor = 100'000.0;
+    const double wall = drum_wall_spheres(g);
+    if (allowed || wall <= std::max(per_grain * grains, floor)) return;
+    throw Error(fmt::format("{}: the drum's wall would take about {:.3g} spheres for {:.0f} grains (diameter {} m, "
+                            "length {} m, wall radius {} m): more than {:.0f} times the grains and more than {:.0f}. "
+                            "Sizes are in metres (the paper's drum: --diameter 0.08 --length 0.12). If this drum is "
+                            "meant, add --large-drum",
+                            source, wall, grains, g.diameter, g.length, g.wall_radius, per_grain, floor));
+}
+
+MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads) {
+    const double wall = drum_wall_spheres(g);
     MemoryNeed need{estimate(grains + wall, 3.0, false, threads), ""};
     need.driver = wall > grains ? fmt::format("the drum's wall, {:.3g} spheres (--length, --diameter, --wall-radius)", wall)
                                 : fmt::format("{:.3g} grains (--grains, --fill)", grains);

@@ -36,6 +36,17 @@ struct MemoryNeed {
 MemoryNeed scenario_memory(const Scenario& s, int threads);
 MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads);
 
+// The number of wall spheres build_drum_wall lays out for g, estimated in
+// floating point (no overflow for any size).
+double drum_wall_spheres(const DrumGeometry& g);
+
+// A drum whose wall needs far more spheres than the drum holds grains is
+// nearly always a unit slip (--diameter 8 meant as 8 cm builds 2.9 million
+// wall spheres for 1000 grains). More than max(50 x grains, 100,000) wall
+// spheres is refused, before any work, with the numbers, unless `allowed`
+// (tumble drum --large-drum). tumble::Error "SOURCE: ...".
+void check_drum_size(const DrumGeometry& g, double grains, bool allowed, const std::string& source);
+
 // The limit: `gib` GiB if > 0, else half the machine's memory (or the
 // process's address-space limit, ulimit -v, if lower).
 double memory_limit_bytes(double gib);
