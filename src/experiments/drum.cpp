@@ -300,9 +300,9 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
                    omega * omega * inner_radius / 9.81);
 
     const int threads = resolve_threads(options.threads);
-    check_drum_size(s.geometry, static_cast<double>(s.grain_count()), options.large_drum, "command line");
     check_memory(drum_memory(s.geometry, static_cast<double>(s.grain_count()), threads),
-                 memory_limit_bytes(options.max_memory_gib), "command line");
+                 memory_limit_bytes(options.max_memory_gib), "command line");  // what the machine cannot do, first
+    check_drum_size(s.geometry, static_cast<double>(s.grain_count()), options.large_drum, "command line");
     DrumSetup setup = build_drum(s, options.allow_unsafe_dt);
     Simulation sim(std::move(setup.scenario), threads);
     check_drum_durations(s.revolutions, omega, s.samples_per_revolution, s.settle_max_time, sim.dt());
