@@ -28,6 +28,7 @@ struct RunOptions {
     CheckpointPolicy checkpoints;
     int threads = 1;               // 0: every core of the machine (resolve_threads)
     double max_memory_gib = 0.0;   // refuse a run estimated to need more; 0: half the machine's (experiments/limits.hpp)
+    bool allow_soft = false;       // accept grains that sink into each other under their weight (check_stiffness)
 };
 int run_command(const RunOptions& options);
 

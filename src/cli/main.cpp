@@ -78,6 +78,9 @@ int main(int argc, char** argv) {
     run_cmd->add_option("--threads", run.threads, threads_help)->check(CLI::NonNegativeNumber);
     const char* memory_help = "Refuse a run estimated to need more memory than this, GiB (default: half the machine's)";
     run_cmd->add_option("--max-memory", run.max_memory_gib, memory_help)->check(finite_positive);
+    run_cmd->add_flag("--allow-soft", run.allow_soft,
+                      "Accept a material whose grains sink more than 5 % of their radius into each other under their "
+                      "own weight (refused otherwise: usually E in MPa given as Pa)");
 
     BenchOptions bench;
     CLI::App* bench_cmd = app.add_subcommand(

@@ -152,6 +152,7 @@ int run_command(const RunOptions& options) {
                  every(config.output.snapshot_interval, dt),
                  0.0,
                  options.quiet};
+    check_stiffness(sim.scenario(), options.allow_soft, options.scenario_file);  // after what no run can do
 
     const auto& dir = config.output.directory;
     const io::RunLock lock = io::prepare_output_directory(dir, options.force);

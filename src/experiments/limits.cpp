@@ -6,11 +6,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
+#include "tumble/materials/pair_table.hpp"
+#include "tumble/sim/time_step.hpp"
 
 namespace tumble::experiments {
 
@@ -89,6 +92,42 @@ void check_drum_size(const DrumGeometry& g, double grains, bool allowed, const s
                             "Sizes are in metres (the paper's drum: --diameter 0.08 --length 0.12). If this drum is "
                             "meant, add --large-drum",
                             source, wall, grains, g.diameter, g.length, g.wall_radius, per_grain, floor));
+}
+
+void check_stiffness(const Scenario& s, bool allowed, const std::string& source) {
+    constexpr double largest_sinking = 0.05;  // of the radius, under the grain's weight
+    if (allowed || !s.model.elastic) return;
+    const double g = norm(s.gravity), v = s.time_step.reference_speed;
+    std::vector<double> largest(s.materials.size(), 0.0);
+    for (const ParticleSpec& p : s.particles)
+        if (p.motion == free_motion) largest[p.material] = std::max(largest[p.material], p.radius);
+    for (std::size_t a = 0; a < s.materials.size(); ++a) {
+        if (!(largest[a] > 0.0)) continue;
+        const Material& m = s.materials[a];
+        // Two equal grains of the largest radius: R* = R/2, m* = m/2.
+        const double R = largest[a], mass = 4.0 / 3.0 * pi * m.rho * R * R * R;
+        const double E_star = make_pair_coefficients(m, m, s.pair_properties[a][a]).E_star;
+        const std::string what = fmt::format("{}: material '{}' (E = {:.3g} Pa): ", source, m.name, m.E);
+        const std::string hint = " E and G are in Pa (the paper's grains: 1e6 Pa); if this material is meant, add "
+                                 "--allow-soft";
+        // At rest, one on the other: m g = 4/3 E* sqrt(R*) h^(3/2) (Hertz).
+        const double sinking = std::pow(3.0 * mass * g / (4.0 * E_star * std::sqrt(0.5 * R)), 2.0 / 3.0) / R;
+        if (sinking > largest_sinking)
+            throw Error(what + fmt::format("a grain of radius {:.3g} m resting on another under gravity {:.3g} "
+                                           "m/s^2 would sink {:.3g} % of its radius into it (Hertz), more than "
+                                           "{:.0f} % (the paper's grains: 0.44 %).",
+                                           R, g, 100.0 * sinking, 100.0 * largest_sinking) +
+                        hint);
+        // Meeting head-on at the reference speed: the deepest Hertz overlap.
+        const double h_max = hertz_max_overlap(0.5 * mass, E_star, 0.5 * R, v);
+        if (h_max > 0.5 * R)
+            throw Error(what + fmt::format("two grains of radius {:.3g} m meeting at {:.3g} m/s "
+                                           "([time_step] reference_speed) would overlap by {:.3g} times their reduced "
+                                           "radius (Hertz): they would pass through each other (the paper's "
+                                           "grains at 1 m/s: 0.24).",
+                                           R, v, h_max / (0.5 * R)) +
+                        hint);
+    }
 }
 
 MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads) {

@@ -47,6 +47,16 @@ double drum_wall_spheres(const DrumGeometry& g);
 // (tumble drum --large-drum). tumble::Error "SOURCE: ...".
 void check_drum_size(const DrumGeometry& g, double grains, bool allowed, const std::string& source);
 
+// A material so soft that its grains sink into each other under their own
+// weight is nearly always a unit slip (E = 1.0 meant as 1 MPa: 39 %
+// overlaps in a bed). For each material of free grains, with its largest
+// grains: a Hertz overlap of one resting on another under gravity above 5 %
+// of the radius (the paper's grains: 0.44 %), or of two meeting head-on at
+// the reference speed above their reduced radius (they would pass through
+// each other), is refused before any work, with the numbers, unless
+// `allowed` (tumble run --allow-soft). tumble::Error "SOURCE: ...".
+void check_stiffness(const Scenario& s, bool allowed, const std::string& source);
+
 // The limit: `gib` GiB if > 0, else half the machine's memory (or the
 // process's address-space limit, ulimit -v, if lower).
 double memory_limit_bytes(double gib);

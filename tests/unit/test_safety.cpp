@@ -350,6 +350,16 @@ TEST_F(Safety, ADrumWallFarLargerThanItsGrainsIsRefusedUnlessConfirmed) {
     EXPECT_EQ(tumble(one_step + (dir_ / "long").string() + " --length 0.64 --fill 0.3").exit_code, 4);
 }
 
+// A material refused as too soft (tests/data/bad/run/soft_*.toml, E in Pa
+// where MPa was meant) runs when --allow-soft confirms it.
+TEST_F(Safety, ASoftMaterialRunsWhenConfirmed) {
+    const fs::path scenario = corpus / "run" / "soft_under_weight.toml";
+    EXPECT_EQ(tumble("run -q " + scenario.string() + " --out " + (dir_ / "refused").string()).exit_code, 2);
+    EXPECT_FALSE(fs::exists(dir_ / "refused"));
+    EXPECT_EQ(tumble("run -q " + scenario.string() + " --allow-soft --out " + (dir_ / "soft").string()).exit_code, 0);
+    EXPECT_TRUE(fs::exists(dir_ / "soft" / "time_series.csv"));
+}
+
 // ---- 9. a sweep stopped by a signal (the messages are in the corpora, and
 // the particle files in test_bad_input.cpp)
 
