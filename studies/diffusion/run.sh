@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Issue 14, item 7: the diffusion study again (studies/diffusion/README.md).
 # Resumable across machines: the finished points kept in git
-# (kept/SWEEP.tar.gz) are unpacked where the sweeps look for them, then the
+# (kept/SWEEP/POINT.tar.gz) are unpacked where the sweeps look for them, then the
 # sweeps run their remaining points (JOBS at a time, default 2; an
 # interrupted point starts again, each is a few minutes). Run ./keep.sh
 # before committing: it packs the small files of every finished point.
@@ -9,11 +9,11 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 bash scripts/build.sh >/dev/null
 study=studies/diffusion
-for sweep in caps_two-component caps_self periodic_two-component periodic_self long_two-component long_self; do
-  if [[ -f "$study/kept/$sweep.tar.gz" ]]; then
-    mkdir -p "$study/out/$sweep"
-    tar -xzf "$study/kept/$sweep.tar.gz" -C "$study/out/$sweep" --skip-old-files
-  fi
+for packed in "$study"/kept/*/*.tar.gz; do
+  [[ -f "$packed" ]] || continue
+  sweep=$(basename "$(dirname "$packed")")
+  mkdir -p "$study/out/$sweep"
+  tar -xzf "$packed" -C "$study/out/$sweep" --skip-old-files
 done
 for sweep in caps_two-component caps_self periodic_two-component periodic_self long_two-component long_self; do
   build/tumble sweep "$study/sweep_$sweep.toml" -j "${JOBS:-2}"
