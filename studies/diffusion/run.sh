@@ -7,7 +7,10 @@
 # before committing: it packs the small files of every finished point.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-bash scripts/build.sh >/dev/null
+# TUMBLE: a tumble binary to use instead of building build/tumble (so the
+# tree can be rebuilt while the study runs).
+tumble=${TUMBLE:-build/tumble}
+[[ -n "${TUMBLE:-}" ]] || bash scripts/build.sh >/dev/null
 study=studies/diffusion
 for packed in "$study"/kept/*/*.tar.gz; do
   [[ -f "$packed" ]] || continue
@@ -16,6 +19,6 @@ for packed in "$study"/kept/*/*.tar.gz; do
   tar -xzf "$packed" -C "$study/out/$sweep" --skip-old-files
 done
 for sweep in caps_two-component caps_self periodic_two-component periodic_self long_two-component long_self; do
-  build/tumble sweep "$study/sweep_$sweep.toml" -j "${JOBS:-2}"
+  "$tumble" sweep "$study/sweep_$sweep.toml" -j "${JOBS:-2}"
   bash "$study/keep.sh"
 done
