@@ -207,8 +207,8 @@ int render_command(const RenderOptions& options) {
     const fs::path run_info = directory / "drum_run.toml";
     const std::optional<io::DrumRunInfo> drum =
         fs::exists(run_info) ? std::optional(io::read_drum_run_info(run_info)) : std::nullopt;
-    io::render::FrameStyle style{options.width, colour_by(options.colour, drum), orientation_of(directory, drum.has_value()),
-                                 {}};
+    io::render::FrameStyle style{options.width, colour_by(options.colour, drum),
+                                 orientation_of(directory, drum.has_value()), {}};
     const unsigned jobs = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
     const bool talk = !options.quiet;
     const std::size_t count = snapshots.size();
@@ -223,7 +223,8 @@ int render_command(const RenderOptions& options) {
         for (const io::DrumComponent& c : drum->components) tag_names.push_back(c.name);
     style.legend = io::render::scene_legend(scene, style.colour_by, tag_names);
     const fs::path frames = fresh_frames_directory(directory);
-    const std::optional<DrumClock> clock = drum ? std::optional(DrumClock{drum->settle_time, drum->omega}) : std::nullopt;
+    const std::optional<DrumClock> clock =
+        drum ? std::optional(DrumClock{drum->settle_time, drum->omega}) : std::nullopt;
     draw_frames(snapshots, scene, style, clock, frames, jobs, progress_style(!talk));
     if (talk)
         fmt::print("{} frames of {} x {} pixels in {}, read and drawn in {:.1f} s\n", count, 2 * options.width,

@@ -151,8 +151,8 @@ private:
             sim_.advance(check_every);
             const double speed = rms_grain_speed(sim_.particles());
             progress.update(sim_.step_count(),
-                            fmt::format("t = {:.3f} s (at least {:.3g} s, up to {:.3g} s), rms grain speed {:.2g} m/s "
-                                        "(settled below {:.2g})",
+                            fmt::format("t = {:.3f} s ({:.3g} to {:.3g} s), rms grain speed {:.2g} m/s, "
+                                        "settled below {:.2g}",
                                         sim_.time(), plan_.fall_time, plan_.settle_max_time, speed,
                                         plan_.settle_speed));
             if (sim_.time() >= plan_.fall_time && speed < plan_.settle_speed) {

@@ -32,7 +32,7 @@ Progress::Progress(std::string phase, std::int64_t first, std::int64_t total, Pr
 
 double Progress::elapsed_seconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
-// The log line (full) names every count; the terminal's fits a line.
+// The log line (full) names every count and rate; the terminal's fits a line.
 std::string Progress::line(std::int64_t at, const std::string& note, bool full) const {
     const double elapsed = elapsed_seconds();
     const double rate = elapsed > 0.0 ? static_cast<double>(at - first_) / elapsed : 0.0;  // counted per second
@@ -53,7 +53,7 @@ std::string Progress::line(std::int64_t at, const std::string& note, bool full) 
     if (full) fields.push_back(fmt::format("{:.3g} {}/s", rate, scale_.unit));
     if (scale_.steps_per_revolution > 0.0)
         fields.push_back(fmt::format("{:.3g} rev/h", rate * 3600.0 / scale_.steps_per_revolution));
-    if (scale_.particles > 0)
+    if (full && scale_.particles > 0)
         fields.push_back(fmt::format("{:.3g} particle updates/s", rate * static_cast<double>(scale_.particles)));
     if (!note.empty()) fields.push_back(note);
     if (full) fields.push_back("elapsed " + format_duration(elapsed));
