@@ -597,6 +597,12 @@ def fig_collapse(run, w):
     w.save(fig, name)
 
 
+def _finite_mean(values):
+    """The mean of the finite values; NaN (not drawn) if there are none."""
+    finite = values[np.isfinite(values)]
+    return float(np.mean(finite)) if len(finite) else math.nan
+
+
 def fig_bed_structure(run, w):
     """Segregation and the free surface along the axis (bed_structure.csv): the bed's
     grain volume per slice relative to a uniform bed at several N; per slice, over the
@@ -624,14 +630,14 @@ def fig_bed_structure(run, w):
     for i, cname in enumerate(run.components):
         col = f"mean_distance_{cname}"
         if col in t:
-            radial.plot(z, [np.nanmean(t[col][t["slice"] == s]) * 1e3 for s in slices], "-o", ms=3,
+            radial.plot(z, [_finite_mean(t[col][t["slice"] == s]) * 1e3 for s in slices], "-o", ms=3,
                         color=COLOURS[i % len(COLOURS)], label=cname)
     radial.set_xlabel("z (mm)")
     radial.set_ylabel("mean distance from the slice's centroid (mm)")
     radial.set_title("radial composition (lower: nearer the core)", fontsize=9)
     radial.legend(fontsize=7)
     if "surface_angle" in t:
-        angle.plot(z, [np.nanmean(t["surface_angle"][t["slice"] == s]) for s in slices], "-o", ms=3, color="0.3")
+        angle.plot(z, [_finite_mean(t["surface_angle"][t["slice"] == s]) for s in slices], "-o", ms=3, color="0.3")
     angle.set_xlabel("z (mm)")
     angle.set_ylabel("free-surface inclination (degrees)")
     angle.set_title("free surface per axial slice", fontsize=9)

@@ -140,7 +140,8 @@ TEST(Scene, GrainColoursAreThePaletteOfTheFigures) {
 }
 
 // Under the views, the caption: the clock on its first line, and the legend
-// (a square of each species' colour, then its name) on the second.
+// (a square of each species' colour, then its name) on the second; a label
+// in the corner of each view.
 TEST(Scene, FrameHasTheClockAndTheLegend) {
     tumble::io::SnapshotParticles snapshot;
     snapshot.material_names = {"b", "a"};
@@ -177,6 +178,7 @@ TEST(Scene, FrameHasTheClockAndTheLegend) {
     EXPECT_GT(count(with_clock, layout.caption_top, clock_rows, text_colour), 0) << "the clock is written";
     EXPECT_EQ(count(without, layout.caption_top, clock_rows, text_colour), 0);
     EXPECT_GT(count(with_clock, clock_rows, end, text_colour), 0) << "the legend's names";
+    EXPECT_GT(count(with_clock, 0, line, text_colour), 0) << "each view says where it is seen from";
     for (const LegendEntry& entry : style.legend)
         EXPECT_GE(count(with_clock, clock_rows, end, entry.colour),
                   text_height(layout.text_scale) * text_height(layout.text_scale))
@@ -255,9 +257,10 @@ TEST_F(RenderCommand, TinyDrumRunGivesAFramePerSnapshotAndTheMovie) {
     const bool movie = have("ffmpeg") && have("ffprobe");
     const auto render = run_tumble("render " + run.string() + " --width 80 -j 2 -q" + (movie ? "" : " --frames-only"));
     ASSERT_EQ(render.exit_code, 0) << render.output;
-    if (movie)
+    if (movie) {
         EXPECT_NE(render.output.find("warning: the movie lasts only"), std::string::npos)
             << "a few snapshots make a short movie, and the command says so: " << render.output;
+    }
     std::size_t frames = 0;
     for (const auto& entry : fs::directory_iterator(run / "frames")) frames += entry.path().extension() == ".png";
     EXPECT_EQ(frames, snapshots);

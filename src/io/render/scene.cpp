@@ -155,6 +155,23 @@ std::vector<Sphere> visible_spheres(const SnapshotParticles& snapshot, const Sce
     return spheres;
 }
 
+// "+z" for the unit vector along +z.
+std::string axis_name(const Vec3& unit) {
+    for (int k = 0; k < 3; ++k)
+        if (unit[k] != 0.0) return std::string(unit[k] > 0.0 ? "+" : "-") + "xyz"[k];
+    return "?";
+}
+
+// Each view's corner says how it looks, if the view is wide enough: "seen
+// from +z: x right, y up".
+void draw_view_label(Image& image, const View& view, int scale) {
+    const auto plain = [](const std::string& name) { return name[0] == '+' ? name.substr(1) : name; };
+    const std::string label = "seen from " + axis_name(view.toward_viewer()) + ": " + plain(axis_name(view.right)) +
+                              " right, " + plain(axis_name(view.up)) + " up";
+    if (text_width(label, scale) <= view.width - 4 * scale)
+        draw_text(image, view.x0 + 2 * scale, view.y0 + 2 * scale, label, text_colour, scale);
+}
+
 // The caption strip: the clock on its first line, the legend (a square of
 // each colour, then its name) on the second.
 void draw_caption(Image& image, const FrameLayout& layout, const std::vector<LegendEntry>& legend,
@@ -180,8 +197,10 @@ Image render_frame(const SnapshotParticles& snapshot, const Scene& scene, const 
                    const std::string& clock) {
     const FrameLayout layout = frame_layout(scene, style);
     Image image(2 * style.view_width, layout.height, background_colour);
-    for (const View& view : {layout.first, layout.second})
+    for (const View& view : {layout.first, layout.second}) {
         draw_spheres(image, view, visible_spheres(snapshot, scene, style.colour_by, view));
+        draw_view_label(image, view, layout.text_scale);
+    }
     draw_caption(image, layout, style.legend, clock);
     return image;
 }

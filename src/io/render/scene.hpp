@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // A frame of `tumble render`: the particles of one snapshot in two views side
-// by side, at the same scale, above a caption strip with the clock (time,
+// by side, at the same scale, each labelled in its corner with the direction
+// it is seen from and its axes, above a caption strip with the clock (time,
 // and revolutions for a drum) and the legend (a colour per species, and the
 // wall). The views (Orientation):
 //   the drum  left along the drum axis, seen from +z (x right, y up); right
