@@ -72,7 +72,7 @@ std::vector<std::string> long_options(const CLI::App& command) {
     return names;
 }
 
-// " did you mean 'x'?" when a known name is close to `word`, else "".
+// "; did you mean 'x'?" when a known name is close to `word`, else "".
 std::string suggestion(const std::string& word, const std::vector<std::string>& known) {
     const std::optional<std::string> closest = tumble::io::closest_name(word, known);
     return closest ? "; did you mean '" + *closest + "'?" : std::string();
