@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # tumble against LIGGGHTS and LAMMPS on the paper's dense periodic cube
-# (SPEC-NOTES "Speed"; docs/BENCHMARKS.md). Run from the repository root:
+# (the seed paper's table 1; docs/BENCHMARKS.md). Run from the repository root:
 #
 #   bash bench/compare_peers.sh                      # 21^3 = 9261 spheres, 1 and 2 cores, 3 rounds, medians
 #   bash bench/compare_peers.sh --size 21 --size 46  # also 46^3 = 97336
@@ -167,7 +167,7 @@ tumble_threads=(1)
 cpu_jiffies() { awk '/^cpu /{print $2+$3+$4+$5+$6+$7+$8+$9, $9}' /proc/stat 2>/dev/null || echo "0 0"; }
 read -r jiffies0 steal0 <<< "$(cpu_jiffies)"
 cpu=$(lscpu 2>/dev/null | sed -n 's/^Model name:[[:space:]]*//p' | head -1)
-echo "== tumble vs LIGGGHTS and LAMMPS, dense periodic cube (SPEC-NOTES \"Speed\")"
+echo "== tumble vs LIGGGHTS and LAMMPS, dense periodic cube (docs/BENCHMARKS.md)"
 echo "machine : ${cpu:-unknown CPU}, $(nproc) logical cores, $(free -g 2>/dev/null | awk '/^Mem:/{print $2" GiB"}') memory, $(uname -sr)"
 echo "date    : $(date -u '+%Y-%m-%d %H:%M:%S UTC')   load average at start: $(cut -d' ' -f1-3 /proc/loadavg)"
 [[ $liggghts -eq 1 ]] && echo "liggghts: $(dpkg-query -W -f='${Package} ${Version}' liggghts 2>/dev/null || echo "$liggghts_bin")  deck: bench/peers/liggghts_cube.in"

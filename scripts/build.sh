@@ -5,5 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
+if [ ! -x build/tumble ]; then
+  echo "tumble: building tumble and its tests in build/ (CMake, Release; a few minutes: about 5 on 2 cores)" >&2
+fi
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DTUMBLE_TESTS=ON -DTUMBLE_ARCH="${TUMBLE_ARCH-}" >/dev/null
 cmake --build build -j "$(nproc)"

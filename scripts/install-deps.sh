@@ -8,8 +8,16 @@ for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if [ ${#missing[@]} -gt 0 ]; then
-  echo "tumble: installing ${missing[*]}" >&2
+  # apt-get's messages go to a log, shown if it fails; the screen says what is happening.
+  log=$(mktemp /tmp/tumble-install-deps.XXXXXX.log)
+  echo "tumble: installing ${#missing[@]} Debian packages with apt-get (a few minutes; log: $log): ${missing[*]}" >&2
   if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  if ! { $SUDO apt-get update -q && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q \
+           --no-install-recommends "${missing[@]}"; } >"$log" 2>&1; then
+    tail -n 20 "$log" >&2
+    echo "tumble: apt-get failed (above: the end of $log)" >&2
+    exit 1
+  fi
+  echo "tumble: installed the packages" >&2
+  rm -f "$log"
 fi

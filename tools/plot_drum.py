@@ -49,9 +49,49 @@ from matplotlib.collections import PatchCollection  # noqa: E402
 from matplotlib.patches import Circle  # noqa: E402
 
 DPI = 150
-COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown"]
+
+
+def read_palette():
+    """The grain colours, one per species (component or tag index), from
+    tools/palette.txt, which `tumble render` is built with too: a species has
+    the same colour in the figures and in the movie."""
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "palette.txt")
+    try:
+        with open(path) as f:
+            return ["#" + line.split()[0] for line in f if line.strip() and not line.startswith("#")]
+    except OSError as error:
+        sys.stderr.write(f"plot_drum.py: error: cannot read the palette {path}: {error}\n")
+        sys.exit(2)
+
+
+COLOURS = read_palette()
 WALL_COLOUR = "0.85"
 RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)
+
+
+def legend_outside(ax, **kwargs):
+    """The legend to the right of the axes, where it covers no data."""
+    return ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, **kwargs)
+
+
+def label_log_axis(axis):
+    """At least two labelled ticks on a log axis (call after the data are drawn):
+    labels at 1, 2 and 5 times the powers of ten, or at every integer multiple
+    over less than a decade; if the range still holds fewer than two, it is
+    widened to the nearest ticks around it."""
+    lo, hi = sorted(axis.get_view_interval())
+    decades = math.log10(hi / lo) if lo > 0 else 0.0
+    subs = (1.0,) if decades >= 3 else (1.0, 2.0, 5.0) if decades >= 0.8 else tuple(range(1, 10))
+    locator = matplotlib.ticker.LogLocator(base=10.0, subs=subs, numticks=12)
+    ticks = [t for t in locator.tick_values(lo, hi) if lo <= t <= hi]
+    if len(ticks) < 2:
+        around = locator.tick_values(lo / 10.0, hi * 10.0)
+        below, above = [t for t in around if t <= lo], [t for t in around if t >= hi]
+        if below and above:
+            axis.set_view_interval(below[-1], above[0], ignore=True)
+    axis.set_major_locator(locator)
+    axis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:.2g}"))
+    axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
 
 
 class InputError(Exception):
@@ -342,7 +382,7 @@ def _plot_z(ax, run, colour_for, label_prefix="", marker_for=None):
 
 def fig_z(run, w):
     name = "fig_z"
-    fig, ax = plt.subplots(figsize=(7.5, 5))
+    fig, ax = plt.subplots(figsize=(10.5, 5))
     if not _plot_z(ax, run, lambda i: COLOURS[i % len(COLOURS)]):
         plt.close(fig)
         w.skip(name, f"no mean_z_ columns in {run.path('drum_series.csv')}")
@@ -354,7 +394,7 @@ def fig_z(run, w):
     ax.set_ylabel("<z> (mm)")
     ax.set_title(f"{run.paper_z_figure()}: average position, {run.label()}\n"
                  f"bed length L = {run.length * 1e3:g} mm", fontsize=10)
-    ax.legend(fontsize=7)
+    legend_outside(ax, fontsize=7)
     fig.tight_layout()
     w.save(fig, name)
 
@@ -372,7 +412,7 @@ def fig_profiles(run, w):
     # The component compared is the one that started on the right (DRUM.md).
     right = [c for c, side in zip(run.components, run.start_side) if side > 0]
     cname = right[0] if right else run.components[-1]
-    fig, ax = plt.subplots(figsize=(7.5, 5))
+    fig, ax = plt.subplots(figsize=(10, 5))
     levels = sorted(set(np.round(p["revolutions"], 9)))
     cmap = plt.get_cmap("viridis")
     z_step = np.array([-run.length / 2, 0, 0, run.length / 2]) * 1e3
@@ -396,7 +436,7 @@ def fig_profiles(run, w):
         if collapse.get("D") is not None else ""
     ax.set_title(f"Axial concentration profile against the Hogg solution\n"
                  f"{run.mode} mode, {run.label()}{d_text}", fontsize=10)
-    ax.legend(fontsize=7, ncol=2)
+    legend_outside(ax, fontsize=7)
     fig.tight_layout()
     w.save(fig, name)
 
@@ -408,13 +448,14 @@ def fig_energy(run, w):
     if any(c not in run.series for c in cols):
         w.skip(name, f"no kinetic_per_grain_ columns in {run.path('drum_series.csv')}")
         return
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 7), sharex=True)
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(10.5, 7), sharex=True)
     for i, cname in enumerate(run.components):
         top.plot(n, run.series[cols[i]], "-o", ms=2.5, lw=1, color=COLOURS[i % len(COLOURS)],
                  label=cname)
     top.set_yscale("log")
+    label_log_axis(top.yaxis)
     top.set_ylabel("kinetic energy per grain (J)")
-    top.legend(fontsize=8)
+    legend_outside(top, fontsize=8)
     top.set_title(f"Translational kinetic energy, {run.mode} mode, {run.label()}", fontsize=10)
     if len(run.components) >= 2:
         a, b = run.components[0], run.components[1]
@@ -440,8 +481,9 @@ def fig_energy(run, w):
                 bottom.axhline(ref, color=colour, ls="--", lw=1.2,
                                label=f"{label}: equal velocities, {ref:.3g}")
         bottom.set_yscale("log")
+        label_log_axis(bottom.yaxis)
         bottom.set_ylabel(f"kinetic energy ratio {b} / {a}")
-        bottom.legend(fontsize=7)
+        legend_outside(bottom, fontsize=7)
         bottom.set_title("Fig. 6 quantity for one speed: ratio (points), "
                          "equal-velocity reference (dashed)", fontsize=9)
     bottom.set_xlabel("revolutions N")
@@ -462,7 +504,7 @@ def fig_depth(run, w):
     labels = [f"{int(k)}-{int(k) + 1}" for k in layers]
     labels[0] = "< 1"
     labels[-1] = f"> {int(layers[-1])}"
-    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4.2), sharey=True)
+    fig, (left, right) = plt.subplots(1, 2, figsize=(13, 4.2), sharey=True)
     for i, cname in enumerate(run.components):
         colour = COLOURS[i % len(COLOURS)]
         msd = table[f"msd_per_rev_{cname}"]
@@ -472,6 +514,7 @@ def fig_depth(run, w):
         right.plot(table[f"occupancy_{cname}"], layers, ":", marker="s", ms=3, color=colour,
                    label=f"{cname}: share of grains")
     left.set_xscale("log")
+    label_log_axis(left.xaxis)
     left.set_xlabel("axial mean squared displacement per revolution <\u0394z\u00b2>/\u0394N (m\u00b2/rev)")
     left.set_ylabel("depth below the free surface (grain diameters)")
     left.set_yticks(layers)
@@ -480,7 +523,7 @@ def fig_depth(run, w):
     left.legend(fontsize=8)
     right.set_xlabel("fraction")
     right.set_xlim(0, 1)
-    right.legend(fontsize=7)
+    legend_outside(right, fontsize=7)
     fig.suptitle(f"Axial motion by depth, {run.mode} mode, {run.label()}", fontsize=10)
     fig.tight_layout()
     w.save(fig, name)
@@ -495,7 +538,7 @@ def fig_msd(run, w):
         w.skip(name, f"no {path} (the run has too few particle snapshots: tumble drum --snapshots)")
         return
     table = read_csv(path)
-    fig, ax = plt.subplots(figsize=(7.5, 5))
+    fig, ax = plt.subplots(figsize=(11, 5))
     for i, cname in enumerate(run.components):
         col = f"msd_{cname}"
         if col not in table:
@@ -515,7 +558,7 @@ def fig_msd(run, w):
     ax.set_xlabel("lag (revolutions)")
     ax.set_ylabel("axial mean squared displacement (mm\u00b2)")
     ax.set_title(f"Grains' axial MSD, {run.mode} mode, {run.label()}", fontsize=10)
-    ax.legend(fontsize=7)
+    legend_outside(ax, fontsize=7)
     fig.tight_layout()
     w.save(fig, name)
 
@@ -549,9 +592,15 @@ def fig_collapse(run, w):
     ax.set_ylabel(f"C(z, N) of {collapse['component']}")
     ax.set_title(f"Profile collapse, N >= {first:g}: rms difference {collapse['rms']:.3f}\n"
                  f"{run.mode} mode, {run.label()}", fontsize=10)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper left")  # C is near 0 on the left, near 1 on the right
     fig.tight_layout()
     w.save(fig, name)
+
+
+def _finite_mean(values):
+    """The mean of the finite values; NaN (not drawn) if there are none."""
+    finite = values[np.isfinite(values)]
+    return float(np.mean(finite)) if len(finite) else math.nan
 
 
 def fig_bed_structure(run, w):
@@ -581,14 +630,14 @@ def fig_bed_structure(run, w):
     for i, cname in enumerate(run.components):
         col = f"mean_distance_{cname}"
         if col in t:
-            radial.plot(z, [np.nanmean(t[col][t["slice"] == s]) * 1e3 for s in slices], "-o", ms=3,
+            radial.plot(z, [_finite_mean(t[col][t["slice"] == s]) * 1e3 for s in slices], "-o", ms=3,
                         color=COLOURS[i % len(COLOURS)], label=cname)
     radial.set_xlabel("z (mm)")
     radial.set_ylabel("mean distance from the slice's centroid (mm)")
     radial.set_title("radial composition (lower: nearer the core)", fontsize=9)
     radial.legend(fontsize=7)
     if "surface_angle" in t:
-        angle.plot(z, [np.nanmean(t["surface_angle"][t["slice"] == s]) for s in slices], "-o", ms=3, color="0.3")
+        angle.plot(z, [_finite_mean(t["surface_angle"][t["slice"] == s]) for s in slices], "-o", ms=3, color="0.3")
     angle.set_xlabel("z (mm)")
     angle.set_ylabel("free-surface inclination (degrees)")
     angle.set_title("free surface per axial slice", fontsize=9)
@@ -608,7 +657,7 @@ def do_run(args):
 def do_compare(args):
     runs = [Run(d) for d in args.dirs]
     w = Writer(args.out or "drum_compare_figures")
-    fig, ax = plt.subplots(figsize=(8, 5.5))
+    fig, ax = plt.subplots(figsize=(11.5, 5.5))
     markers = ["o", "s", "^", "v", "D", "x"]
     for k, run in enumerate(runs):
         _plot_z(ax, run, lambda i, k=k: COLOURS[(2 * k + i) % len(COLOURS)],
@@ -620,7 +669,7 @@ def do_compare(args):
     ax.set_xlabel("revolutions N")
     ax.set_ylabel("<z> (mm)")
     ax.set_title(f"{figure}: average position for {len(runs)} rotation speeds", fontsize=10)
-    ax.legend(fontsize=6.5)
+    legend_outside(ax, fontsize=6.5)
     fig.tight_layout()
     w.save(fig, "fig_z_compare")
     return w
@@ -677,13 +726,34 @@ def _plot_grouped(ax, x, values, colour, label, marker="o", lo=None, hi=None):
 
 
 def _d_columns(table, c):
-    """D of a component and its 95 % interval per row: the grains' MSD estimate where
-    the table has it (issue 14), else the old pinned Hogg fit +- 1.96 standard errors."""
+    """D of a component and its 95 % interval per row, and which rows' D is not
+    determined: the grains' MSD estimate where the table has it (issue 14; empty
+    where not determined), else the old pinned Hogg fit +- 1.96 standard errors
+    (where `determined_` is false, D is only the best estimate)."""
+    finished = np.array([s == "finished" for s in table["status"]]) if "status" in table \
+        else np.ones(len(table["omega"]), dtype=bool)
     if f"D_msd_{c}" in table and np.any(np.isfinite(table[f"D_msd_{c}"])):
-        return table[f"D_msd_{c}"], table[f"D_msd_lo_{c}"], table[f"D_msd_hi_{c}"]
+        d = table[f"D_msd_{c}"]
+        return d, table[f"D_msd_lo_{c}"], table[f"D_msd_hi_{c}"], finished & ~np.isfinite(d)
     d = table[f"D_{c}"]
     e = table.get(f"D_stderr_{c}", np.full(len(d), math.nan))
-    return d, d - 1.96 * e, d + 1.96 * e
+    flags = table.get(f"determined_{c}")
+    undetermined = np.array([str(f).lower() == "false" for f in flags]) if flags is not None \
+        else np.zeros(len(d), dtype=bool)
+    return d, d - 1.96 * e, d + 1.96 * e, finished & undetermined
+
+
+def _plot_undetermined(ax, x, d, colour, label, marker):
+    """The points whose D is not determined, apart from the means: open markers at
+    their best estimate, without an interval; those without any estimate are
+    counted in the legend."""
+    has_value = np.isfinite(d)
+    if np.any(has_value):
+        ax.plot(x[has_value], d[has_value], marker, ls="none", mfc="none", color=colour, ms=6,
+                label=f"{label}: D not determined (best estimate, left out of the mean)")
+    if np.any(~has_value):
+        ax.plot([], [], marker, ls="none", mfc="none", color=colour,
+                label=f"{label}: {int(np.sum(~has_value))} point(s) with D not determined, not drawn")
 
 
 def _d_axis(ax):
@@ -719,12 +789,14 @@ def do_sweep(args):
     two_comps = _components_with_data(table, two_rows, comps) if two_rows.any() else []
 
     def plot_d(ax, x, rows, c, colour, label, marker):
-        d, lo, hi = _d_columns(table, c)
-        _plot_grouped(ax, x[rows], d[rows], colour, label, marker, lo[rows], hi[rows])
+        d, lo, hi, undetermined = _d_columns(table, c)
+        determined = np.where(undetermined, math.nan, d)
+        _plot_grouped(ax, x[rows], determined[rows], colour, label, marker, lo[rows], hi[rows])
+        _plot_undetermined(ax, x[rows & undetermined], d[rows & undetermined], colour, label, marker)
 
     # Fig. 3: self-diffusion
     if self_comps:
-        fig, ax = plt.subplots(figsize=(7, 5))
+        fig, ax = plt.subplots(figsize=(10, 5))
         for i, c in enumerate(self_comps):
             plot_d(ax, omega, self_rows, c, COLOURS[i % len(COLOURS)], f"started {c}, mean over seeds", "os"[i % 2])
         ax.set_xlabel("rotation speed \u03c9 (rad/s)")
@@ -732,7 +804,7 @@ def do_sweep(args):
         _rpm_axis(ax)
         _d_axis(ax)
         ax.set_title("Fig. 3: self-diffusion coefficient against rotation speed", fontsize=10)
-        ax.legend(fontsize=8)
+        legend_outside(ax, fontsize=8)
         fig.tight_layout()
         w.save(fig, "fig3_self_D_vs_omega")
     else:
@@ -740,7 +812,7 @@ def do_sweep(args):
 
     # Fig. 5: two-component diffusion
     if two_comps:
-        fig, ax = plt.subplots(figsize=(7, 5))
+        fig, ax = plt.subplots(figsize=(10, 5))
         for i, c in enumerate(two_comps):
             plot_d(ax, omega, two_rows, c, COLOURS[i % len(COLOURS)], f"{c}, mean over seeds", "os^v"[i % 4])
         ax.set_xlabel("rotation speed \u03c9 (rad/s)")
@@ -749,7 +821,7 @@ def do_sweep(args):
         _d_axis(ax)
         ax.set_title("Fig. 5: two-component diffusion coefficients against rotation speed",
                      fontsize=10)
-        ax.legend(fontsize=8)
+        legend_outside(ax, fontsize=8)
         fig.tight_layout()
         w.save(fig, "fig5_two_component_D_vs_omega")
     else:
@@ -761,7 +833,7 @@ def do_sweep(args):
     present = [k for k in ke_cols if k[1] in table and two_rows.any()
                and np.any(np.isfinite(table[k[1]][two_rows]))]
     if present:
-        fig, ax = plt.subplots(figsize=(7, 5))
+        fig, ax = plt.subplots(figsize=(10, 5))
         for label, col, colour in present:
             _plot_grouped(ax, omega[two_rows], table[col][two_rows], colour,
                           f"{label}: material 2 / material 1, mean over seeds")
@@ -782,7 +854,7 @@ def do_sweep(args):
         _rpm_axis(ax)
         ax.set_ylim(bottom=0)
         ax.set_title("Fig. 6: kinetic energy ratio against rotation speed", fontsize=10)
-        ax.legend(fontsize=8)
+        legend_outside(ax, fontsize=8)
         fig.tight_layout()
         w.save(fig, "fig6_ke_ratio_vs_omega")
     else:
@@ -791,7 +863,7 @@ def do_sweep(args):
     # D against Froude number, both modes
     if "froude" in table and (self_comps or two_comps):
         froude = table["froude"]
-        fig, ax = plt.subplots(figsize=(7, 5))
+        fig, ax = plt.subplots(figsize=(10, 5))
         for i, c in enumerate(self_comps):
             plot_d(ax, froude, self_rows, c, "tab:blue", f"self-diffusion: started {c}", "Dd"[i % 2])
         for i, c in enumerate(two_comps):
@@ -800,7 +872,7 @@ def do_sweep(args):
         ax.set_ylabel("diffusion coefficient D (m\u00b2/rev)")
         _d_axis(ax)
         ax.set_title("Diffusion coefficients against Froude number (both modes)", fontsize=10)
-        ax.legend(fontsize=8)
+        legend_outside(ax, fontsize=8)
         fig.tight_layout()
         w.save(fig, "fig_D_vs_froude")
     else:
@@ -810,7 +882,7 @@ def do_sweep(args):
     share_comps = [c for c in comps if f"surface_share_{c}" in table
                    and np.any(np.isfinite(table[f"surface_share_{c}"]))]
     if share_comps:
-        fig, ax = plt.subplots(figsize=(7, 5))
+        fig, ax = plt.subplots(figsize=(10, 5))
         for i, c in enumerate(share_comps):
             rows = np.isfinite(table[f"surface_share_{c}"])
             _plot_grouped(ax, omega[rows], table[f"surface_share_{c}"][rows],
@@ -821,7 +893,7 @@ def do_sweep(args):
         ax.set_ylim(0, 1.05)
         ax.set_title("Where the axial motion happens: surface share against rotation speed",
                      fontsize=10)
-        ax.legend(fontsize=8)
+        legend_outside(ax, fontsize=8)
         fig.tight_layout()
         w.save(fig, "fig_surface_share_vs_omega")
     else:

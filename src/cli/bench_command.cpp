@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// tumble bench: the paper's dense periodic cube (SPEC-NOTES "Speed"), or the
+// tumble bench: the paper's dense periodic cube (docs/BENCHMARKS.md), or the
 // long flowing drum of issue 13 (docs/BENCHMARKS.md).
 #include <algorithm>
 #include <chrono>

@@ -10,6 +10,7 @@
 
 #include "experiments/drum.hpp"
 #include "experiments/machine.hpp"
+#include "experiments/progress.hpp"
 #include "experiments/run_control.hpp"
 #include "io/checkpoint.hpp"
 #include "io/drum_config.hpp"
@@ -25,6 +26,7 @@ struct RunOptions {
     std::string output_directory;  // empty: the scenario's [output] directory
     bool force = false;            // overwrite an earlier run's output
     bool quiet = false;
+    double progress_every = default_progress_every;  // s between progress lines when not on a terminal; 0: none
     CheckpointPolicy checkpoints;
     int threads = 1;               // 0: every core of the machine (resolve_threads)
     double max_memory_gib = 0.0;   // refuse a run estimated to need more; 0: half the machine's (experiments/limits.hpp)
@@ -62,10 +64,11 @@ struct ContactOptions {
 int contact_command(const ContactOptions& options);
 
 // tumble resume DIR: continue a run of `tumble run` or `tumble drum` from its
-// newest intact checkpoint (docs/CHECKPOINTS.md).
-int resume_command(const std::string& directory, bool quiet);
-int resume_run(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet);
-int resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet);
+// newest intact checkpoint (docs/CHECKPOINTS.md). progress_every: seconds
+// between progress lines when not on a terminal (0: none).
+int resume_command(const std::string& directory, bool quiet, double progress_every);
+int resume_run(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet, double progress_every);
+int resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet, double progress_every);
 
 // Re-analyse a drum run directory: summary.json, summary.txt.
 // first_revolution: the start-up left out of the fits (io::AnalyzeOptions).
@@ -79,8 +82,8 @@ int plot_command(const std::string& mode, const std::vector<std::string>& inputs
 
 struct RenderOptions {
     std::string directory;     // a run directory of tumble drum or tumble run
-    std::string out;           // the MP4; empty: DIR/drum.mp4
-    int fps = 25;
+    std::string out;           // the MP4; empty: DIR/NAME.mp4, NAME the run directory's
+    int fps = 0;               // 0: chosen for a movie of about 6 s or more, at most 25
     int width = 640;           // pixels of each of the two views
     std::string colour;        // "material" or "tag"; empty: tag for a self-diffusion drum run, else material
     bool frames_only = false;  // frames/NNNNNN.png only, no movie (no ffmpeg needed)

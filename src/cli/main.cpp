@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The tumble command line: run, bench, drum, contact, analyze, plot, sweep, render, resume.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +13,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/sweep_command.hpp"
+#include "io/names.hpp"
 #include "tumble/contact/contact_law.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
@@ -54,6 +56,61 @@ void add_checkpoint_options(CLI::App* command, tumble::cli::CheckpointPolicy& po
         ->check(CLI::PositiveNumber);
 }
 
+// --progress-every, of the commands that run for long.
+void add_progress_option(CLI::App* command, double& seconds) {
+    command->add_option("--progress-every", seconds,
+                        "Seconds between progress lines when stderr is not a terminal (nohup, a batch system; "
+                        "default 30; 0: none)")
+        ->check(finite_non_negative);
+}
+
+// The long option names of a command, with their dashes.
+std::vector<std::string> long_options(const CLI::App& command) {
+    std::vector<std::string> names;
+    for (const CLI::Option* option : command.get_options())
+        for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+    return names;
+}
+
+// "; did you mean 'x'?" when a known name is close to `word`, else "".
+std::string suggestion(const std::string& word, const std::vector<std::string>& known) {
+    const std::optional<std::string> closest = tumble::io::closest_name(word, known);
+    return closest ? "; did you mean '" + *closest + "'?" : std::string();
+}
+
+// A command-line mistake, said in tumble's words: an unknown command or
+// option with the known one it is closest to, else CLI11's message; then
+// where the help is. Returns exit_bad_input (CLI11's own codes, 104 to 109,
+// would sit beside tumble's).
+int usage_error(const CLI::App& app, const CLI::ParseError& error, int argc, char** argv) {
+    std::vector<std::string> commands;
+    for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; }))
+        commands.push_back(command->get_name());
+    std::vector<std::string> arguments(argv + 1, argv + argc);
+    const auto word = std::find_if(arguments.begin(), arguments.end(),
+                                   [](const std::string& a) { return !a.starts_with("-"); });
+    std::string message;
+    std::string help = "tumble --help";
+    if (word != arguments.end() && std::find(commands.begin(), commands.end(), *word) == commands.end()) {
+        std::string list;
+        for (const std::string& c : commands) list += (list.empty() ? "" : ", ") + c;
+        message = "unknown command '" + *word + "'" + suggestion(*word, commands) + "\ncommands: " + list;
+    } else if (word != arguments.end()) {
+        const CLI::App& command = *app.get_subcommand(*word);
+        const std::vector<std::string> known = long_options(command);
+        for (auto a = std::next(word); a != arguments.end(); ++a) {
+            const std::string name = a->substr(0, a->find('='));
+            if (name.starts_with("--") && std::find(known.begin(), known.end(), name) == known.end())
+                message += (message.empty() ? "" : "\n") + std::string("unknown option '") + name + "' of tumble " +
+                           *word + suggestion(name, known);
+        }
+        help = "tumble " + *word + " --help";
+    }
+    if (message.empty()) message = error.what();
+    fmt::print(stderr, "tumble: error: {}\nsee '{}'\n", message, help);
+    return tumble::experiments::exit_bad_input;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -71,6 +128,7 @@ int main(int argc, char** argv) {
     run_cmd->add_option("-o,--out", run.output_directory, "Output directory (default: the scenario's [output] directory)");
     run_cmd->add_flag("--force", run.force, "Overwrite the output of an earlier run in that directory");
     run_cmd->add_flag("-q,--quiet", run.quiet, "Print nothing but errors");
+    add_progress_option(run_cmd, run.progress_every);
     add_checkpoint_options(run_cmd, run.checkpoints);
     run_cmd->add_option("--checkpoint-every-steps", run.checkpoints.every_steps, "Steps between checkpoints (default: none)")
         ->check(CLI::NonNegativeNumber);
@@ -84,8 +142,7 @@ int main(int argc, char** argv) {
 
     BenchOptions bench;
     CLI::App* bench_cmd = app.add_subcommand(
-        "bench", "Speed: the paper's dense periodic cube (SPEC-NOTES \"Speed\"), or a long flowing drum "
-                 "(docs/BENCHMARKS.md)");
+        "bench", "Speed: the paper's dense periodic cube, or a long flowing drum (docs/BENCHMARKS.md)");
     bench_cmd->add_option("--case", bench.bench_case,
                           "cube (default) or long-drum (tumble drum --length 0.64 --fill 0.3, from a settled bed "
                           "made once and kept)")
@@ -157,7 +214,9 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("-o,--out", out, "Run directory (default drum-out)");
     drum_cmd->add_flag("--force", drum.force, "Overwrite an earlier run in that directory");
     drum_cmd->add_flag("-q,--quiet", drum.quiet, "Print nothing but errors");
-    drum_cmd->add_flag("!--no-plot", drum.plot, "Do not draw the figures at the end");
+    add_progress_option(drum_cmd, drum.progress_every);
+    bool no_plot = false;
+    drum_cmd->add_flag("--no-plot", no_plot, "Do not draw the figures at the end");
     add_checkpoint_options(drum_cmd, drum.checkpoints);
     drum_cmd->add_option("--checkpoint-every-revolutions", drum.checkpoint_revolutions,
                          "Revolutions between checkpoints while the drum turns (default 1; 0: not by revolutions)")
@@ -197,11 +256,13 @@ int main(int argc, char** argv) {
 
     std::string resume_dir;
     bool resume_quiet = false;
+    double resume_progress_every = tumble::experiments::default_progress_every;
     CLI::App* resume_cmd = app.add_subcommand(
         "resume", "Continue an interrupted run (tumble run or drum) from its newest intact checkpoint "
                   "(docs/CHECKPOINTS.md)");
     resume_cmd->add_option("directory", resume_dir, "Run directory")->required();
     resume_cmd->add_flag("-q,--quiet", resume_quiet, "Print nothing but errors");
+    add_progress_option(resume_cmd, resume_progress_every);
 
     std::string analyze_dir;
     CLI::App* analyze_cmd = app.add_subcommand("analyze", "Analyse a drum run directory again (summary.json, summary.txt)");
@@ -220,11 +281,12 @@ int main(int argc, char** argv) {
 
     RenderOptions render;
     CLI::App* render_cmd = app.add_subcommand(
-        "render", "A movie (MP4) of a run's particle snapshots: the drum along its axis and from the side "
-                  "(frames in DIR/frames; see docs/RENDER.md)");
+        "render", "A movie (MP4) of a run's particle snapshots: two views (a drum along its axis and from the side), "
+                  "the clock and a legend (frames in DIR/frames; see docs/RENDER.md)");
     render_cmd->add_option("directory", render.directory, "Run directory of tumble drum or tumble run")->required();
-    render_cmd->add_option("-o,--out", render.out, "The movie file (default DIR/drum.mp4)");
-    render_cmd->add_option("--fps", render.fps, "Frames per second of the movie (default 25)")
+    render_cmd->add_option("-o,--out", render.out, "The movie file (default DIR/NAME.mp4, NAME the directory's)");
+    render_cmd->add_option("--fps", render.fps,
+                           "Frames per second of the movie (default: a movie of about 6 s or more, at most 25)")
         ->check(CLI::Range(1, 240));
     render_cmd->add_option("--width", render.width, "Pixels of each of the two views (default 640)")
         ->check(CLI::Range(16, 8192));
@@ -251,8 +313,15 @@ int main(int argc, char** argv) {
                           "Under MPI: seconds rank 0 waits for the other ranks' points (default 7 days)")
         ->check(finite_positive);
     sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "Print nothing but errors and failed points");
+    add_progress_option(sweep_cmd, sweep.progress_every);
 
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {  // --help, --version
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        return usage_error(app, e, argc, argv);
+    }
     try {
         if (run_cmd->parsed()) return run_command(run);
         if (bench_cmd->parsed()) {
@@ -266,7 +335,7 @@ int main(int argc, char** argv) {
         if (plot_cmd->parsed()) return plot_command(plot_compare ? "compare" : "run", plot_inputs, plot_out);
         if (sweep_cmd->parsed()) return sweep_command(sweep);
         if (render_cmd->parsed()) return render_command(render);
-        if (resume_cmd->parsed()) return resume_command(resume_dir, resume_quiet);
+        if (resume_cmd->parsed()) return resume_command(resume_dir, resume_quiet, resume_progress_every);
         if (contact_cmd->parsed()) {
             if (contact.scenario_file.empty() && !contact_drum)
                 throw tumble::Error("contact: give a scenario file or --drum");
@@ -303,6 +372,7 @@ int main(int argc, char** argv) {
             if (friction_normal) d.friction_normal = tumble::find_keyword(tumble::friction_normals, *friction_normal)->value;
             if (seed) d.seed = static_cast<std::uint64_t>(*seed);
             if (out) d.output = *out;
+            drum.plot = !no_plot;
             tumble::io::check_drum_settings(d, "command line");
             return drum_command(drum);
         }
@@ -311,10 +381,10 @@ int main(int argc, char** argv) {
         return exit_blew_up;
     } catch (const tumble::Error& e) {
         fmt::print(stderr, "tumble: error: {}\n", e.what());
-        return 2;
+        return exit_bad_input;
     } catch (const std::exception& e) {
         fmt::print(stderr, "tumble: unexpected error: {}\n", e.what());
-        return 3;
+        return exit_unexpected;
     }
     return 1;
 }

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // tumble render DIR: a movie of a run's particle snapshots, the paper's
 // "animated videos" of the drum (docs/RENDER.md). Every snapshots/NNNNNN.csv
-// becomes a frame, frames/NNNNNN.png (two views side by side, drawn by
-// src/io/render/ on -j threads), and ffmpeg joins the frames into an MP4.
+// becomes a frame, frames/NNNNNN.png (two views side by side over the clock
+// and the legend, drawn by src/io/render/ on -j threads), and ffmpeg joins
+// the frames into DIR/NAME.mp4, NAME the run directory's.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,6 +16,7 @@
 #include <fstream>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -23,11 +25,14 @@
 
 #include "cli/commands.hpp"
 #include "experiments/progress.hpp"
+#include "io/checkpoint.hpp"
+#include "experiments/limits.hpp"
 #include "io/drum_output.hpp"
 #include "io/png.hpp"
 #include "io/render/scene.hpp"
 #include "io/snapshots.hpp"
 #include "io/sweep.hpp"
+#include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 
 namespace tumble::cli {
@@ -74,9 +79,9 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 
 // What every frame shares: the box that holds every particle of every
 // snapshot, the wall's centre, the grain materials.
-io::render::Scene gather_scene(const std::vector<fs::path>& snapshots, unsigned jobs, bool show_progress) {
+io::render::Scene gather_scene(const std::vector<fs::path>& snapshots, unsigned jobs, ProgressStyle style) {
     std::vector<io::render::Scene> parts(snapshots.size());
-    Progress progress(static_cast<std::int64_t>(snapshots.size()), 1, show_progress, "snapshots read/s");
+    Progress progress("reading", 0, static_cast<std::int64_t>(snapshots.size()), style, {.unit = "snapshots"});
     parallel_for(snapshots.size(), jobs, [&](std::size_t k) { parts[k].add(io::read_snapshot_csv(snapshots[k])); },
                  progress);
     io::render::Scene scene;
@@ -84,13 +89,29 @@ io::render::Scene gather_scene(const std::vector<fs::path>& snapshots, unsigned 
     return scene;
 }
 
+// What the frames' clock needs of a drum run: when rotation began, how fast.
+struct DrumClock {
+    double start = 0.0;  // s: the end of settling, revolution N = 0
+    double omega = 0.0;  // rad/s
+};
+
+// "t = 0.512 s, N = 2.25 revolutions" (N for a drum run only); empty if the
+// snapshot does not say its time.
+std::string clock_text(const fs::path& snapshot, const std::optional<DrumClock>& drum) {
+    const std::optional<double> t = io::read_snapshot_time(snapshot);
+    if (!t) return {};
+    if (!drum) return fmt::format("t = {:.4g} s", *t);
+    return fmt::format("t = {:.4g} s, N = {:.2f} revolutions", *t, drum->omega * (*t - drum->start) / (2.0 * pi));
+}
+
 // frames/NNNNNN.png of snapshot NNNNNN (counted from 0 in their order).
-void draw_frames(const std::vector<fs::path>& snapshots, const io::render::Scene& scene, ColourBy colours,
-                 int view_width, const fs::path& frames, unsigned jobs, bool show_progress) {
-    Progress progress(static_cast<std::int64_t>(snapshots.size()), 1, show_progress, "frames/s");
+void draw_frames(const std::vector<fs::path>& snapshots, const io::render::Scene& scene,
+                 const io::render::FrameStyle& style, const std::optional<DrumClock>& drum, const fs::path& frames,
+                 unsigned jobs, ProgressStyle shown) {
+    Progress progress("drawing", 0, static_cast<std::int64_t>(snapshots.size()), shown, {.unit = "frames"});
     parallel_for(snapshots.size(), jobs, [&](std::size_t k) {
-        const io::render::Image image =
-            io::render::render_frame(io::read_snapshot_csv(snapshots[k]), scene, colours, view_width);
+        const io::render::Image image = io::render::render_frame(io::read_snapshot_csv(snapshots[k]), scene, style,
+                                                                 clock_text(snapshots[k], drum));
         io::write_png(frames / fmt::format("{:06d}.png", k), image, true);
     }, progress);
 }
@@ -109,12 +130,30 @@ fs::path find_on_path(const std::string& program) {
 
 // --color, or by default: the starting half (tag) for a self-diffusion drum
 // run, where all grains are of one material; the material otherwise.
-ColourBy colour_by(const std::string& option, const fs::path& directory) {
+ColourBy colour_by(const std::string& option, const std::optional<io::DrumRunInfo>& drum) {
     if (option == "tag") return ColourBy::tag;
     if (option == "material") return ColourBy::material;
-    const fs::path run_info = directory / "drum_run.toml";
-    if (fs::exists(run_info) && io::read_drum_run_info(run_info).mode == "self") return ColourBy::tag;
-    return ColourBy::material;
+    return drum && drum->mode == "self" ? ColourBy::tag : ColourBy::material;
+}
+
+// The views: the drum's for a drum run; for a scenario, "up" against the
+// gravity kept in the run's newest checkpoint (+z if it has none).
+io::render::Orientation orientation_of(const fs::path& directory, bool drum) {
+    if (drum) return io::render::drum_orientation();
+    try {
+        const io::LoadedCheckpoint loaded =
+            io::load_newest_checkpoint(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0)));
+        return io::render::orientation_against(loaded.checkpoint.scenario.gravity);
+    } catch (const Error&) {
+        return io::render::orientation_against({0.0, 0.0, 0.0});
+    }
+}
+
+// The movie's frame rate: as asked, or one that makes a movie of about 6 s
+// or more, at most 25 frames/s.
+int frame_rate(int asked, std::size_t frames) {
+    if (asked > 0) return asked;
+    return static_cast<int>(std::clamp<std::size_t>(frames / 6, 2, 25));
 }
 
 // The frames directory, emptied of an earlier render's frames.
@@ -159,33 +198,52 @@ int render_command(const RenderOptions& options) {
         throw Error((directory / "snapshots").string() +
                     ": no particle snapshots (NNNNNN.csv) to render; tumble drum writes them with --snapshots P "
                     "(per revolution), tumble run at the scenario's [output] snapshot_interval");
-    const fs::path movie = options.out.empty() ? directory / "drum.mp4" : fs::path(options.out);
+    const std::string name = fs::weakly_canonical(fs::absolute(directory)).filename().string();
+    const fs::path movie = options.out.empty() ? directory / (name + ".mp4") : fs::path(options.out);
     const fs::path ffmpeg = options.frames_only ? fs::path() : find_on_path("ffmpeg");
     if (!options.frames_only && ffmpeg.empty())
         throw Error("ffmpeg not found on PATH, and it makes the movie " + movie.string() +
                     ": install ffmpeg (Debian: apt-get install ffmpeg), or pass --frames-only");
-    const ColourBy colours = colour_by(options.colour, directory);
+    const fs::path run_info = directory / "drum_run.toml";
+    const std::optional<io::DrumRunInfo> drum =
+        fs::exists(run_info) ? std::optional(io::read_drum_run_info(run_info)) : std::nullopt;
+    io::render::FrameStyle style{options.width, colour_by(options.colour, drum),
+                                 orientation_of(directory, drum.has_value()), {}};
     const unsigned jobs = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
     const bool talk = !options.quiet;
     const std::size_t count = snapshots.size();
     if (talk)
         fmt::print("tumble render: {} snapshots of {}, grains coloured by {}, {} threads\n", count,
-                   directory.string(), colours == ColourBy::tag ? "tag" : "material", jobs);
+                   directory.string(), style.colour_by == ColourBy::tag ? "tag" : "material", jobs);
 
     const auto start = Clock::now();
-    const io::render::Scene scene = gather_scene(snapshots, jobs, talk && progress_wanted());
+    const io::render::Scene scene = gather_scene(snapshots, jobs, progress_style(!talk));
+    std::vector<std::string> tag_names;
+    if (drum)
+        for (const io::DrumComponent& c : drum->components) tag_names.push_back(c.name);
+    style.legend = io::render::scene_legend(scene, style.colour_by, tag_names);
     const fs::path frames = fresh_frames_directory(directory);
-    draw_frames(snapshots, scene, colours, options.width, frames, jobs, talk && progress_wanted());
+    const std::optional<DrumClock> clock =
+        drum ? std::optional(DrumClock{drum->settle_time, drum->omega}) : std::nullopt;
+    draw_frames(snapshots, scene, style, clock, frames, jobs, progress_style(!talk));
     if (talk)
         fmt::print("{} frames of {} x {} pixels in {}, read and drawn in {:.1f} s\n", count, 2 * options.width,
-                   io::render::scene_views(scene, options.width).first.height, frames.string(), seconds_since(start));
+                   io::render::frame_layout(scene, style).height, frames.string(), seconds_since(start));
     if (options.frames_only) return 0;
 
+    const int fps = frame_rate(options.fps, count);
+    const double seconds = static_cast<double>(count) / fps;
+    if (seconds < 3.0)
+        fmt::print(stderr,
+                   "tumble render: warning: the movie lasts only {:.1f} s ({} frames at {} frames/s); more snapshots "
+                   "make a longer one: tumble drum --snapshots P (per revolution), tumble run: [output] "
+                   "snapshot_interval\n",
+                   seconds, count, fps);
     const auto movie_start = Clock::now();
-    make_movie(ffmpeg, frames, options.fps, movie);
+    make_movie(ffmpeg, frames, fps, movie);
     if (talk)
-        fmt::print("movie {}: {:.1f} s at {} frames/s (ffmpeg, H.264) in {:.1f} s\n", movie.string(),
-                   static_cast<double>(count) / options.fps, options.fps, seconds_since(movie_start));
+        fmt::print("movie {}: {:.1f} s at {} frames/s (ffmpeg, H.264) in {:.1f} s\n", movie.string(), seconds, fps,
+                   seconds_since(movie_start));
     return 0;
 }
 

@@ -10,7 +10,7 @@
 
 namespace tumble::cli {
 
-int resume_command(const std::string& directory, bool quiet) {
+int resume_command(const std::string& directory, bool quiet, double progress_every) {
     const io::RunLock lock(directory);  // held until the run ends
     io::LoadedCheckpoint loaded =
         io::load_newest_checkpoint(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0)));
@@ -24,8 +24,8 @@ int resume_command(const std::string& directory, bool quiet) {
     }
     if (!quiet) fmt::print("tumble resume: from {}\n", loaded.file.string());
     const std::string command = record.text("command");
-    if (command == "run") return resume_run(std::move(loaded.checkpoint), directory, quiet);
-    if (command == "drum") return resume_drum(std::move(loaded.checkpoint), directory, quiet);
+    if (command == "run") return resume_run(std::move(loaded.checkpoint), directory, quiet, progress_every);
+    if (command == "drum") return resume_drum(std::move(loaded.checkpoint), directory, quiet, progress_every);
     throw Error(loaded.file.string() + ": a checkpoint of an unknown command \"" + command + "\"");
 }
 

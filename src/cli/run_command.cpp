@@ -35,6 +35,7 @@ struct RunPlan {
     std::int64_t steps = 0, sample_every = 0, snapshot_every = 0;
     double wall_seconds = 0.0;  // spent by earlier processes
     bool quiet = false;
+    ProgressStyle progress;     // of this process: not kept in checkpoints
 };
 
 void save_plan(io::CheckpointRecord& r, const RunPlan& plan) {
@@ -73,12 +74,12 @@ public:
 
     int run() {
         const bool talk = !plan_.quiet;
-        const std::int64_t first = sim_.step_count();  // > 0 after a resume
-        Progress progress(plan_.steps - first, sim_.particles().free_count(), talk && progress_wanted());
+        Progress progress("run", sim_.step_count(), plan_.steps, plan_.progress,
+                          {.particles = sim_.particles().free_count(), .seconds_per_step = sim_.dt()});
         while (sim_.step_count() < plan_.steps) {
             sim_.step();
             sample();
-            progress.update(sim_.step_count() - first);
+            progress.update(sim_.step_count());
             const auto due = checkpoints_.after_steps(sim_, sim_.step_count());
             if (due == Checkpointer::Due::no) continue;
             checkpoint(false, progress.elapsed_seconds());
@@ -151,7 +152,8 @@ int run_command(const RunOptions& options) {
                  every(config.output.time_series_interval, dt),
                  every(config.output.snapshot_interval, dt),
                  0.0,
-                 options.quiet};
+                 options.quiet,
+                 progress_style(options.quiet, options.progress_every)};
     check_stiffness(sim.scenario(), options.allow_soft, options.scenario_file);  // after what no run can do
 
     const auto& dir = config.output.directory;
@@ -167,9 +169,10 @@ int run_command(const RunOptions& options) {
     return loop.run();
 }
 
-int resume_run(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
+int resume_run(io::Checkpoint checkpoint, const fs::path& dir, bool quiet, double progress_every) {
     RunPlan plan = load_plan(checkpoint.record);
     plan.quiet = quiet;
+    plan.progress = progress_style(quiet, progress_every);
     if (plan.steps != step_count(plan.duration, checkpoint.state.dt, checkpoint.record.source + ": run.duration") ||
         plan.sample_every < 0 || plan.snapshot_every < 0 || plan.sample_every > max_steps ||
         plan.snapshot_every > max_steps)

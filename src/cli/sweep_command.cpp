@@ -7,6 +7,7 @@
 #include "cli/sweep_command.hpp"
 #include "cli/commands.hpp"
 #include "experiments/limits.hpp"
+#include "experiments/progress.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -31,13 +32,6 @@ namespace tumble::cli {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string duration(double s) {
-    if (!std::isfinite(s) || s < 0.0) return "?";
-    if (s < 90.0) return fmt::format("{:.0f} s", s);
-    if (s < 5400.0) return fmt::format("{:.0f} min {:02.0f} s", std::floor(s / 60.0), std::fmod(s, 60.0));
-    return fmt::format("{:.0f} h {:02.0f} min", std::floor(s / 3600.0), std::floor(std::fmod(s, 3600.0) / 60.0));
-}
 
 // True when a point is settled for rank 0's wait: a readable summary.json,
 // or a failure marker of this job (or of any job when the job is unknown).
@@ -133,10 +127,15 @@ int sweep_command(const SweepOptions& o) {
     const auto start = Clock::now();
     std::size_t done = 0, failed_here = 0;
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+    // In a log, a line at the steady interval between the points' own lines
+    // (a point can run for hours); on a terminal those lines are enough.
+    ProgressStyle style = progress_style(o.quiet, o.progress_every);
+    if (style.output == ProgressStyle::Output::terminal) style.output = ProgressStyle::Output::none;
+    Progress progress(who + "sweep", 0, static_cast<std::int64_t>(todo.size()), style, {.unit = "points"});
     io::run_jobs(
         todo, jobs,
         [&](const io::PointJob& job) {
-            if (!o.quiet) fmt::print("{}start  {} ({})\n", who, points[job.point].name, duration(elapsed()));
+            if (!o.quiet) fmt::print("{}start  {} ({})\n", who, points[job.point].name, format_duration(elapsed()));
         },
         [&](const io::PointJob& job, const io::PointOutcome& out) {
             ++done;
@@ -156,10 +155,13 @@ int sweep_command(const SweepOptions& o) {
                 const double t = elapsed();
                 const double eta = t / static_cast<double>(done) * static_cast<double>(todo.size() - done);
                 fmt::print("{}{} {} in {} [{}/{}; elapsed {}, ETA {}]\n", who, ok ? "done  " : "failed", p.name,
-                           duration(out.seconds), done, todo.size(), duration(t), duration(eta));
+                           format_duration(out.seconds), done, todo.size(), format_duration(t), format_duration(eta));
             }
         },
-        stop_signalled);
+        [&] {  // polled while the points run
+            progress.update(static_cast<std::int64_t>(done));
+            return stop_signalled();
+        });
     if (stop_signalled()) {
         fmt::print(stderr, "{}tumble sweep: stopped by a signal; the running points wrote checkpoints. Continue "
                            "with the same command: tumble sweep {} -o {}\n",
@@ -187,7 +189,7 @@ int sweep_command(const SweepOptions& o) {
             const double waited = std::chrono::duration<double>(Clock::now() - wait_start).count();
             if (waited > o.wait_timeout) {
                 fmt::print(stderr, "{}gave up waiting after {} for {} points of the other ranks\n", who,
-                           duration(waited), waiting);
+                           format_duration(waited), waiting);
                 break;
             }
             if (!o.quiet && Clock::now() - last_report > std::chrono::minutes(1)) {
@@ -206,7 +208,7 @@ int sweep_command(const SweepOptions& o) {
     if (!o.quiet)
         fmt::print("{}sweep: {} of {} points with results; written {} and {} ({})\n", who,
                    points.size() - missing, points.size(), (dir / "sweep.csv").string(),
-                   (dir / "sweep_summary.csv").string(), duration(elapsed()));
+                   (dir / "sweep_summary.csv").string(), format_duration(elapsed()));
     // The figures over speeds (figs. 3, 5, 6): a convenience, so a machine
     // without matplotlib only gets a warning.
     if (plot_command("sweep", {(dir / "sweep.csv").string()}, "", o.quiet) != 0)

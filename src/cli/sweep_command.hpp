@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "experiments/progress.hpp"
+
 namespace tumble::cli {
 
 struct SweepOptions {
@@ -13,6 +15,7 @@ struct SweepOptions {
     unsigned jobs = 0;              // points at once (per MPI rank); 0: the cores / ranks on this node
     bool list = false;              // print the points and their state, run nothing
     bool quiet = false;             // print nothing but errors and failed points
+    double progress_every = experiments::default_progress_every;  // s between progress lines in a log; 0: none
     double wait_timeout = 7 * 24 * 3600.0;  // s: how long MPI rank 0 waits for the other ranks' points
     std::string tumble_binary;      // empty: this executable (/proc/self/exe); for tests
 };

@@ -56,6 +56,7 @@ struct DrumPlan {
     double checkpoint_revolutions = 0.0;
     bool plot = true;
     bool quiet = false;
+    ProgressStyle progress;  // of this process: not kept in checkpoints
     bool rotating = false;
     std::int64_t rotation_start_step = 0;
 };
@@ -139,16 +140,22 @@ private:
     }
 
     // Settle with the drum at rest: at least fall_time, until the rms grain
-    // speed is below settle_speed, at most settle_max_time.
+    // speed is below settle_speed, at most settle_max_time. Its progress is
+    // the simulated time and the rms speed against their criteria: the bed
+    // usually settles long before the maximum time.
     Checkpointer::Due settle() {
         const std::int64_t check_every = std::max<std::int64_t>(1, std::llround(1e-3 / sim_.dt()));
-        const std::int64_t first = sim_.step_count();  // > 0 after a resume
-        Progress progress(std::llround(plan_.settle_max_time / sim_.dt()) - first, sim_.particles().free_count(),
-                          talk() && progress_wanted());
+        Progress progress("settling", sim_.step_count(), 0, plan_.progress,
+                          {.particles = sim_.particles().free_count()});
         while (sim_.time() < plan_.settle_max_time) {
             sim_.advance(check_every);
-            progress.update(sim_.step_count() - first);
-            if (sim_.time() >= plan_.fall_time && rms_grain_speed(sim_.particles()) < plan_.settle_speed) {
+            const double speed = rms_grain_speed(sim_.particles());
+            progress.update(sim_.step_count(),
+                            fmt::format("t = {:.3f} s ({:.3g} to {:.3g} s), rms grain speed {:.2g} m/s, "
+                                        "settled below {:.2g}",
+                                        sim_.time(), plan_.fall_time, plan_.settle_max_time, speed,
+                                        plan_.settle_speed));
+            if (sim_.time() >= plan_.fall_time && speed < plan_.settle_speed) {
                 plan_.info.settled = true;
                 break;
             }
@@ -200,7 +207,8 @@ private:
     Checkpointer::Due rotate() {
         constexpr std::int64_t batch = 100;
         const std::int64_t done = sim_.step_count() - plan_.rotation_start_step;  // > 0 after a resume
-        Progress progress(steps_ - done, sim_.particles().free_count(), talk() && progress_wanted());
+        Progress progress("rotation", done, steps_, plan_.progress,
+                          {.particles = sim_.particles().free_count(), .steps_per_revolution = period_ / sim_.dt()});
         for (std::int64_t k = done; k < steps_;) {
             std::int64_t next = std::min(steps_, (k / batch + 1) * batch);
             const auto at_multiple = [&](std::int64_t every) {
@@ -216,7 +224,7 @@ private:
             k = next;
             if (k % sample_every_ == 0) sample();
             if (snapshot_every_ && k % snapshot_every_ == 0) snapshots_->write(sim_);
-            progress.update(k - done);
+            progress.update(k);
             const auto due = checkpoints_.after_steps(sim_, k);
             if (due != Checkpointer::Due::no) checkpoint(false, progress.elapsed_seconds());
             if (due == Checkpointer::Due::and_stop) {
@@ -338,6 +346,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     plan.checkpoint_revolutions = options.checkpoint_revolutions;
     plan.plot = options.plot;
     plan.quiet = options.quiet;
+    plan.progress = progress_style(options.quiet, options.progress_every);
 
     const io::RunLock lock = io::prepare_output_directory(s.output, options.force);
     if (!options.quiet) {
@@ -352,9 +361,10 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     return loop.run({});
 }
 
-DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
+DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet, double progress_every) {
     DrumPlan plan = load_plan(checkpoint.record);
     plan.quiet = quiet;
+    plan.progress = progress_style(quiet, progress_every);
     plan.info.isa = isa_description();  // this machine's, which may differ from the interrupted run's
     try {
         check_drum_durations(plan.info.revolutions, plan.info.omega, plan.info.samples_per_revolution,

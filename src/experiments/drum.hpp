@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "experiments/progress.hpp"
 #include "experiments/run_control.hpp"
 #include "io/checkpoint.hpp"
 #include "io/drum_config.hpp"
@@ -18,6 +19,7 @@ struct DrumRunOptions {
     io::DrumSettings settings;  // from --config and the command line
     bool force = false;         // overwrite an earlier run in the directory (one tumble wrote)
     bool quiet = false;
+    double progress_every = default_progress_every;  // s between progress lines when not on a terminal; 0: none
     bool plot = true;           // the caller should draw the figures at the end (kept for a resume)
     CheckpointPolicy checkpoints;         // every_steps unused: see checkpoint_revolutions
     double checkpoint_revolutions = 1.0;  // revolutions between checkpoints while turning; 0: not by revolutions
@@ -40,7 +42,9 @@ struct DrumOutcome {
 DrumOutcome run_drum(const DrumRunOptions& options);
 
 // Continues the run of `checkpoint` (the newest intact one of `directory`).
-DrumOutcome resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet);
+// progress_every: as DrumRunOptions's.
+DrumOutcome resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet,
+                        double progress_every = default_progress_every);
 
 // The analysis of a finished run directory again (summary.json,
 // summary.txt), returned as text; first_revolution: the start-up left out

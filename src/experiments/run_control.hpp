@@ -19,7 +19,10 @@
 
 namespace tumble::experiments {
 
-// Exit codes besides 0 (done) and 2 (bad input or error; main.cpp).
+// The exit codes of tumble besides 0 (done) and 1 (a sweep with points
+// without results); README.md, "Exit codes".
+inline constexpr int exit_bad_input = 2;  // bad input, an impossible setting or a command-line mistake (main.cpp)
+inline constexpr int exit_unexpected = 3; // an unexpected error (a bug, or the system refused something)
 inline constexpr int exit_stopped = 4;   // stopped early with a checkpoint: `tumble resume DIR` continues
 inline constexpr int exit_blew_up = 5;   // the simulation became unphysical (see the diagnostic)
 

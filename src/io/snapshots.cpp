@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
 
 #include <fmt/format.h>
 
@@ -58,6 +61,18 @@ SnapshotParticles read_snapshot_csv(const fs::path& file) {
         if (known == p.material_names.end()) p.material_names.push_back(name);
     }
     return p;
+}
+
+std::optional<double> read_snapshot_time(const fs::path& file) {
+    std::ifstream in(file);
+    std::string first;
+    std::getline(in, first);
+    const std::string prefix = "# time = ";
+    if (!first.starts_with(prefix)) return std::nullopt;
+    char* end = nullptr;
+    const double t = std::strtod(first.c_str() + prefix.size(), &end);
+    if (end == first.c_str() + prefix.size() || !std::isfinite(t)) return std::nullopt;
+    return t;
 }
 
 std::vector<fs::path> list_snapshot_csv(const fs::path& directory) {

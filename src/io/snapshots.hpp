@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,10 @@ struct SnapshotParticles {
 };
 // tumble::Error naming the file if it cannot be read or lacks a column.
 SnapshotParticles read_snapshot_csv(const std::filesystem::path& file);
+
+// The simulated time a snapshot CSV file says it was taken at (its first
+// line, "# time = T s, step = S"), s; none if it does not say.
+std::optional<double> read_snapshot_time(const std::filesystem::path& file);
 
 // The snapshot CSV files of a run directory (DIR/snapshots/NNNNNN.csv), in
 // the order of their numbers; empty if there are none.

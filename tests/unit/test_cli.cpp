@@ -106,6 +106,66 @@ TEST(CliBasics, DrumRefusesAnUnknownShearModelOrFrictionNormal) {
     EXPECT_NE(normal.output.find("--friction-normal: elastic not in {net,jkr}"), std::string::npos) << normal.output;
 }
 
+// Command-line mistakes exit with tumble's usage code (2, as bad input; not
+// CLI11's 104-109), naming the nearest command or option.
+TEST(CliBasics, MistakesSuggestTheNearestCommandOrOption) {
+    const Result command = run_tumble("rnu");
+    EXPECT_EQ(command.exit_code, 2) << command.output;
+    EXPECT_NE(command.output.find("unknown command 'rnu'; did you mean 'run'?"), std::string::npos) << command.output;
+    EXPECT_NE(command.output.find("commands: run, bench, drum"), std::string::npos) << command.output;
+    const Result option = run_tumble("drum --revolution 2 --out /nonexistent/never-written");
+    EXPECT_EQ(option.exit_code, 2) << option.output;
+    EXPECT_NE(option.output.find("unknown option '--revolution' of tumble drum; did you mean '--revolutions'?"),
+              std::string::npos)
+        << option.output;
+    EXPECT_NE(option.output.find("see 'tumble drum --help'"), std::string::npos) << option.output;
+    const Result value = run_tumble("drum --grains many --out /nonexistent/never-written");
+    EXPECT_EQ(value.exit_code, 2) << value.output;
+    EXPECT_NE(value.output.find("--grains"), std::string::npos) << value.output;
+    EXPECT_EQ(run_tumble("").exit_code, 2);
+    EXPECT_EQ(run_tumble("drum --help").exit_code, 0);
+}
+
+// The help shows flags without CLI11's default markers and cites only the
+// repository's documents.
+TEST(CliBasics, HelpShowsPlainFlagsAndCitesTheDocs) {
+    const Result drum = run_tumble("drum --help");
+    EXPECT_NE(drum.output.find("--no-plot "), std::string::npos) << drum.output;
+    EXPECT_EQ(drum.output.find("{false}"), std::string::npos) << drum.output;
+    for (const char* command : {"--help", "bench --help", "drum --help", "run --help", "render --help"})
+        EXPECT_EQ(run_tumble(command).output.find("SPEC-NOTES"), std::string::npos) << command;
+}
+
+// Away from a terminal (here a pipe) a run says how far it is at a steady
+// interval, as LAMMPS's thermo lines; --progress-every 0 silences it.
+TEST_F(Cli, ProgressLinesWhenTheOutputIsNotATerminal) {
+    const fs::path scenario = write("small.toml", small_scenario);
+    const Result run = run_tumble("run " + scenario.string() + " --out " + (dir_ / "run").string() +
+                                  " --progress-every 0.000001");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_NE(run.output.find("progress: run: steps "), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find(" of 2000 ("), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("steps/s"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("ETA "), std::string::npos) << run.output;
+
+    const Result drum = run_tumble("drum --grains 150 --omega 8 --revolutions 0.25 --snapshots 0 --no-plot --out " +
+                                   (dir_ / "drum").string() + " --progress-every 0.000001");
+    ASSERT_EQ(drum.exit_code, 0) << drum.output;
+    EXPECT_NE(drum.output.find("progress: settling: steps "), std::string::npos) << drum.output;
+    EXPECT_NE(drum.output.find("rms grain speed"), std::string::npos) << drum.output;
+    EXPECT_NE(drum.output.find("settled below 0.01"), std::string::npos) << drum.output;
+    const std::size_t rotation = drum.output.find("progress: rotation: steps ");
+    ASSERT_NE(rotation, std::string::npos) << drum.output;
+    const std::string line = drum.output.substr(rotation, drum.output.find('\n', rotation) - rotation);
+    for (const char* field : {"revolution ", " of 0.25", "steps/s", "rev/h", "ETA "})
+        EXPECT_NE(line.find(field), std::string::npos) << field << " in: " << line;
+
+    const Result silent = run_tumble("run " + scenario.string() + " --out " + (dir_ / "silent").string() +
+                                     " --progress-every 0");
+    ASSERT_EQ(silent.exit_code, 0) << silent.output;
+    EXPECT_EQ(silent.output.find("progress:"), std::string::npos) << silent.output;
+}
+
 TEST_F(Cli, SameInputAndSeedGiveIdenticalFiles) {
     const fs::path scenario = write("small.toml", small_scenario);
     const Result a = run_tumble("run -q " + scenario.string() + " --out " + (dir_ / "a").string());

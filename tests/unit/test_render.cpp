@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // tumble render: the sphere rasteriser on a known scene, the drum's cut-away
-// views, PNG files read back, and the command on a tiny drum run (frames,
+// views, the caption (clock and legend) and the palette shared with the
+// figures, PNG files read back, and the command on a tiny drum run (frames,
 // and the movie checked by ffprobe where ffmpeg is installed).
 #include <gtest/gtest.h>
 
@@ -9,11 +10,14 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
+#include <vector>
 
 #include "io/png.hpp"
 #include "io/render/raster.hpp"
 #include "io/render/scene.hpp"
+#include "io/render/text.hpp"
 #include "io/snapshots.hpp"
 #include "tumble/core/error.hpp"
 
@@ -105,9 +109,10 @@ TEST(Scene, WallParticlesInFrontOfTheWallCentreAreCutAway) {
     add({0.02, 0.0, -0.02}, 1, true);     // behind in both
     Scene scene;
     scene.add(snapshot);
-    const Image image = render_frame(snapshot, scene, ColourBy::material, 200);
-    const auto [axial, side] = scene_views(scene, 200);
-    for (const View& view : {axial, side}) {
+    const FrameStyle style{200, ColourBy::material, drum_orientation(), {}};
+    const Image image = render_frame(snapshot, scene, style, "");
+    const FrameLayout layout = frame_layout(scene, style);
+    for (const View& view : {layout.first, layout.second}) {
         auto pixel = [&](const Vec3& x) {
             const Vec3 p = view.project(x);
             return image.at(static_cast<int>(p.x), static_cast<int>(p.y));
@@ -115,8 +120,93 @@ TEST(Scene, WallParticlesInFrontOfTheWallCentreAreCutAway) {
         EXPECT_EQ(pixel(snapshot.position[1]), background_colour) << "the near wall particle is cut away";
         EXPECT_GT(pixel(snapshot.position[2]).r, background_colour.r) << "the far wall particle is drawn";
         const Rgb grain = pixel(snapshot.position[0]);
-        EXPECT_GT(grain.r, grain.b) << "the grain has the first grain colour (orange)";
+        EXPECT_GT(grain.b, grain.r) << "the grain has the first grain colour (blue)";
     }
+}
+
+// The grains' colours are those of the figures: tools/palette.txt, in order.
+TEST(Scene, GrainColoursAreThePaletteOfTheFigures) {
+    std::ifstream in(fs::path(TUMBLE_SOURCE_DIR) / "tools" / "palette.txt");
+    std::vector<Rgb> palette;
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        const unsigned long v = std::stoul(line.substr(0, line.find(' ')), nullptr, 16);
+        palette.push_back({static_cast<std::uint8_t>(v >> 16), static_cast<std::uint8_t>(v >> 8 & 0xff),
+                           static_cast<std::uint8_t>(v & 0xff)});
+    }
+    ASSERT_GE(palette.size(), 2u);
+    ASSERT_EQ(palette_size(), palette.size());
+    for (std::size_t k = 0; k < 2 * palette.size(); ++k) EXPECT_EQ(grain_colour(k), palette[k % palette.size()]) << k;
+}
+
+// Under the views, the caption: the clock on its first line, and the legend
+// (a square of each species' colour, then its name) on the second; a label
+// in the corner of each view.
+TEST(Scene, FrameHasTheClockAndTheLegend) {
+    tumble::io::SnapshotParticles snapshot;
+    snapshot.material_names = {"b", "a"};
+    for (int k = 0; k < 2; ++k) {
+        snapshot.position.push_back({k == 0 ? -0.01 : 0.01, 0.0, 0.0});
+        snapshot.radius.push_back(0.005);
+        snapshot.material.push_back(k);
+        snapshot.tag.push_back(k);
+        snapshot.kinematic.push_back(0);
+    }
+    Scene scene;
+    scene.add(snapshot);
+    FrameStyle style{320, ColourBy::material, drum_orientation(), {}};
+    style.legend = scene_legend(scene, ColourBy::material);
+    ASSERT_EQ(style.legend.size(), 2u);
+    EXPECT_EQ(style.legend[0].name, "a");  // sorted names, palette order
+    EXPECT_EQ(style.legend[0].colour, grain_colour(0));
+    EXPECT_EQ(scene_legend(scene, ColourBy::tag, {"left"})[1].name, "tag 1");
+
+    const FrameLayout layout = frame_layout(scene, style);
+    EXPECT_EQ(layout.height % 2, 0);
+    EXPECT_GE(layout.caption_top, layout.first.height);
+    const Image with_clock = render_frame(snapshot, scene, style, "t = 0.5 s");
+    const Image without = render_frame(snapshot, scene, style, "");
+    ASSERT_EQ(with_clock.height(), layout.height);
+    auto count = [&](const Image& image, int from, int to, Rgb colour) {
+        int n = 0;
+        for (int y = from; y < to; ++y)
+            for (int x = 0; x < image.width(); ++x) n += image.at(x, y) == colour;
+        return n;
+    };
+    const int line = text_height(layout.text_scale) + 4 * layout.text_scale;
+    const int clock_rows = layout.caption_top + line, end = layout.height;
+    EXPECT_GT(count(with_clock, layout.caption_top, clock_rows, text_colour), 0) << "the clock is written";
+    EXPECT_EQ(count(without, layout.caption_top, clock_rows, text_colour), 0);
+    EXPECT_GT(count(with_clock, clock_rows, end, text_colour), 0) << "the legend's names";
+    EXPECT_GT(count(with_clock, 0, line, text_colour), 0) << "each view says where it is seen from";
+    for (const LegendEntry& entry : style.legend)
+        EXPECT_GE(count(with_clock, clock_rows, end, entry.colour),
+                  text_height(layout.text_scale) * text_height(layout.text_scale))
+            << "the legend's square of " << entry.name;
+}
+
+// A scenario's views have "up" against gravity; the drum's its own frame.
+TEST(Scene, ViewsOfAScenarioHaveUpAgainstGravity) {
+    const Orientation down_z = orientation_against({0.0, 0.0, -9.81});
+    EXPECT_EQ(down_z.up.z, 1.0);
+    EXPECT_EQ(down_z.right_first.x, 1.0);
+    EXPECT_EQ(down_z.right_second.y, 1.0);
+    const Orientation up_x = orientation_against({9.81, 0.0, 0.1});
+    EXPECT_EQ(up_x.up.x, -1.0);
+    EXPECT_EQ(orientation_against({0.0, 0.0, 0.0}).up.z, 1.0) << "no gravity: z up";
+    EXPECT_EQ(drum_orientation().up.y, 1.0);
+}
+
+TEST(Text, GlyphsAreDrawnWhereAsked) {
+    Image image(40, 12, black);
+    draw_text(image, 2, 3, "T!", red, 1);
+    EXPECT_EQ(text_width("T!", 1), 11);
+    for (int x = 2; x < 7; ++x) EXPECT_EQ(image.at(x, 3), red) << "the bar of T, x = " << x;
+    EXPECT_EQ(image.at(4, 9), red) << "the stem of T";
+    EXPECT_EQ(image.at(2, 9), black);
+    EXPECT_EQ(image.at(10, 9), red) << "the dot of !";
+    EXPECT_EQ(image.at(10, 8), black);
+    draw_text(image, 38, 10, "W", red, 2);  // mostly outside: clipped, no crash
 }
 
 class Png : public tumble::test_support::ScratchTest {};
@@ -167,6 +257,10 @@ TEST_F(RenderCommand, TinyDrumRunGivesAFramePerSnapshotAndTheMovie) {
     const bool movie = have("ffmpeg") && have("ffprobe");
     const auto render = run_tumble("render " + run.string() + " --width 80 -j 2 -q" + (movie ? "" : " --frames-only"));
     ASSERT_EQ(render.exit_code, 0) << render.output;
+    if (movie) {
+        EXPECT_NE(render.output.find("warning: the movie lasts only"), std::string::npos)
+            << "a few snapshots make a short movie, and the command says so: " << render.output;
+    }
     std::size_t frames = 0;
     for (const auto& entry : fs::directory_iterator(run / "frames")) frames += entry.path().extension() == ".png";
     EXPECT_EQ(frames, snapshots);
@@ -176,7 +270,7 @@ TEST_F(RenderCommand, TinyDrumRunGivesAFramePerSnapshotAndTheMovie) {
     if (!movie) GTEST_SKIP() << "ffmpeg or ffprobe not installed: frames only";
 
     const auto probe = run_command("ffprobe -v error -select_streams v:0 -count_frames -show_entries "
-                                   "stream=width,height,nb_read_frames -of csv=p=0 " + (run / "drum.mp4").string());
+                                   "stream=width,height,nb_read_frames -of csv=p=0 " + (run / "run.mp4").string());
     ASSERT_EQ(probe.exit_code, 0) << probe.output;
     EXPECT_EQ(probe.output, "160," + std::to_string(first.height()) + "," + std::to_string(snapshots) + "\n");
 }

@@ -2,8 +2,11 @@
 #include "io/render/scene.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "io/render/text.hpp"
 
 namespace tumble::io::render {
 
@@ -20,16 +23,29 @@ void Box::add(const Box& other) {
     add(other.hi, 0.0);
 }
 
+namespace {
+
+template <class T>
+void sorted_union(std::vector<T>& into, const std::vector<T>& more) {
+    into.insert(into.end(), more.begin(), more.end());
+    std::sort(into.begin(), into.end());
+    into.erase(std::unique(into.begin(), into.end()), into.end());
+}
+
+}  // namespace
+
 void Scene::add(const SnapshotParticles& snapshot) {
     std::vector<bool> grain_material(snapshot.material_names.size(), false);
+    Scene names;
     for (std::size_t i = 0; i < snapshot.position.size(); ++i) {
         particles.add(snapshot.position[i], snapshot.radius[i]);
-        if (snapshot.kinematic[i])
+        if (snapshot.kinematic[i]) {
             wall.add(snapshot.position[i], snapshot.radius[i]);
-        else
+        } else {
             grain_material[static_cast<std::size_t>(snapshot.material[i])] = true;
+            names.grain_tags.push_back(std::abs(snapshot.tag[i]));
+        }
     }
-    Scene names;
     for (std::size_t m = 0; m < grain_material.size(); ++m)
         if (grain_material[m]) names.grain_materials.push_back(snapshot.material_names[m]);
     add(names);
@@ -38,25 +54,78 @@ void Scene::add(const SnapshotParticles& snapshot) {
 void Scene::add(const Scene& other) {
     particles.add(other.particles);
     wall.add(other.wall);
-    grain_materials.insert(grain_materials.end(), other.grain_materials.begin(), other.grain_materials.end());
-    std::sort(grain_materials.begin(), grain_materials.end());
-    grain_materials.erase(std::unique(grain_materials.begin(), grain_materials.end()), grain_materials.end());
+    sorted_union(grain_materials, other.grain_materials);
+    sorted_union(grain_tags, other.grain_tags);
 }
 
-Rgb grain_colour(std::size_t index) {
-    static constexpr std::array<Rgb, 6> palette{
-        Rgb{235, 110, 40}, Rgb{50, 130, 235}, Rgb{80, 190, 80}, Rgb{240, 205, 50}, Rgb{170, 90, 210}, Rgb{40, 200, 200}};
-    return palette[index % palette.size()];
+namespace {
+
+// TUMBLE_PALETTE: the colours of tools/palette.txt, "rrggbb rrggbb ..."
+// (CMakeLists.txt).
+const std::vector<Rgb>& palette() {
+    static const std::vector<Rgb> colours = [] {
+        std::vector<Rgb> out;
+        std::istringstream words(TUMBLE_PALETTE);
+        for (std::string hex; words >> hex;) {
+            const unsigned long v = std::stoul(hex, nullptr, 16);
+            out.push_back({static_cast<std::uint8_t>(v >> 16), static_cast<std::uint8_t>(v >> 8 & 0xff),
+                           static_cast<std::uint8_t>(v & 0xff)});
+        }
+        return out;
+    }();
+    return colours;
 }
 
-std::pair<View, View> scene_views(const Scene& scene, int view_width) {
+}  // namespace
+
+Rgb grain_colour(std::size_t index) { return palette()[index % palette().size()]; }
+std::size_t palette_size() { return palette().size(); }
+
+Orientation drum_orientation() { return {{0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}}; }
+
+Orientation orientation_against(const Vec3& gravity) {
+    int axis = 2;
+    for (int k = 0; k < 3; ++k)
+        if (std::abs(gravity[k]) > std::abs(gravity[axis])) axis = k;
+    Vec3 up, first, second;
+    up[axis] = gravity[axis] > 0.0 ? -1.0 : 1.0;
+    first[(axis + 1) % 3] = 1.0;
+    second[(axis + 2) % 3] = 1.0;
+    return {up, first, second};
+}
+
+std::vector<LegendEntry> scene_legend(const Scene& scene, ColourBy colour_by, const std::vector<std::string>& tag_names) {
+    std::vector<LegendEntry> legend;
+    if (colour_by == ColourBy::material) {
+        for (std::size_t k = 0; k < scene.grain_materials.size(); ++k)
+            legend.push_back({scene.grain_materials[k], grain_colour(k)});
+    } else {
+        for (const std::int32_t tag : scene.grain_tags) {
+            const auto k = static_cast<std::size_t>(tag);
+            legend.push_back({k < tag_names.size() ? tag_names[k] : "tag " + std::to_string(tag), grain_colour(k)});
+        }
+    }
+    if (!scene.wall.empty()) legend.push_back({"wall", wall_colour});
+    return legend;
+}
+
+FrameLayout frame_layout(const Scene& scene, const FrameStyle& style) {
     constexpr double fill = 0.94;  // of the view the frame box spans, leaving a margin
+    const int width = style.view_width;
+    const Orientation& o = style.orientation;
     const Vec3 extent = scene.particles.hi - scene.particles.lo;
-    const double scale = fill * view_width / std::max(extent.x, extent.z);
-    const int height = 2 * static_cast<int>(std::ceil(0.5 * extent.y * scale / fill));
-    View axial{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, scene.particles.centre(), scale, 0, 0, view_width, height};
-    View side{{0.0, 0.0, 1.0}, {0.0, 1.0, 0.0}, scene.particles.centre(), scale, view_width, 0, view_width, height};
-    return {axial, side};
+    const auto along = [&](const Vec3& axis) { return std::abs(dot(extent, axis)); };
+    const double scale = fill * width / std::max(along(o.right_first), along(o.right_second));
+    const int views_height = 2 * static_cast<int>(std::ceil(0.5 * along(o.up) * scale / fill));
+    const Vec3 centre = scene.particles.centre();
+    FrameLayout layout;
+    layout.first = {o.right_first, o.up, centre, scale, 0, 0, width, views_height};
+    layout.second = {o.right_second, o.up, centre, scale, width, 0, width, views_height};
+    layout.text_scale = std::max(1, static_cast<int>(std::lround(width / 320.0)));
+    const int line = text_height(layout.text_scale) + 4 * layout.text_scale;
+    layout.caption_top = views_height;
+    layout.height = views_height + 2 * line + 2 * layout.text_scale;  // two lines and a margin: even
+    return layout;
 }
 
 namespace {
@@ -86,12 +155,53 @@ std::vector<Sphere> visible_spheres(const SnapshotParticles& snapshot, const Sce
     return spheres;
 }
 
+// "+z" for the unit vector along +z.
+std::string axis_name(const Vec3& unit) {
+    for (int k = 0; k < 3; ++k)
+        if (unit[k] != 0.0) return std::string(unit[k] > 0.0 ? "+" : "-") + "xyz"[k];
+    return "?";
+}
+
+// Each view's corner says how it looks, if the view is wide enough: "seen
+// from +z: x right, y up".
+void draw_view_label(Image& image, const View& view, int scale) {
+    const auto plain = [](const std::string& name) { return name[0] == '+' ? name.substr(1) : name; };
+    const std::string label = "seen from " + axis_name(view.toward_viewer()) + ": " + plain(axis_name(view.right)) +
+                              " right, " + plain(axis_name(view.up)) + " up";
+    if (text_width(label, scale) <= view.width - 4 * scale)
+        draw_text(image, view.x0 + 2 * scale, view.y0 + 2 * scale, label, text_colour, scale);
+}
+
+// The caption strip: the clock on its first line, the legend (a square of
+// each colour, then its name) on the second.
+void draw_caption(Image& image, const FrameLayout& layout, const std::vector<LegendEntry>& legend,
+                  const std::string& clock) {
+    const int s = layout.text_scale, line = text_height(s) + 4 * s;
+    const int left = 4 * s, top = layout.caption_top + 2 * s;
+    draw_text(image, left, top, clock, text_colour, s);
+    int x = left;
+    const int y = top + line;
+    for (const LegendEntry& entry : legend) {
+        for (int dy = 0; dy < text_height(s); ++dy)
+            for (int dx = 0; dx < text_height(s); ++dx)
+                if (x + dx < image.width()) image.set(x + dx, y + dy, entry.colour);
+        x += text_height(s) + 2 * s;
+        draw_text(image, x, y, entry.name, text_colour, s);
+        x += text_width(entry.name, s) + 3 * text_advance(s);
+    }
+}
+
 }  // namespace
 
-Image render_frame(const SnapshotParticles& snapshot, const Scene& scene, ColourBy colour_by, int view_width) {
-    const auto [axial, side] = scene_views(scene, view_width);
-    Image image(2 * view_width, axial.height, background_colour);
-    for (const View& view : {axial, side}) draw_spheres(image, view, visible_spheres(snapshot, scene, colour_by, view));
+Image render_frame(const SnapshotParticles& snapshot, const Scene& scene, const FrameStyle& style,
+                   const std::string& clock) {
+    const FrameLayout layout = frame_layout(scene, style);
+    Image image(2 * style.view_width, layout.height, background_colour);
+    for (const View& view : {layout.first, layout.second}) {
+        draw_spheres(image, view, visible_spheres(snapshot, scene, style.colour_by, view));
+        draw_view_label(image, view, layout.text_scale);
+    }
+    draw_caption(image, layout, style.legend, clock);
     return image;
 }
 

@@ -1,0 +1,147 @@
+# SPDX-License-Identifier: MIT
+"""tools/plot_drum.py at the level of its figures: the colours of the species
+are those of tools/palette.txt (which tumble render is built with), every log
+axis carries at least two tick labels, legends sit beside the data, and a
+sweep's undetermined D values are drawn apart from the determined ones.
+Run by ctest (tests/CMakeLists.txt) or: python3 tests/python/test_plot_drum.py"""
+
+import os
+import sys
+import tempfile
+import unittest
+
+try:
+    import numpy as np
+    import matplotlib  # noqa: F401
+except ImportError as missing:
+    print(f"skipped: {missing}")
+    sys.exit(77)
+
+TOOLS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools")
+sys.path.insert(0, TOOLS)
+import plot_drum  # noqa: E402
+
+
+class Capture(plot_drum.Writer):
+    """A writer that keeps the figures instead of saving them."""
+
+    def __init__(self):
+        super().__init__("unused")
+        self.figures = {}
+
+    def save(self, fig, name):
+        fig.canvas.draw()
+        self.figures[name] = fig
+
+
+def labelled_ticks(axis):
+    lo, hi = sorted(axis.get_view_interval())
+    formatter = axis.get_major_formatter()
+    locs = [t for t in axis.get_majorticklocs() if lo <= t <= hi]
+    return [formatter(t) for t in locs if formatter(t)]
+
+
+def write(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def tiny_run(directory, energies):
+    """A run directory with the files fig_energy and fig_depth read."""
+    write(os.path.join(directory, "drum_run.toml"),
+          'mode = "two-component"\nomega = 5.0\nfroude = 0.1\n'
+          '[[component]]\nname = "material-1"\nstart_side = -1.0\n'
+          '[[component]]\nname = "material-2"\nstart_side = 1.0\n')
+    rows = ["revolutions,kinetic_per_grain_material-1,kinetic_per_grain_material-2,"
+            "kinetic_energy_material-1,kinetic_energy_material-2"]
+    for k, (e1, e2) in enumerate(energies):
+        rows.append(f"{k * 0.5},{e1},{e2},{e1 * 229},{e2 * 771}")
+    write(os.path.join(directory, "drum_series.csv"), "\n".join(rows) + "\n")
+    write(os.path.join(directory, "depth_mobility.csv"),
+          "layer,depth_lo,depth_hi,msd_per_rev_material-1,share_material-1,occupancy_material-1,"
+          "msd_per_rev_material-2,share_material-2,occupancy_material-2\n"
+          "0,0,1,3.1e-5,0.6,0.3,3.4e-5,0.55,0.35\n"
+          "1,1,2,2.2e-5,0.3,0.3,2.6e-5,0.3,0.3\n"
+          "2,2,3,1.9e-5,0.1,0.4,2.0e-5,0.15,0.35\n")
+    return plot_drum.Run(directory)
+
+
+class Figures(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        plot_drum.plt.close("all")
+        self.tmp.cleanup()
+
+    def test_species_colours_are_the_palette_shared_with_the_movie(self):
+        with open(os.path.join(TOOLS, "palette.txt")) as f:
+            palette = ["#" + line.split()[0] for line in f if line.strip() and not line.startswith("#")]
+        self.assertGreaterEqual(len(palette), 2)
+        self.assertEqual(plot_drum.COLOURS, palette)
+        # fig_energy draws component k in palette colour k.
+        run = tiny_run(self.dir, [(2.0e-7, 1.0e-7), (2.5e-7, 1.2e-7), (3.0e-7, 1.1e-7)])
+        w = Capture()
+        plot_drum.fig_energy(run, w)
+        top = w.figures["fig_energy"].axes[0]
+        colours = [plot_drum.matplotlib.colors.to_hex(line.get_color()) for line in top.get_lines()]
+        self.assertEqual(colours[:2], palette[:2])
+
+    def test_log_axes_carry_two_labels_even_over_a_narrow_range(self):
+        # Energies within a fraction of a decade: one power of ten at most.
+        run = tiny_run(self.dir, [(2.1e-7, 1.0e-7), (2.6e-7, 1.2e-7), (3.0e-7, 1.1e-7), (2.4e-7, 1.3e-7)])
+        w = Capture()
+        plot_drum.fig_energy(run, w)
+        plot_drum.fig_depth(run, w)
+        top, bottom = w.figures["fig_energy"].axes[:2]
+        left = w.figures["fig_depth"].axes[0]
+        for name, axis in (("energy per grain", top.yaxis), ("energy ratio", bottom.yaxis),
+                           ("depth <dz^2>", left.xaxis)):
+            self.assertEqual(axis.get_scale(), "log", name)
+            self.assertGreaterEqual(len(labelled_ticks(axis)), 2, f"{name}: {labelled_ticks(axis)}")
+
+    def test_legends_beside_the_data(self):
+        run = tiny_run(self.dir, [(2.0e-7, 1.0e-7), (2.5e-7, 1.2e-7), (3.0e-7, 1.1e-7)])
+        w = Capture()
+        plot_drum.fig_energy(run, w)
+        fig = w.figures["fig_energy"]
+        renderer = fig.canvas.get_renderer()
+        for ax in fig.axes[:2]:
+            legend = ax.get_legend().get_window_extent(renderer)
+            self.assertGreaterEqual(legend.x0, ax.get_window_extent(renderer).x1)
+
+    def test_sweep_draws_undetermined_d_apart(self):
+        table = os.path.join(self.dir, "sweep.csv")
+        write(table, "mode,omega,froude,seed,D_left,D_stderr_left,determined_left,"
+                     "D_right,D_stderr_right,determined_right,status\n"
+                     "self,2,0.0163,1,1.0e-5,2e-6,true,1.2e-5,2e-6,true,finished\n"
+                     "self,2,0.0163,2,1.1e-5,2e-6,true,0.9e-5,2e-6,true,finished\n"
+                     "self,5,0.102,1,2.0e-5,3e-6,true,2.4e-5,3e-6,true,finished\n"
+                     "self,5,0.102,2,9.0e-5,8e-5,false,2.2e-5,3e-6,true,finished\n")
+
+        class Args:
+            out = None
+
+        Args.table = table
+        saved = plot_drum.Writer
+        plot_drum.Writer = lambda outdir: Capture()
+        try:
+            w = plot_drum.do_sweep(Args)
+        finally:
+            plot_drum.Writer = saved
+        ax = w.figures["fig3_self_D_vs_omega"].axes[0]
+        labels = [t.get_text() for t in ax.get_legend().get_texts()]
+        self.assertTrue(any("left" in t and "not determined" in t for t in labels), labels)
+        self.assertFalse(any("right" in t and "not determined" in t for t in labels), labels)
+        # The open marker sits at the undetermined value; the mean at omega = 5 leaves it out.
+        open_markers = [line for line in ax.get_lines() if line.get_markerfacecolor() == "none"]
+        self.assertEqual(len(open_markers), 1)
+        self.assertAlmostEqual(float(open_markers[0].get_ydata()[0]), 9.0e-5)
+        means = [c for c in ax.containers if "started left" in c.get_label()]
+        self.assertEqual(len(means), 1)
+        np.testing.assert_allclose(means[0].lines[0].get_ydata(), [1.05e-5, 2.0e-5])
+
+
+if __name__ == "__main__":
+    unittest.main()
