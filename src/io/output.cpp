@@ -11,11 +11,12 @@
 #include <cerrno>
 #include <cstring>
 #include <numeric>
-#include <sstream>
 
 #include <fmt/format.h>
 #include <fmt/os.h>
 
+#include "io/csv_table.hpp"
+#include "io/json.hpp"
 #include "tumble/core/error.hpp"
 #include "tumble/core/isa.hpp"
 
@@ -169,22 +170,26 @@ RunLock prepare_output_directory(const fs::path& directory, bool overwrite) {
 void write_run_json(const fs::path& file, const Simulation& sim, const RunSummary& s) {
     const TimeStepReport& t = sim.time_step_report();
     const double updates = s.wall_seconds > 0.0 ? static_cast<double>(s.free_particles) * s.steps / s.wall_seconds : 0.0;
-    std::ostringstream out;
-    out << "{\n"
-        << fmt::format("  \"tumble_version\": \"{}\",\n", TUMBLE_VERSION)
-        << fmt::format("  \"scenario\": \"{}\",\n", s.scenario_file)
-        << fmt::format("  \"seed\": {},\n", s.seed)
-        << fmt::format("  \"particles\": {},\n  \"free_particles\": {},\n", s.particles, s.free_particles)
-        << fmt::format("  \"duration\": {},\n  \"steps\": {},\n", s.duration, s.steps)
-        << fmt::format("  \"dt\": {},\n  \"dt_automatic\": {},\n", t.dt, t.automatic ? "true" : "false")
-        << fmt::format("  \"dt_recommended\": {},\n  \"dt_maximum\": {},\n", t.recommended, t.maximum)
-        << fmt::format("  \"collision_time\": {},\n  \"viscous_time\": {},\n  \"rayleigh_time\": {},\n",
-                       t.collision_time, t.viscous_time, t.rayleigh_time)
-        << fmt::format("  \"neighbor_skin\": {},\n  \"neighbor_builds\": {},\n", sim.neighbors().skin(),
-                       sim.neighbors().builds())
-        << fmt::format("  \"threads\": {},\n  \"isa\": \"{}\",\n", sim.threads(), isa_description())
-        << fmt::format("  \"wall_seconds\": {},\n  \"updates_per_second\": {}\n", s.wall_seconds, updates) << "}\n";
-    write_file_atomically(file, out.str());
+    write_json_file(file, Json{{"tumble_version", TUMBLE_VERSION},
+                               {"scenario", s.scenario_file},
+                               {"seed", s.seed},
+                               {"particles", s.particles},
+                               {"free_particles", s.free_particles},
+                               {"duration", s.duration},
+                               {"steps", s.steps},
+                               {"dt", t.dt},
+                               {"dt_automatic", t.automatic},
+                               {"dt_recommended", t.recommended},
+                               {"dt_maximum", t.maximum},
+                               {"collision_time", t.collision_time},
+                               {"viscous_time", t.viscous_time},
+                               {"rayleigh_time", t.rayleigh_time},
+                               {"neighbor_skin", sim.neighbors().skin()},
+                               {"neighbor_builds", sim.neighbors().builds()},
+                               {"threads", sim.threads()},
+                               {"isa", isa_description()},
+                               {"wall_seconds", s.wall_seconds},
+                               {"updates_per_second", updates}});
 }
 
 }  // namespace tumble::io

@@ -23,6 +23,7 @@
 
 #include "io/config.hpp"
 #include "io/drum_output.hpp"
+#include "io/json.hpp"
 #include "io/sweep.hpp"
 #include "tumble/analysis/hogg.hpp"
 #include "tumble/core/constants.hpp"
@@ -331,28 +332,25 @@ TEST_F(Sweep, RunnerKeepsTheLimitOfParallelJobs) {
 
 // ------------------------------------------------------------ JSON
 
-TEST(SweepJson, ParsesTheSubsetSummaryJsonUses) {
+TEST(SweepJson, ParsesWhatSummaryJsonHolds) {
     const Json j = parse_json(R"( {"a": 1, "b": -2.5e-3, "c": [true, false, null, 0, 1E+2, -0.0],
         "d": {"e": "x\"y\\z\/\n\t\u00e9\ud83d\ude00"}, "empty": {}, "none": [] } )");
-    ASSERT_EQ(j.type, Json::Type::object);
-    EXPECT_EQ(j.number_at("a"), 1.0);
-    EXPECT_EQ(j.number_at("b"), -2.5e-3);
-    const Json* c = j.find("c");
-    ASSERT_TRUE(c);
-    ASSERT_EQ(c->array.size(), 6u);
-    EXPECT_TRUE(c->array[0].boolean);
-    EXPECT_EQ(c->array[1].type, Json::Type::boolean);
-    EXPECT_FALSE(c->array[1].boolean);
-    EXPECT_EQ(c->array[2].type, Json::Type::null);
-    EXPECT_EQ(c->array[4].number, 100.0);
-    EXPECT_EQ(j.find("d")->find("e")->string, "x\"y\\z/\n\t\xc3\xa9\xf0\x9f\x98\x80");
-    EXPECT_EQ(j.find("empty")->type, Json::Type::object);
-    EXPECT_TRUE(j.find("none")->array.empty());
-    EXPECT_EQ(j.find("missing"), nullptr);
-    EXPECT_EQ(j.number_at("missing"), std::nullopt);
-    EXPECT_THROW(j.number_at("d"), Error);
-    EXPECT_EQ(parse_json("{\"x\": null}").number_at("x"), std::nullopt);
-    EXPECT_EQ(parse_json("12345678901234567890").number, 12345678901234567890.0);
+    ASSERT_TRUE(j.is_object());
+    EXPECT_EQ(json_number(j, "a"), 1.0);
+    EXPECT_EQ(json_number(j, "b"), -2.5e-3);
+    const Json& c = j.at("c");
+    ASSERT_EQ(c.size(), 6u);
+    EXPECT_TRUE(c[0].get<bool>());
+    EXPECT_FALSE(c[1].get<bool>());
+    EXPECT_TRUE(c[2].is_null());
+    EXPECT_EQ(c[4].get<double>(), 100.0);
+    // Every escape, and a surrogate pair, decoded to UTF-8.
+    EXPECT_EQ(j.at("d").at("e").get<std::string>(), "x\"y\\z/\n\t\xc3\xa9\xf0\x9f\x98\x80");
+    EXPECT_TRUE(j.at("empty").is_object());
+    EXPECT_TRUE(j.at("none").empty());
+    EXPECT_EQ(json_number(j, "missing"), std::nullopt);
+    EXPECT_THROW(json_number(j, "d"), Error);  // an object, not a number
+    EXPECT_EQ(json_number(parse_json("{\"x\": null}"), "x"), std::nullopt);  // null: undefined
 }
 
 TEST(SweepJson, RefusesMalformedText) {
@@ -365,7 +363,8 @@ TEST(SweepJson, RefusesMalformedText) {
         parse_json("{\n  \"a\": 1,\n  \"b\": ?\n}", "s.json");
         FAIL();
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("s.json: line 3, column 8"), std::string::npos) << e.what();
+        // The name of the text and where in it: line 3, column 8 is the '?'.
+        EXPECT_NE(std::string(e.what()).find("s.json: parse error at line 3, column 8"), std::string::npos) << e.what();
     }
 }
 
