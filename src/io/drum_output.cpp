@@ -121,7 +121,7 @@ DrumSeriesWriter::DrumSeriesWriter(const fs::path& directory, const DrumRunInfo&
     series_ << "revolutions,time,angle_of_repose,fill_fraction,bed_centre_x,bed_centre_y";
     for (const DrumComponent& c : info.components)
         series_ << fmt::format(",grains_{0},mean_z_{0},mean_z_stderr_{0},kinetic_energy_{0},kinetic_per_grain_{0}",
-                               c.name);
+                               column_name(c.name));
     series_ << '\n';
     profiles_ << "revolutions,component,bin,z,concentration\n";
     check_written(series_, series_path_);
@@ -209,12 +209,19 @@ std::size_t nearest_sample(const std::vector<double>& N, double target) {
 }  // namespace
 
 analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_start, double omega) {
-    std::ifstream in(file);
-    std::string first;
-    double time = 0.0;
-    if (!std::getline(in, first) || std::sscanf(first.c_str(), "# time = %lf s", &time) != 1)
-        throw Error(file.string() + ": not a particle snapshot (its first line should be \"# time = T s, ...\")");
     const CsvTable csv = read_csv_table(file);
+    // The time column, or the first line "# time = T s, step = S" of a
+    // snapshot written before it.
+    double time = 0.0;
+    if (std::find(csv.header.begin(), csv.header.end(), "time") != csv.header.end() && !csv.rows.empty()) {
+        time = csv.numbers("time").front();
+    } else {
+        std::ifstream in(file);
+        std::string first;
+        if (!std::getline(in, first) || std::sscanf(first.c_str(), "# time = %lf s", &time) != 1)
+            throw Error(file.string() +
+                        ": not a particle snapshot (no time column, and no first line \"# time = T s, ...\")");
+    }
     const std::vector<double> id = csv.numbers("id"), x = csv.numbers("x"), y = csv.numbers("y"),
                               z = csv.numbers("z"), radius = csv.numbers("radius"), tag = csv.numbers("tag"),
                               kinematic = csv.numbers("kinematic"), vx = csv.numbers("vx"), vy = csv.numbers("vy"),
@@ -276,7 +283,8 @@ void write_depth_mobility(const fs::path& file, const analysis::DepthMobility& m
     std::ofstream out = open_for_writing(file);
     out << "layer,depth_lo,depth_hi";
     for (const DrumComponent& c : info.components)
-        for (const char* what : {"samples", "msd_per_rev", "share", "occupancy"}) out << ',' << what << '_' << c.name;
+        for (const char* what : {"samples", "msd_per_rev", "share", "occupancy"})
+            out << ',' << what << '_' << column_name(c.name);
     out << '\n';
     for (int layer = 0; layer < m.layers(); ++layer) {
         out << fmt::format("{},{},{}", layer, layer == 0 ? -INFINITY : layer,
@@ -345,7 +353,7 @@ void write_axial_msd(const fs::path& file, const std::vector<analysis::GrainFram
     }
     std::ofstream out = open_for_writing(file);
     out << "lag";
-    for (const DrumComponent& c : info.components) out << ",msd_" << c.name;
+    for (const DrumComponent& c : info.components) out << ",msd_" << column_name(c.name);
     out << '\n';
     for (std::size_t l = 0; l < lag.size(); ++l) {
         out << lag[l];
@@ -414,7 +422,7 @@ void analyze_bed_structure(const fs::path& dir, const std::vector<analysis::Grai
     for (double r : steady.front().radius) mean_diameter += 2.0 * r / static_cast<double>(steady.front().radius.size());
     std::ofstream out = open_for_writing(dir / "bed_structure.csv");
     out << "revolutions,slice,z,relative_volume,surface_angle";
-    for (const DrumComponent& c : info.components) out << ",mean_distance_" << c.name;
+    for (const DrumComponent& c : info.components) out << ",mean_distance_" << column_name(c.name);
     out << '\n';
     std::vector<double> distance_sum(info.components.size(), 0.0), distance_count(info.components.size(), 0.0);
     double first_rms = 0.0, last_rms = 0.0;

@@ -105,7 +105,7 @@ TimeSeriesWriter::TimeSeriesWriter(const fs::path& file, const std::vector<Mater
     out_ << "time,step,kinetic_translational,kinetic_rotational,contact_energy,contacts,max_overlap_ratio,"
             "neighbor_builds";
     for (const Material& m : materials)
-        out_ << ",particles_" << m.name << ",kinetic_translational_" << m.name << ",kinetic_rotational_" << m.name;
+        out_ << fmt::format(",particles_{0},kinetic_translational_{0},kinetic_rotational_{0}", column_name(m.name));
     out_ << '\n';
     check_written(out_, path_);
 }
@@ -119,21 +119,26 @@ void TimeSeriesWriter::write(const Observables& o) {
     check_written(out_, path_);
 }
 
+std::vector<std::size_t> order_by_id(const ParticleStore& p) {
+    std::vector<std::size_t> by_id(p.size());
+    std::iota(by_id.begin(), by_id.end(), std::size_t{0});
+    std::sort(by_id.begin(), by_id.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
+    return by_id;
+}
+
 fs::path write_snapshot(const fs::path& directory, int number, const Simulation& sim) {
     const fs::path folder = directory / "snapshots";
     fs::create_directories(folder);
     const fs::path file = folder / fmt::format("{:06d}.csv", number);
     std::ofstream out = open_for_writing(file);
     const ParticleStore& p = sim.particles();
-    std::vector<std::size_t> by_id(p.size());
-    std::iota(by_id.begin(), by_id.end(), std::size_t{0});
-    std::sort(by_id.begin(), by_id.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
-    out << fmt::format("# time = {} s, step = {}\n", sim.time(), sim.step_count());
-    out << "id,x,y,z,vx,vy,vz,wx,wy,wz,radius,material,tag,kinematic\n";
-    for (std::size_t i : by_id) {
+    // The time and step on every row, so that snapshots concatenated stay apart.
+    const std::string when = fmt::format("{},{}", sim.time(), sim.step_count());
+    out << "time,step,id,x,y,z,vx,vy,vz,wx,wy,wz,radius,material,tag,kinematic\n";
+    for (std::size_t i : order_by_id(p)) {
         const Vec3 &x = p.position[i], &v = p.velocity[i], &w = p.angular_velocity[i];
-        out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", p.id[i], x.x, x.y, x.z, v.x, v.y, v.z, w.x,
-                           w.y, w.z, p.radius[i], sim.scenario().materials[p.material[i]].name, p.tag[i],
+        out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", when, p.id[i], x.x, x.y, x.z, v.x, v.y,
+                           v.z, w.x, w.y, w.z, p.radius[i], sim.scenario().materials[p.material[i]].name, p.tag[i],
                            p.is_kinematic(i) ? 1 : 0);
     }
     check_written(out, file);

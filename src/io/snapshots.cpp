@@ -8,6 +8,7 @@
 
 #include "io/csv_table.hpp"
 #include "io/output.hpp"
+#include "io/xyz_output.hpp"
 
 namespace tumble::io {
 
@@ -29,6 +30,7 @@ void SnapshotSeries::write(const Simulation& sim) {
     const std::size_t number = times_.size();
     write_snapshot(directory_, static_cast<int>(number), sim);
     write_vtu_snapshot(directory_ / dataset(number, "vtu"), sim);
+    write_xyz_snapshot(directory_ / dataset(number, "xyz"), sim);
     write_vtp_contact_network(directory_ / dataset(number, "vtp"), sim);
     add_to_indexes(sim.time());
 }

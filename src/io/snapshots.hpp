@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The particle snapshots of a run, numbered from 0, each written three ways:
+// The particle snapshots of a run, numbered from 0, each written four ways:
 //   snapshots/NNNNNN.csv   per-particle state as text (output.hpp)
 //   snapshots/NNNNNN.vtu   the same for ParaView (vtk_output.hpp)
+//   snapshots/NNNNNN.xyz   the same as extended XYZ, for OVITO (xyz_output.hpp)
 //   snapshots/NNNNNN.vtp   the contact network: a line per contact with its normal force
 // and two ParaView time-series indexes in the run directory, particles.pvd
 // and contacts.pvd (open them in ParaView: File > Open). The CSV files are

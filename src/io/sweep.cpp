@@ -462,7 +462,7 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
         for (const std::string& c : components)
             out << fmt::format(",D_{0},D_stderr_{0},D_one_term_{0},determined_{0},surface_share_{0},D_msd_{0},D_msd_lo_{0},"
                                "D_msd_hi_{0},D_hogg_free_{0},D_hogg_free_lo_{0},D_hogg_free_hi_{0}",
-                               c);
+                               column_name(c));
         out << ",ke_ratio_total,ke_ratio_total_ref,ke_ratio_per_grain,ke_ratio_per_grain_ref,angle_of_repose,"
                "grain_updates_per_second,status\n";
         for (const PointResult& r : results) {
@@ -499,23 +499,23 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
         using Get = std::function<double(const PointResult&)>;
         std::vector<std::pair<std::string, Get>> quantities;
         for (const std::string& c : components) {
-            quantities.emplace_back("D_msd_" + c, [c, component](const PointResult& r) {
+            quantities.emplace_back("D_msd_" + column_name(c), [c, component](const PointResult& r) {
                 const auto* k = component(r, c);
                 return k ? k->msd_D : nan;
             });
-            quantities.emplace_back("D_hogg_free_" + c, [c, component](const PointResult& r) {
+            quantities.emplace_back("D_hogg_free_" + column_name(c), [c, component](const PointResult& r) {
                 const auto* k = component(r, c);
                 return k ? k->hogg_D : nan;
             });
-            quantities.emplace_back("D_" + c, [c, component](const PointResult& r) {
+            quantities.emplace_back("D_" + column_name(c), [c, component](const PointResult& r) {
                 const auto* k = component(r, c);
                 return k && k->determined ? k->D : nan;
             });
-            quantities.emplace_back("D_one_term_" + c, [c, component](const PointResult& r) {
+            quantities.emplace_back("D_one_term_" + column_name(c), [c, component](const PointResult& r) {
                 const auto* k = component(r, c);
                 return k && k->determined ? k->D_one_term : nan;
             });
-            quantities.emplace_back("surface_share_" + c, [c, component](const PointResult& r) {
+            quantities.emplace_back("surface_share_" + column_name(c), [c, component](const PointResult& r) {
                 const auto* k = component(r, c);
                 return k ? k->surface_share : nan;
             });

@@ -123,7 +123,7 @@ TEST_F(Cli, SameInputAndSeedGiveIdenticalFiles) {
         EXPECT_EQ(read_file(entry.path()), read_file(dir_ / "b" / "snapshots" / entry.path().filename()))
             << entry.path().filename();
     }
-    EXPECT_EQ(snapshots, 9);  // t = 0, 0.01, 0.02 s, each as .csv, .vtu and .vtp
+    EXPECT_EQ(snapshots, 12);  // t = 0, 0.01, 0.02 s, each as .csv, .vtu, .xyz and .vtp
     for (const char* index : {"particles.pvd", "contacts.pvd"})
         EXPECT_EQ(read_file(dir_ / "a" / index), read_file(dir_ / "b" / index)) << index;
 }
