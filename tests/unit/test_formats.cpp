@@ -14,8 +14,10 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "io/json.hpp"
+#include "io/sweep.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -163,6 +165,20 @@ TEST_F(Formats, CsvFilesOfADrumRunLoadWithNumpyAndPandasAsTheyAre) {
                                  "depth_mobility.csv", "bed_structure.csv", "flow_profile.csv",
                                  "snapshots/000000.csv"});
     EXPECT_NE(read_file(run / "drum_series.csv").find(",mean_z_material_1,"), std::string::npos);
+
+    // The sweep's tables, of this run as a finished point and a pending one
+    // (its cells empty).
+    tumble::io::SweepSettings settings;
+    settings.speeds = {8.0};
+    const auto points = tumble::io::expand_sweep(settings, dir_ / "sweep");  // self, two-component
+    fs::create_directories(points[1].directory);
+    fs::copy_file(run / "summary.json", points[1].directory / "summary.json");
+    std::vector<tumble::io::PointResult> results;
+    for (const auto& p : points) results.push_back(tumble::io::read_point_result(p));
+    EXPECT_EQ(tumble::io::write_sweep_tables(dir_ / "sweep", results), 1u);  // the pending point
+    const auto sweep = python(csv_check, quoted(dir_ / "sweep"));
+    ASSERT_EQ(sweep.exit_code, 0) << sweep.output;
+    expect_all_loaded(sweep.output, {"sweep.csv", "sweep_summary.csv"});
 }
 
 // ---- Snapshots: .vtu and .xyz against the CSV of the same step ------------
