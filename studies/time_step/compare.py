@@ -32,7 +32,8 @@ def observables(run):
     values = {"angle of repose (degrees)": summary["angle_of_repose"]}
     for c in summary["components"]:
         name = c["name"]
-        values[f"kinetic energy per grain, {name} (J)"] = np.mean([float(r["kinetic_per_grain_" + column_name(name)]) for r in late])
+        column = "kinetic_per_grain_" + column_name(name)
+        values[f"kinetic energy per grain, {name} (J)"] = np.mean([float(r[column]) for r in late])
         values[f"MSD D, {name} (m^2/rev)"] = c["msd"]["D"]
     return values
 
