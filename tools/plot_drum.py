@@ -17,6 +17,7 @@ import csv
 import json
 import math
 import os
+import re
 import sys
 
 
@@ -160,8 +161,30 @@ def _number(text):
     return float(text)
 
 
+def column_name(name):
+    """A name as tumble writes it into CSV column names: "mean_z_material-1" -> "mean_z_material_1"."""
+    return re.sub(r"[^0-9A-Za-z_]", "_", name)
+
+
+class Columns(dict):
+    """The columns of a CSV file by name, looked up as tumble writes names into column
+    names (column_name), so tables written before names lost their '-' read alike."""
+
+    def __getitem__(self, name):
+        return super().__getitem__(column_name(name))
+
+    def __setitem__(self, name, value):
+        super().__setitem__(column_name(name), value)
+
+    def __contains__(self, name):
+        return super().__contains__(column_name(name))
+
+    def get(self, name, default=None):
+        return super().get(column_name(name), default)
+
+
 def read_csv(path, comment_lines=False):
-    """Columns of a CSV file as a dict: numeric columns as float arrays, others as lists."""
+    """Columns of a CSV file as a Columns dict: numeric columns as float arrays, others as lists."""
     if not os.path.isfile(path):
         raise InputError(f"missing file: {path}")
     try:
@@ -172,7 +195,7 @@ def read_csv(path, comment_lines=False):
             raise ValueError("empty file")
         header = [h.strip() for h in rows[0]]
         body = [r for r in rows[1:] if r]
-        columns = {}
+        columns = Columns()
         for i, name in enumerate(header):
             values = [r[i] if i < len(r) else "" for r in body]
             try:
@@ -186,7 +209,11 @@ def read_csv(path, comment_lines=False):
         raise InputError(f"cannot read {path}: {error}")
 
 
-def snapshot_time(path):
+def snapshot_time(path, table):
+    """", t = T s" of a particle snapshot: its time column, or the first line of one written
+    before that column."""
+    if "time" in table and len(table["time"]):
+        return f", t = {table['time'][0]:.3g} s"
     with open(path) as f:
         first = f.readline()
     # "# time = 0.256 s, step = 34304"
@@ -348,7 +375,7 @@ def fig_setup(run, w):
                           label=f"wall ({int(np.sum(wall))} particles)"))
     fig.legend(handles=handles, loc="lower center", ncol=len(handles), frameon=False)
     fig.suptitle(f"Fig. 1: set-up, {run.mode} mode, initial state "
-                 f"(snapshots/000000.csv{snapshot_time(snap)}); wall drawn behind the grains")
+                 f"(snapshots/000000.csv{snapshot_time(snap, s)}); wall drawn behind the grains")
     fig.tight_layout(rect=(0, 0.07, 1, 0.95))
     w.save(fig, name)
 

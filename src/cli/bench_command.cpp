@@ -19,6 +19,7 @@
 #include "experiments/machine.hpp"
 #include "io/checkpoint.hpp"
 #include "io/drum_config.hpp"
+#include "io/json.hpp"
 #include "io/output.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
@@ -91,12 +92,21 @@ int cube_bench(const BenchOptions& options) {
         fmt::print("  machine          {}\n", machine);
     }
     if (options.json)
-        fmt::print(
-        "{{\"code\": \"tumble\", \"version\": \"{}\", \"case\": \"cube\", \"particles\": {}, \"steps\": {}, \"seconds\": {}, "
-        "\"updates_per_second\": {}, \"contacts_per_particle\": {}, \"neighbor_builds\": {}, \"threads\": {}, "
-        "\"bytes_per_particle\": {:.0f}, \"dt\": {}, \"cpu_seconds\": {}, \"machine\": \"{}\", \"isa\": \"{}\"}}\n",
-        TUMBLE_VERSION, n, steps, seconds, updates, contacts_per_particle, builds, sim.threads(),
-        bytes_per_particle, sim.dt(), cpu, machine, isa_description());
+        fmt::print("{}\n", io::json_line(io::Json{{"code", "tumble"},
+                                                  {"version", TUMBLE_VERSION},
+                                                  {"case", "cube"},
+                                                  {"particles", n},
+                                                  {"steps", steps},
+                                                  {"seconds", seconds},
+                                                  {"updates_per_second", updates},
+                                                  {"contacts_per_particle", contacts_per_particle},
+                                                  {"neighbor_builds", builds},
+                                                  {"threads", sim.threads()},
+                                                  {"bytes_per_particle", std::llround(bytes_per_particle)},
+                                                  {"dt", sim.dt()},
+                                                  {"cpu_seconds", cpu},
+                                                  {"machine", machine},
+                                                  {"isa", isa_description()}}));
     return 0;
 }
 
@@ -208,17 +218,32 @@ int long_drum_bench(const BenchOptions& options) {
         fmt::print("  machine            {}\n", machine);
     }
     if (options.json)
-        fmt::print("{{\"code\": \"tumble\", \"version\": \"{}\", \"case\": \"long-drum\", \"length\": {}, \"fill\": {}, "
-                   "\"grains\": {}, \"particles\": {}, \"bed\": \"{}\", \"steps\": {}, \"warmup\": {}, \"seconds\": {}, "
-                   "\"grain_updates_per_second\": {}, \"revolutions_per_hour\": {}, \"seconds_per_revolution\": {}, "
-                   "\"steps_per_revolution\": {}, \"dt\": {}, \"dt_limited_by\": \"{}\", \"neighbor_builds\": {}, "
-                   "\"kinetic_translational\": {}, \"kinetic_rotational\": {}, \"contacts\": {}, "
-                   "\"threads\": {}, \"bytes_per_particle\": {:.0f}, \"cpu_seconds\": {}, \"machine\": \"{}\", "
-                   "\"isa\": \"{}\"}}\n",
-                   TUMBLE_VERSION, d.geometry.length, d.fill_fraction, grains, n, made ? "made" : "read", steps,
-                   warmup, seconds, grain_updates, revolutions_per_hour, seconds_per_revolution,
-                   steps_per_revolution, sim.dt(), limited_by, builds, o.kinetic_translational, o.kinetic_rotational,
-                   o.contacts, sim.threads(), bytes_per_particle, cpu, machine, isa_description());
+        fmt::print("{}\n", io::json_line(io::Json{{"code", "tumble"},
+                                                  {"version", TUMBLE_VERSION},
+                                                  {"case", "long-drum"},
+                                                  {"length", d.geometry.length},
+                                                  {"fill", d.fill_fraction},
+                                                  {"grains", grains},
+                                                  {"particles", n},
+                                                  {"bed", made ? "made" : "read"},
+                                                  {"steps", steps},
+                                                  {"warmup", warmup},
+                                                  {"seconds", seconds},
+                                                  {"grain_updates_per_second", grain_updates},
+                                                  {"revolutions_per_hour", revolutions_per_hour},
+                                                  {"seconds_per_revolution", seconds_per_revolution},
+                                                  {"steps_per_revolution", steps_per_revolution},
+                                                  {"dt", sim.dt()},
+                                                  {"dt_limited_by", limited_by},
+                                                  {"neighbor_builds", builds},
+                                                  {"kinetic_translational", o.kinetic_translational},
+                                                  {"kinetic_rotational", o.kinetic_rotational},
+                                                  {"contacts", o.contacts},
+                                                  {"threads", sim.threads()},
+                                                  {"bytes_per_particle", std::llround(bytes_per_particle)},
+                                                  {"cpu_seconds", cpu},
+                                                  {"machine", machine},
+                                                  {"isa", isa_description()}}));
     return 0;
 }
 }  // namespace

@@ -9,11 +9,14 @@
 #include "cli/commands.hpp"
 #include "experiments/drum_setup.hpp"
 #include "io/config.hpp"
+#include "io/json.hpp"
 #include "tumble/analysis/pair_collision.hpp"
 
 namespace tumble::cli {
 
 namespace {
+
+using io::Json;
 
 const char* partner_name(Partner p) {
     switch (p) {
@@ -24,23 +27,8 @@ const char* partner_name(Partner p) {
     return "";
 }
 
-// A JSON string literal of `text`.
-std::string json_string(const std::string& text) {
-    std::string out = "\"";
-    for (const char c : text) {
-        if (c == '"' || c == '\\') out += '\\', out += c;
-        else if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", static_cast<unsigned>(c));
-        else out += c;
-    }
-    return out + "\"";
-}
-
-// A JSON number, null for an infinite time (its term is off).
-std::string json_number(double value) { return std::isfinite(value) ? fmt::format("{}", value) : "null"; }
-
-std::string collision_json(const analysis::Collision& c) {
-    return fmt::format("{{\"separated\": {}, \"restitution\": {}, \"contact_time\": {}}}", c.separated,
-                       c.restitution, c.contact_time);
+Json collision_json(const analysis::Collision& c) {
+    return Json{{"separated", c.separated}, {"restitution", c.restitution}, {"contact_time", c.contact_time}};
 }
 
 // A cell of the table: the value, or "no rebound" when the pair never parted.
@@ -85,28 +73,40 @@ void print_table(const analysis::ContactReport& report) {
     }
 }
 
+// An infinite time (its term is off) is null (io/json.hpp).
 void print_json(const analysis::ContactReport& report) {
     const TimeStepReport& t = report.time_step;
-    std::string pairs;
+    Json pairs = Json::array();
     for (const analysis::PairContactReport& r : report.pairs) {
-        std::string impacts;
+        Json impacts = Json::array();
         for (const analysis::Impact& i : r.impacts)
-            impacts += fmt::format("{}{{\"speed\": {}, \"at_step\": {}, \"converged\": {}}}", impacts.empty() ? "" : ", ",
-                                   i.speed, collision_json(i.at_step), collision_json(i.converged));
+            impacts.push_back(Json{{"speed", i.speed},
+                                   {"at_step", collision_json(i.at_step)},
+                                   {"converged", collision_json(i.converged)}});
         const analysis::NormalLaw& law = r.law;
-        pairs += fmt::format(
-            "{}{{\"pair\": {}, \"partner\": \"{}\", \"R_star\": {}, \"m_star\": {}, \"E_star\": {}, \"B_star\": {}, "
-            "\"attraction\": {}, \"hertz_collision_time\": {}, \"viscous_time\": {}, \"equilibrium_overlap\": {}, \"pull_off_force\": {}, \"sticking_speed\": {}, "
-            "\"sticks_at_every_speed\": {}, \"impacts\": [{}]}}",
-            pairs.empty() ? "" : ", ", json_string(r.pair.name), partner_name(r.pair.partner), law.R_star, law.m_star,
-            law.E_star, law.B_star, law.attraction, json_number(r.times.collision), json_number(r.times.viscous),
-            r.equilibrium_overlap, r.pull_off_force,
-            r.sticking_speed, law.attraction > 0.0 && r.sticking_speed >= analysis::max_sticking_speed, impacts);
+        pairs.push_back(Json{{"pair", r.pair.name},
+                             {"partner", partner_name(r.pair.partner)},
+                             {"R_star", law.R_star},
+                             {"m_star", law.m_star},
+                             {"E_star", law.E_star},
+                             {"B_star", law.B_star},
+                             {"attraction", law.attraction},
+                             {"hertz_collision_time", r.times.collision},
+                             {"viscous_time", r.times.viscous},
+                             {"equilibrium_overlap", r.equilibrium_overlap},
+                             {"pull_off_force", r.pull_off_force},
+                             {"sticking_speed", r.sticking_speed},
+                             {"sticks_at_every_speed",
+                              law.attraction > 0.0 && r.sticking_speed >= analysis::max_sticking_speed},
+                             {"impacts", impacts}});
     }
-    fmt::print("{{\"dt\": {}, \"automatic\": {}, \"dt_set_by\": {}, \"reference_speed\": {}, \"maximum_dt\": {}, \"maximum_set_by\": {}, "
-               "\"pairs\": [{}]}}\n",
-               t.dt, t.automatic, json_string(t.automatic ? t.recommended_by : "given"), report.reference_speed, t.maximum,
-               json_string(t.limiting), pairs);
+    fmt::print("{}\n", io::json_line(Json{{"dt", t.dt},
+                                          {"automatic", t.automatic},
+                                          {"dt_set_by", t.automatic ? t.recommended_by : "given"},
+                                          {"reference_speed", report.reference_speed},
+                                          {"maximum_dt", t.maximum},
+                                          {"maximum_set_by", t.limiting},
+                                          {"pairs", pairs}}));
 }
 
 }  // namespace

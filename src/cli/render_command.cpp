@@ -97,8 +97,8 @@ struct DrumClock {
 
 // "t = 0.512 s, N = 2.25 revolutions" (N for a drum run only); empty if the
 // snapshot does not say its time.
-std::string clock_text(const fs::path& snapshot, const std::optional<DrumClock>& drum) {
-    const std::optional<double> t = io::read_snapshot_time(snapshot);
+std::string clock_text(const io::SnapshotParticles& snapshot, const std::optional<DrumClock>& drum) {
+    const std::optional<double>& t = snapshot.time;
     if (!t) return {};
     if (!drum) return fmt::format("t = {:.4g} s", *t);
     return fmt::format("t = {:.4g} s, N = {:.2f} revolutions", *t, drum->omega * (*t - drum->start) / (2.0 * pi));
@@ -110,8 +110,8 @@ void draw_frames(const std::vector<fs::path>& snapshots, const io::render::Scene
                  unsigned jobs, ProgressStyle shown) {
     Progress progress("drawing", 0, static_cast<std::int64_t>(snapshots.size()), shown, {.unit = "frames"});
     parallel_for(snapshots.size(), jobs, [&](std::size_t k) {
-        const io::render::Image image = io::render::render_frame(io::read_snapshot_csv(snapshots[k]), scene, style,
-                                                                 clock_text(snapshots[k], drum));
+        const io::SnapshotParticles snapshot = io::read_snapshot_csv(snapshots[k]);
+        const io::render::Image image = io::render::render_frame(snapshot, scene, style, clock_text(snapshot, drum));
         io::write_png(frames / fmt::format("{:06d}.png", k), image, true);
     }, progress);
 }

@@ -174,7 +174,6 @@ private:
     void start_rotation() {
         io::DrumRunInfo& info = plan_.info;
         info.settle_time = sim_.time();
-        series_.write(sim_.observe());
         info.fill_fraction = analysis::measure_drum(sim_.particles(), frame_).fill_fraction;
         if (talk())
             fmt::print("{} after {:.3g} s: rms grain speed {:.3g} m/s; fill fraction {:.3f}, solid fraction {:.3f}\n",

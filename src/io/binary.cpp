@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "io/binary.hpp"
 
-#include <array>
+#include <algorithm>
 #include <bit>
+
+#include <zlib.h>
 
 namespace tumble::io {
 
@@ -11,18 +13,14 @@ namespace tumble::io {
 static_assert(std::endian::native == std::endian::little, "checkpoint format is little-endian");
 
 std::uint32_t crc32(std::string_view bytes) {
-    static const std::array<std::uint32_t, 256> table = [] {
-        std::array<std::uint32_t, 256> t{};
-        for (std::uint32_t n = 0; n < 256; ++n) {
-            std::uint32_t c = n;
-            for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-            t[n] = c;
-        }
-        return t;
-    }();
-    std::uint32_t c = 0xFFFFFFFFu;
-    for (unsigned char byte : bytes) c = table[(c ^ byte) & 0xFFu] ^ (c >> 8);
-    return c ^ 0xFFFFFFFFu;
+    // zlib takes at most a uInt (32 bits) of bytes per call.
+    uLong c = ::crc32(0L, Z_NULL, 0);
+    for (std::size_t done = 0; done < bytes.size();) {
+        const auto n = static_cast<uInt>(std::min<std::size_t>(bytes.size() - done, 1u << 30));
+        c = ::crc32(c, reinterpret_cast<const Bytef*>(bytes.data() + done), n);
+        done += n;
+    }
+    return static_cast<std::uint32_t>(c);
 }
 
 bool ByteReader::get_bool(const char* field) {

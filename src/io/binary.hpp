@@ -3,7 +3,8 @@
 // values to a byte string and a reader that takes them back out, checking
 // every length against the bytes that remain (so a damaged or hostile file
 // can neither read past its end nor make the reader allocate more than the
-// file holds). Also the CRC-32 checksum (IEEE 802.3, as zlib and PNG).
+// file holds). Also the CRC-32 checksum (IEEE 802.3, as PNG), computed by
+// zlib.
 #pragma once
 
 #include <cstdint>

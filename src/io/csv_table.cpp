@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "io/csv_table.hpp"
 
+#include <cctype>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -33,6 +34,13 @@ double number(const std::string& cell, const fs::path& file) {
 }
 
 }  // namespace
+
+std::string column_name(std::string_view name) {
+    std::string out(name);
+    for (char& c : out)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') c = '_';
+    return out;
+}
 
 std::size_t CsvTable::column(const std::string& name) const {
     for (std::size_t k = 0; k < header.size(); ++k)

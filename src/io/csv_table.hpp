@@ -1,15 +1,26 @@
 // SPDX-License-Identifier: MIT
-// A CSV file read as text: a header row of column names, then rows of cells,
-// split at commas (no quoting). Lines starting with '#' before the header
-// and empty lines are skipped. Used to read back what tumble writes
-// (drum_series.csv, profiles.csv, snapshots/NNNNNN.csv).
+// The CSV files tumble writes load with standard readers as they are
+// (numpy.genfromtxt(names=True), pandas.read_csv): the first line is the
+// header, column names hold only letters, digits and '_', and there are no
+// comment lines.
+//
+// Reading: a CSV file as text, a header row of column names, then rows of
+// cells, split at commas (no quoting). Lines starting with '#' before the
+// header (older snapshots) and empty lines are skipped. Used to read back
+// what tumble writes (drum_series.csv, profiles.csv, snapshots/NNNNNN.csv).
 #pragma once
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace tumble::io {
+
+// A name (of a material, a component) as part of a column name: every
+// character but a letter, a digit or '_' becomes '_' ("material-1" ->
+// "material_1"), as numpy.genfromtxt(names=True) would otherwise drop it.
+std::string column_name(std::string_view name);
 
 struct CsvTable {
     std::filesystem::path file;  // for error messages

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "io/csv_table.hpp"
+#include "io/json.hpp"
 #include "io/output.hpp"
 #include "io/snapshots.hpp"
 #include "io/toml_reader.hpp"
@@ -120,7 +121,7 @@ DrumSeriesWriter::DrumSeriesWriter(const fs::path& directory, const DrumRunInfo&
     series_ << "revolutions,time,angle_of_repose,fill_fraction,bed_centre_x,bed_centre_y";
     for (const DrumComponent& c : info.components)
         series_ << fmt::format(",grains_{0},mean_z_{0},mean_z_stderr_{0},kinetic_energy_{0},kinetic_per_grain_{0}",
-                               c.name);
+                               column_name(c.name));
     series_ << '\n';
     profiles_ << "revolutions,component,bin,z,concentration\n";
     check_written(series_, series_path_);
@@ -208,12 +209,19 @@ std::size_t nearest_sample(const std::vector<double>& N, double target) {
 }  // namespace
 
 analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_start, double omega) {
-    std::ifstream in(file);
-    std::string first;
-    double time = 0.0;
-    if (!std::getline(in, first) || std::sscanf(first.c_str(), "# time = %lf s", &time) != 1)
-        throw Error(file.string() + ": not a particle snapshot (its first line should be \"# time = T s, ...\")");
     const CsvTable csv = read_csv_table(file);
+    // The time column, or the first line "# time = T s, step = S" of a
+    // snapshot written before it.
+    double time = 0.0;
+    if (std::find(csv.header.begin(), csv.header.end(), "time") != csv.header.end() && !csv.rows.empty()) {
+        time = csv.numbers("time").front();
+    } else {
+        std::ifstream in(file);
+        std::string first;
+        if (!std::getline(in, first) || std::sscanf(first.c_str(), "# time = %lf s", &time) != 1)
+            throw Error(file.string() +
+                        ": not a particle snapshot (no time column, and no first line \"# time = T s, ...\")");
+    }
     const std::vector<double> id = csv.numbers("id"), x = csv.numbers("x"), y = csv.numbers("y"),
                               z = csv.numbers("z"), radius = csv.numbers("radius"), tag = csv.numbers("tag"),
                               kinematic = csv.numbers("kinematic"), vx = csv.numbers("vx"), vy = csv.numbers("vy"),
@@ -275,7 +283,8 @@ void write_depth_mobility(const fs::path& file, const analysis::DepthMobility& m
     std::ofstream out = open_for_writing(file);
     out << "layer,depth_lo,depth_hi";
     for (const DrumComponent& c : info.components)
-        for (const char* what : {"samples", "msd_per_rev", "share", "occupancy"}) out << ',' << what << '_' << c.name;
+        for (const char* what : {"samples", "msd_per_rev", "share", "occupancy"})
+            out << ',' << what << '_' << column_name(c.name);
     out << '\n';
     for (int layer = 0; layer < m.layers(); ++layer) {
         out << fmt::format("{},{},{}", layer, layer == 0 ? -INFINITY : layer,
@@ -344,7 +353,7 @@ void write_axial_msd(const fs::path& file, const std::vector<analysis::GrainFram
     }
     std::ofstream out = open_for_writing(file);
     out << "lag";
-    for (const DrumComponent& c : info.components) out << ",msd_" << c.name;
+    for (const DrumComponent& c : info.components) out << ",msd_" << column_name(c.name);
     out << '\n';
     for (std::size_t l = 0; l < lag.size(); ++l) {
         out << lag[l];
@@ -375,28 +384,28 @@ std::string describe_hogg(const analysis::HoggFit& f) {
                        f.D_stderr, f.D - 1.96 * f.D_stderr, f.D + 1.96 * f.D_stderr, f.amplitude);
 }
 
-toml::table msd_json(const analysis::MsdEstimate& m) {
-    return toml::table{{"D", m.D},
-                       {"D_lo", m.interval.lo},
-                       {"D_hi", m.interval.hi},
-                       {"determined", m.determined},
-                       {"note", m.note},
-                       {"fit_lag_lo", m.fit_lo},
-                       {"fit_lag_hi", m.fit_hi},
-                       {"blocks", static_cast<std::int64_t>(m.blocks)}};
+Json msd_json(const analysis::MsdEstimate& m) {
+    return Json{{"D", m.D},
+                {"D_lo", m.interval.lo},
+                {"D_hi", m.interval.hi},
+                {"determined", m.determined},
+                {"note", m.note},
+                {"fit_lag_lo", m.fit_lo},
+                {"fit_lag_hi", m.fit_hi},
+                {"blocks", static_cast<std::int64_t>(m.blocks)}};
 }
 
 // The 95 % interval of a Hogg fit: +-1.96 standard errors.
-toml::table hogg_json(const analysis::HoggFit& f, double first_revolution) {
-    return toml::table{{"D", f.D},
-                       {"D_stderr", f.D_stderr},
-                       {"D_lo", f.D - 1.96 * f.D_stderr},
-                       {"D_hi", f.D + 1.96 * f.D_stderr},
-                       {"amplitude", f.amplitude},
-                       {"first_revolution", first_revolution},
-                       {"determined", f.determined},
-                       {"note", f.note},
-                       {"points", static_cast<std::int64_t>(f.points)}};
+Json hogg_json(const analysis::HoggFit& f, double first_revolution) {
+    return Json{{"D", f.D},
+                {"D_stderr", f.D_stderr},
+                {"D_lo", f.D - 1.96 * f.D_stderr},
+                {"D_hi", f.D + 1.96 * f.D_stderr},
+                {"amplitude", f.amplitude},
+                {"first_revolution", first_revolution},
+                {"determined", f.determined},
+                {"note", f.note},
+                {"points", static_cast<std::int64_t>(f.points)}};
 }
 
 // Segregation, energetics, the free surface per slice and the flowing layer
@@ -405,7 +414,7 @@ toml::table hogg_json(const analysis::HoggFit& f, double first_revolution) {
 // `summary`.
 void analyze_bed_structure(const fs::path& dir, const std::vector<analysis::GrainFrame>& frames,
                            const DrumRunInfo& info, const AnalyzeOptions& options, std::ostringstream& text,
-                           toml::table& summary) {
+                           Json& summary) {
     const std::vector<analysis::GrainFrame> steady = steady_frames(frames, options.first_revolution);
     if (steady.empty()) return;
     std::vector<analysis::SpeciesEnergetics> energetics(info.components.size());
@@ -413,7 +422,7 @@ void analyze_bed_structure(const fs::path& dir, const std::vector<analysis::Grai
     for (double r : steady.front().radius) mean_diameter += 2.0 * r / static_cast<double>(steady.front().radius.size());
     std::ofstream out = open_for_writing(dir / "bed_structure.csv");
     out << "revolutions,slice,z,relative_volume,surface_angle";
-    for (const DrumComponent& c : info.components) out << ",mean_distance_" << c.name;
+    for (const DrumComponent& c : info.components) out << ",mean_distance_" << column_name(c.name);
     out << '\n';
     std::vector<double> distance_sum(info.components.size(), 0.0), distance_count(info.components.size(), 0.0);
     double first_rms = 0.0, last_rms = 0.0;
@@ -454,7 +463,7 @@ void analyze_bed_structure(const fs::path& dir, const std::vector<analysis::Grai
             profile << fmt::format("{},{},{}\n", flow.depth(k), flow.depth(k) / mean_diameter, flow.velocity(k));
         check_written(profile, dir / "flow_profile.csv");
     }
-    toml::array angles_json;
+    Json angles_json = Json::array();
     std::string angles_text;
     for (std::size_t k = 0; k < angle_sum.size(); ++k) {
         const double mean = angle_count[k] > 0.0 ? angle_sum[k] / angle_count[k] : std::nan("");
@@ -469,7 +478,7 @@ void analyze_bed_structure(const fs::path& dir, const std::vector<analysis::Grai
     text << fmt::format("  bed volume along the axis (bed_structure.csv): rms deviation from uniform {:.3f} at N = "
                         "{:.3g}, {:.3f} at N = {:.3g}\n",
                         first_rms, steady.front().revolutions, last_rms, steady.back().revolutions);
-    toml::array species_json;
+    Json species_json = Json::array();
     text << "  where both kinds are present (cells of 2 grain diameters), per grain: fluctuation energy about the "
             "local mean flow, granular temperature, rotational energy, mean distance from the slice's centroid\n";
     for (std::size_t c = 0; c < info.components.size(); ++c) {
@@ -477,19 +486,19 @@ void analyze_bed_structure(const fs::path& dir, const std::vector<analysis::Grai
         text << fmt::format("    {}: {:.3g} J, {:.3g} m^2/s^2, {:.3g} J, {:.4g} m ({} grain-frames)\n",
                             info.components[c].name, energetics[c].fluctuation(), energetics[c].temperature(),
                             energetics[c].rotation(), distance, energetics[c].grains);
-        species_json.push_back(toml::table{{"name", info.components[c].name},
-                                           {"fluctuation_energy_per_grain", energetics[c].fluctuation()},
-                                           {"granular_temperature", energetics[c].temperature()},
-                                           {"rotational_energy_per_grain", energetics[c].rotation()},
-                                           {"mean_distance_from_centroid", distance},
-                                           {"grain_frames", static_cast<std::int64_t>(energetics[c].grains)}});
+        species_json.push_back(Json{{"name", info.components[c].name},
+                                    {"fluctuation_energy_per_grain", energetics[c].fluctuation()},
+                                    {"granular_temperature", energetics[c].temperature()},
+                                    {"rotational_energy_per_grain", energetics[c].rotation()},
+                                    {"mean_distance_from_centroid", distance},
+                                    {"grain_frames", static_cast<std::int64_t>(energetics[c].grains)}});
     }
-    summary.insert("bed_structure", toml::table{{"volume_rms_first", first_rms},
-                                                {"surface_angle_by_slice", angles_json},
-                                                {"flowing_layer_thickness", flow.thickness()},
-                                                {"flowing_layer_thickness_diameters", flow.thickness() / mean_diameter},
-                                                {"volume_rms_last", last_rms},
-                                                {"species", species_json}});
+    summary["bed_structure"] = Json{{"volume_rms_first", first_rms},
+                                    {"surface_angle_by_slice", angles_json},
+                                    {"flowing_layer_thickness", flow.thickness()},
+                                    {"flowing_layer_thickness_diameters", flow.thickness() / mean_diameter},
+                                    {"volume_rms_last", last_rms},
+                                    {"species", species_json}};
 }
 
 }  // namespace
@@ -522,7 +531,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     const analysis::MsdOptions msd_opts = msd_options_of_run(frames, info, options);
     write_axial_msd(dir / "axial_msd.csv", frames, info, options);
 
-    toml::array components_json;
+    Json components_json = Json::array();
     std::vector<analysis::DiffusionFit> fits;
     std::vector<analysis::MsdEstimate> msd;
     for (std::size_t c = 0; c < n_components; ++c) {
@@ -590,24 +599,24 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
             text << fmt::format("    old estimator, Hogg pinned at L/4 from N = 0: D = {:.3e} +- {:.1e} m^2/rev; "
                                 "one-term: {:.3e} +- {:.1e}\n",
                                 fit.D, fit.D_stderr, fit.one_term_D, fit.one_term_D_stderr);
-        components_json.push_back(toml::table{{"name", comp.name},
-                                              {"grains", static_cast<std::int64_t>(comp.grains)},
-                                              {"mass", comp.mass},
-                                              {"start_side", comp.start_side},
-                                              {"msd", msd_json(m)},
-                                              {"hogg_free", hogg_json(hogg, options.first_revolution)},
-                                              {"drift", toml::table{{"velocity", drift.drift},
-                                                                    {"velocity_stderr", drift.drift_stderr},
-                                                                    {"D_held", m.D},
-                                                                    {"verdict", verdict}}},
-                                              {"D", fit.D},
-                                              {"D_stderr", fit.D_stderr},
-                                              {"D_one_term", fit.one_term_D},
-                                              {"D_one_term_stderr", fit.one_term_D_stderr},
-                                              {"determined", fit.determined},
-                                              {"note", fit.note},
-                                              {"residual_rms", fit.residual_rms},
-                                              {"points", static_cast<std::int64_t>(fit.points)}});
+        components_json.push_back(Json{{"name", comp.name},
+                                       {"grains", static_cast<std::int64_t>(comp.grains)},
+                                       {"mass", comp.mass},
+                                       {"start_side", comp.start_side},
+                                       {"msd", msd_json(m)},
+                                       {"hogg_free", hogg_json(hogg, options.first_revolution)},
+                                       {"drift", Json{{"velocity", drift.drift},
+                                                      {"velocity_stderr", drift.drift_stderr},
+                                                      {"D_held", m.D},
+                                                      {"verdict", verdict}}},
+                                       {"D", fit.D},
+                                       {"D_stderr", fit.D_stderr},
+                                       {"D_one_term", fit.one_term_D},
+                                       {"D_one_term_stderr", fit.one_term_D_stderr},
+                                       {"determined", fit.determined},
+                                       {"note", fit.note},
+                                       {"residual_rms", fit.residual_rms},
+                                       {"points", static_cast<std::int64_t>(fit.points)}});
     }
 
     // The dynamic angle of repose, mean over the rotation after the first
@@ -626,25 +635,25 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     text << fmt::format("  dynamic angle of repose {:.1f} degrees (mean over the rotation after N = {:.2g})\n",
                         angle_of_repose, std::min(1.0, 0.5 * last_N));
 
-    toml::table summary{{"mode", info.mode},
-                        {"shear_model", info.shear_model},
-                        {"friction_normal", info.friction_normal},
-                        {"omega", info.omega},
-                        {"froude", info.froude},
-                        {"revolutions", series.revolutions.empty() ? 0.0 : series.revolutions.back()},
-                        {"grains", static_cast<std::int64_t>([&] {
-                             std::size_t n = 0;
-                             for (const auto& c : info.components) n += c.grains;
-                             return n;
-                         }())},
-                        {"wall_particles", static_cast<std::int64_t>(info.wall_particles)},
-                        {"bed_length", L},
-                        {"solid_fraction", info.solid_fraction},
-                        {"fill_fraction", info.fill_fraction},
-                        {"angle_of_repose", angle_of_repose},
-                        {"grain_updates_per_second", info.grain_updates_per_second},
-                        {"isa", info.isa},
-                        {"components", components_json}};
+    Json summary{{"mode", info.mode},
+                 {"shear_model", info.shear_model},
+                 {"friction_normal", info.friction_normal},
+                 {"omega", info.omega},
+                 {"froude", info.froude},
+                 {"revolutions", series.revolutions.empty() ? 0.0 : series.revolutions.back()},
+                 {"grains", static_cast<std::int64_t>([&] {
+                      std::size_t n = 0;
+                      for (const auto& c : info.components) n += c.grains;
+                      return n;
+                  }())},
+                 {"wall_particles", static_cast<std::int64_t>(info.wall_particles)},
+                 {"bed_length", L},
+                 {"solid_fraction", info.solid_fraction},
+                 {"fill_fraction", info.fill_fraction},
+                 {"angle_of_repose", angle_of_repose},
+                 {"grain_updates_per_second", info.grain_updates_per_second},
+                 {"isa", info.isa},
+                 {"components", components_json}};
 
     // Kinetic energy of species 2 over species 1 (component 1 over 0), with
     // the ratio expected if both had the same mean square velocity.
@@ -658,10 +667,10 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         text << fmt::format("  kinetic energy {} / {} (mean over the rotation): total {:.3g} (equal velocities: {:.3g}), "
                             "per grain {:.3g} (equal velocities: {:.3g})\n",
                             two.name, one.name, total, total_reference, per_grain, per_grain_reference);
-        summary.insert("kinetic_energy_ratio_total", total);
-        summary.insert("kinetic_energy_ratio_total_equal_velocity", total_reference);
-        summary.insert("kinetic_energy_ratio_per_grain", per_grain);
-        summary.insert("kinetic_energy_ratio_per_grain_equal_velocity", per_grain_reference);
+        summary["kinetic_energy_ratio_total"] = total;
+        summary["kinetic_energy_ratio_total_equal_velocity"] = total_reference;
+        summary["kinetic_energy_ratio_per_grain"] = per_grain;
+        summary["kinetic_energy_ratio_per_grain_equal_velocity"] = per_grain_reference;
     }
 
     // Concentration profiles of the component that started at z > 0 against
@@ -680,7 +689,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         const std::string D_name = from_msd ? "the grains' MSD D" : "the pinned Hogg D";
         std::ofstream out = open_for_writing(dir / "profile_comparison.csv");
         out << "revolutions,z,measured,hogg\n";
-        toml::array rms_json;
+        Json rms_json = Json::array();
         auto rms_at = [&](std::size_t k, bool write) {
             double sum = 0.0;
             std::size_t n = 0;
@@ -701,12 +710,12 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
             const std::size_t k = nearest_sample(profiles.revolutions, fraction * last);
             const auto [sum, n] = rms_at(k, true);
             const double rms = n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
-            rms_json.push_back(toml::table{{"revolutions", profiles.revolutions[k]}, {"rms_difference", rms}});
+            rms_json.push_back(Json{{"revolutions", profiles.revolutions[k]}, {"rms_difference", rms}});
             text << fmt::format("  C(z, N = {:.3g}) of {} against Hogg with {}: rms difference {:.3f}\n",
                                 profiles.revolutions[k], info.components[right].name, D_name, rms);
         }
         check_written(out, dir / "profile_comparison.csv");
-        summary.insert("profile_comparison", rms_json);
+        summary["profile_comparison"] = rms_json;
         double sum = 0.0;
         std::size_t n = 0;
         for (std::size_t k = 0; k < profiles.revolutions.size(); ++k)
@@ -717,11 +726,11 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         const double collapse = n ? std::sqrt(sum / static_cast<double>(n)) : std::nan("");
         text << fmt::format("  profile collapse of {} (C against z / sqrt(N), N >= {:.3g}) on Hogg with {}: rms {:.3f}\n",
                             info.components[right].name, options.first_revolution, D_name, collapse);
-        summary.insert("profile_collapse", toml::table{{"component", info.components[right].name},
-                                                       {"D", D_profile},
-                                                       {"D_source", from_msd ? "msd" : "hogg_pinned"},
-                                                       {"first_revolution", options.first_revolution},
-                                                       {"rms", collapse}});
+        summary["profile_collapse"] = Json{{"component", info.components[right].name},
+                                           {"D", D_profile},
+                                           {"D_source", from_msd ? "msd" : "hogg_pinned"},
+                                           {"first_revolution", options.first_revolution},
+                                           {"rms", collapse}};
     }
 
     // Self mode: the two halves are one experiment (identical grains, the
@@ -741,7 +750,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
             const analysis::HoggFit both = fit_hogg_or_note(N, half_difference, L, {options.first_revolution, false, -1.0},
                                                             info.periodic_axis);
             text << "  both halves, (<z>_right - <z>_left)/2, Hogg amplitude free: " << describe_hogg(both) << "\n";
-            summary.insert("self_combined_hogg", hogg_json(both, options.first_revolution));
+            summary["self_combined_hogg"] = hogg_json(both, options.first_revolution);
             // The grains are identical: the grains' D and the halves' mixing
             // should be one number. Compared by their 95 % intervals.
             if (both.determined && msd[0].determined && msd[1].determined) {
@@ -752,7 +761,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                                : "  the grains' MSD D and this Hogg D DISAGREE beyond their 95 % intervals: <z> moves by "
                                  "more than single-grain diffusion (see the drift lines above: convecting or "
                                  "segregating)\n");
-                summary.insert("self_msd_hogg_agree", agree);
+                summary["self_msd_hogg_agree"] = agree;
             }
         } else if (!info.periodic_axis) {  // wrapped coordinates have no meaningful sum
             std::vector<double> Ns, sums;
@@ -762,7 +771,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                 const analysis::LineFit f = analysis::fit_line(Ns, sums);
                 text << fmt::format("  drift of <z>_1 + <z>_2 (bed volume moving along the axis): {:.2e} +- {:.1e} m/rev\n",
                                     f.slope, f.slope_stderr);
-                summary.insert("sum_drift", toml::table{{"velocity", f.slope}, {"velocity_stderr", f.slope_stderr}});
+                summary["sum_drift"] = Json{{"velocity", f.slope}, {"velocity_stderr", f.slope_stderr}};
             }
         }
     }
@@ -771,7 +780,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     // the particle snapshots (tumble drum --snapshots).
     if (const auto mobility = depth_mobility_of_run(frames, info)) {
         write_depth_mobility(dir / "depth_mobility.csv", *mobility, info);
-        toml::array layers_json;
+        Json layers_json = Json::array();
         text << fmt::format("  axial motion by depth below the free surface ({} snapshot intervals; "
                             "depth_mobility.csv):\n    share of <dz^2> in the top grain layer (depth < 1 mean "
                             "grain diameter)",
@@ -782,12 +791,12 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
             const double top_occupancy = mobility->occupancy(k, 0);
             text << fmt::format("{} {}: {:.2f} (holding {:.2f} of its grains)", c ? "," : "", info.components[c].name,
                                 top, top_occupancy);
-            layers_json.push_back(toml::table{{"name", info.components[c].name},
-                                              {"surface_share", top},
-                                              {"surface_occupancy", top_occupancy}});
+            layers_json.push_back(Json{{"name", info.components[c].name},
+                                       {"surface_share", top},
+                                       {"surface_occupancy", top_occupancy}});
         }
         text << "\n";
-        summary.insert("depth_mobility", layers_json);
+        summary["depth_mobility"] = layers_json;
     }
     // The same over windows of one revolution after the start-up, by each
     // grain's mean depth over the window.
@@ -800,7 +809,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
             for (std::size_t f = 0; f + span < steady.size(); ++f)
                 long_lag.add_window(&steady[f], span + 1, info.inner_radius);
             write_depth_mobility(dir / "depth_mobility_long.csv", long_lag, info);
-            toml::array long_json;
+            Json long_json = Json::array();
             text << fmt::format("  over one revolution, by mean depth ({} windows; depth_mobility_long.csv): share of "
                                 "<dz^2> of the grains whose mean depth is under 1 grain diameter",
                                 long_lag.intervals());
@@ -808,29 +817,21 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                 const int k = static_cast<int>(c);
                 text << fmt::format("{} {}: {:.2f} (holding {:.2f})", c ? "," : "", info.components[c].name,
                                     long_lag.share(k, 0), long_lag.occupancy(k, 0));
-                long_json.push_back(toml::table{{"name", info.components[c].name},
-                                                {"surface_share", long_lag.share(k, 0)},
-                                                {"surface_occupancy", long_lag.occupancy(k, 0)}});
+                long_json.push_back(Json{{"name", info.components[c].name},
+                                         {"surface_share", long_lag.share(k, 0)},
+                                         {"surface_occupancy", long_lag.occupancy(k, 0)}});
             }
             text << "\n";
-            summary.insert("depth_mobility_long", long_json);
+            summary["depth_mobility_long"] = long_json;
         }
     }
 
     analyze_bed_structure(dir, frames, info, options, text, summary);
 
-    {
-        // JSON has no NaN or infinity: an undefined number is null.
-        std::ostringstream formatted;
-        formatted << toml::json_formatter{summary};
-        std::string json_text = formatted.str();
-        for (const char* undefined : {"\"NaN\"", "\"nan\"", "\"-Infinity\"", "\"Infinity\"", "\"inf\"", "\"-inf\""})
-            for (std::size_t at = json_text.find(undefined); at != std::string::npos; at = json_text.find(undefined))
-                json_text.replace(at, std::string(undefined).size(), "null");
-        // summary.json last: its presence marks a finished run (tumble sweep).
-        write_file_atomically(dir / "summary.txt", text.str());
-        write_file_atomically(dir / "summary.json", json_text + '\n');
-    }
+    // summary.json last: its presence marks a finished run (tumble sweep).
+    // An undefined number (NaN) is null in it (json.hpp).
+    write_file_atomically(dir / "summary.txt", text.str());
+    write_json_file(dir / "summary.json", summary);
     return text.str();
 }
 

@@ -11,11 +11,12 @@
 #include <cerrno>
 #include <cstring>
 #include <numeric>
-#include <sstream>
 
 #include <fmt/format.h>
 #include <fmt/os.h>
 
+#include "io/csv_table.hpp"
+#include "io/json.hpp"
 #include "tumble/core/error.hpp"
 #include "tumble/core/isa.hpp"
 
@@ -104,7 +105,7 @@ TimeSeriesWriter::TimeSeriesWriter(const fs::path& file, const std::vector<Mater
     out_ << "time,step,kinetic_translational,kinetic_rotational,contact_energy,contacts,max_overlap_ratio,"
             "neighbor_builds";
     for (const Material& m : materials)
-        out_ << ",particles_" << m.name << ",kinetic_translational_" << m.name << ",kinetic_rotational_" << m.name;
+        out_ << fmt::format(",particles_{0},kinetic_translational_{0},kinetic_rotational_{0}", column_name(m.name));
     out_ << '\n';
     check_written(out_, path_);
 }
@@ -118,21 +119,26 @@ void TimeSeriesWriter::write(const Observables& o) {
     check_written(out_, path_);
 }
 
+std::vector<std::size_t> order_by_id(const ParticleStore& p) {
+    std::vector<std::size_t> by_id(p.size());
+    std::iota(by_id.begin(), by_id.end(), std::size_t{0});
+    std::sort(by_id.begin(), by_id.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
+    return by_id;
+}
+
 fs::path write_snapshot(const fs::path& directory, int number, const Simulation& sim) {
     const fs::path folder = directory / "snapshots";
     fs::create_directories(folder);
     const fs::path file = folder / fmt::format("{:06d}.csv", number);
     std::ofstream out = open_for_writing(file);
     const ParticleStore& p = sim.particles();
-    std::vector<std::size_t> by_id(p.size());
-    std::iota(by_id.begin(), by_id.end(), std::size_t{0});
-    std::sort(by_id.begin(), by_id.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
-    out << fmt::format("# time = {} s, step = {}\n", sim.time(), sim.step_count());
-    out << "id,x,y,z,vx,vy,vz,wx,wy,wz,radius,material,tag,kinematic\n";
-    for (std::size_t i : by_id) {
+    // The time and step on every row, so that snapshots concatenated stay apart.
+    const std::string when = fmt::format("{},{}", sim.time(), sim.step_count());
+    out << "time,step,id,x,y,z,vx,vy,vz,wx,wy,wz,radius,material,tag,kinematic\n";
+    for (std::size_t i : order_by_id(p)) {
         const Vec3 &x = p.position[i], &v = p.velocity[i], &w = p.angular_velocity[i];
-        out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", p.id[i], x.x, x.y, x.z, v.x, v.y, v.z, w.x,
-                           w.y, w.z, p.radius[i], sim.scenario().materials[p.material[i]].name, p.tag[i],
+        out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", when, p.id[i], x.x, x.y, x.z, v.x, v.y,
+                           v.z, w.x, w.y, w.z, p.radius[i], sim.scenario().materials[p.material[i]].name, p.tag[i],
                            p.is_kinematic(i) ? 1 : 0);
     }
     check_written(out, file);
@@ -169,22 +175,26 @@ RunLock prepare_output_directory(const fs::path& directory, bool overwrite) {
 void write_run_json(const fs::path& file, const Simulation& sim, const RunSummary& s) {
     const TimeStepReport& t = sim.time_step_report();
     const double updates = s.wall_seconds > 0.0 ? static_cast<double>(s.free_particles) * s.steps / s.wall_seconds : 0.0;
-    std::ostringstream out;
-    out << "{\n"
-        << fmt::format("  \"tumble_version\": \"{}\",\n", TUMBLE_VERSION)
-        << fmt::format("  \"scenario\": \"{}\",\n", s.scenario_file)
-        << fmt::format("  \"seed\": {},\n", s.seed)
-        << fmt::format("  \"particles\": {},\n  \"free_particles\": {},\n", s.particles, s.free_particles)
-        << fmt::format("  \"duration\": {},\n  \"steps\": {},\n", s.duration, s.steps)
-        << fmt::format("  \"dt\": {},\n  \"dt_automatic\": {},\n", t.dt, t.automatic ? "true" : "false")
-        << fmt::format("  \"dt_recommended\": {},\n  \"dt_maximum\": {},\n", t.recommended, t.maximum)
-        << fmt::format("  \"collision_time\": {},\n  \"viscous_time\": {},\n  \"rayleigh_time\": {},\n",
-                       t.collision_time, t.viscous_time, t.rayleigh_time)
-        << fmt::format("  \"neighbor_skin\": {},\n  \"neighbor_builds\": {},\n", sim.neighbors().skin(),
-                       sim.neighbors().builds())
-        << fmt::format("  \"threads\": {},\n  \"isa\": \"{}\",\n", sim.threads(), isa_description())
-        << fmt::format("  \"wall_seconds\": {},\n  \"updates_per_second\": {}\n", s.wall_seconds, updates) << "}\n";
-    write_file_atomically(file, out.str());
+    write_json_file(file, Json{{"tumble_version", TUMBLE_VERSION},
+                               {"scenario", s.scenario_file},
+                               {"seed", s.seed},
+                               {"particles", s.particles},
+                               {"free_particles", s.free_particles},
+                               {"duration", s.duration},
+                               {"steps", s.steps},
+                               {"dt", t.dt},
+                               {"dt_automatic", t.automatic},
+                               {"dt_recommended", t.recommended},
+                               {"dt_maximum", t.maximum},
+                               {"collision_time", t.collision_time},
+                               {"viscous_time", t.viscous_time},
+                               {"rayleigh_time", t.rayleigh_time},
+                               {"neighbor_skin", sim.neighbors().skin()},
+                               {"neighbor_builds", sim.neighbors().builds()},
+                               {"threads", sim.threads()},
+                               {"isa", isa_description()},
+                               {"wall_seconds", s.wall_seconds},
+                               {"updates_per_second", updates}});
 }
 
 }  // namespace tumble::io

@@ -2,7 +2,8 @@
 // What a run writes into its output directory:
 //   time_series.csv       one row per sample: time, energies (total and per
 //                         material), contacts, largest overlap, list builds
-//   snapshots/NNNNNN.csv  per-particle state, rows ordered by global id
+//   snapshots/NNNNNN.csv  per-particle state, rows ordered by global id, each
+//                         with the time and step of the snapshot
 //   run.json              the settings in force, the time step and its limits,
 //                         the speed of the run
 // Numbers are written in the shortest form that reads back to the same
@@ -44,6 +45,10 @@ private:
     std::filesystem::path path_;
     std::ofstream out_;
 };
+
+// Array indices of the particles in the order of their global ids (the
+// order of the rows of every snapshot format).
+std::vector<std::size_t> order_by_id(const ParticleStore& p);
 
 // Writes snapshots/NNNNNN.csv (NNNNNN = the sample number) and returns its path.
 std::filesystem::path write_snapshot(const std::filesystem::path& directory, int number, const Simulation& sim);

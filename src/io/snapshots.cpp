@@ -11,6 +11,7 @@
 
 #include "io/csv_table.hpp"
 #include "io/output.hpp"
+#include "io/xyz_output.hpp"
 
 namespace tumble::io {
 
@@ -32,6 +33,7 @@ void SnapshotSeries::write(const Simulation& sim) {
     const std::size_t number = times_.size();
     write_snapshot(directory_, static_cast<int>(number), sim);
     write_vtu_snapshot(directory_ / dataset(number, "vtu"), sim);
+    write_xyz_snapshot(directory_ / dataset(number, "xyz"), sim);
     write_vtp_contact_network(directory_ / dataset(number, "vtp"), sim);
     add_to_indexes(sim.time());
 }
@@ -43,6 +45,22 @@ void SnapshotSeries::add_to_indexes(double time) {
     times_.push_back(time);
 }
 
+namespace {
+// Snapshots written before the `time` column had it on their first line,
+// "# time = T s, step = S".
+std::optional<double> time_from_first_line(const fs::path& file) {
+    std::ifstream in(file);
+    std::string first;
+    std::getline(in, first);
+    const std::string prefix = "# time = ";
+    if (!first.starts_with(prefix)) return std::nullopt;
+    char* end = nullptr;
+    const double t = std::strtod(first.c_str() + prefix.size(), &end);
+    if (end == first.c_str() + prefix.size() || !std::isfinite(t)) return std::nullopt;
+    return t;
+}
+}  // namespace
+
 SnapshotParticles read_snapshot_csv(const fs::path& file) {
     const CsvTable csv = read_csv_table(file);
     const std::vector<double> x = csv.numbers("x"), y = csv.numbers("y"), z = csv.numbers("z"),
@@ -51,6 +69,10 @@ SnapshotParticles read_snapshot_csv(const fs::path& file) {
     const std::size_t material = csv.column("material");
     SnapshotParticles p;
     p.radius = radius;
+    if (std::find(csv.header.begin(), csv.header.end(), "time") != csv.header.end() && !csv.rows.empty())
+        p.time = csv.numbers("time").front();
+    else
+        p.time = time_from_first_line(file);
     for (std::size_t i = 0; i < csv.rows.size(); ++i) {
         p.position.push_back({x[i], y[i], z[i]});
         p.tag.push_back(static_cast<std::int32_t>(tag[i]));
@@ -61,18 +83,6 @@ SnapshotParticles read_snapshot_csv(const fs::path& file) {
         if (known == p.material_names.end()) p.material_names.push_back(name);
     }
     return p;
-}
-
-std::optional<double> read_snapshot_time(const fs::path& file) {
-    std::ifstream in(file);
-    std::string first;
-    std::getline(in, first);
-    const std::string prefix = "# time = ";
-    if (!first.starts_with(prefix)) return std::nullopt;
-    char* end = nullptr;
-    const double t = std::strtod(first.c_str() + prefix.size(), &end);
-    if (end == first.c_str() + prefix.size() || !std::isfinite(t)) return std::nullopt;
-    return t;
 }
 
 std::vector<fs::path> list_snapshot_csv(const fs::path& directory) {

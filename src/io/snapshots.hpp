@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The particle snapshots of a run, numbered from 0, each written three ways:
+// The particle snapshots of a run, numbered from 0, each written four ways:
 //   snapshots/NNNNNN.csv   per-particle state as text (output.hpp)
 //   snapshots/NNNNNN.vtu   the same for ParaView (vtk_output.hpp)
+//   snapshots/NNNNNN.xyz   the same as extended XYZ, for OVITO (xyz_output.hpp)
 //   snapshots/NNNNNN.vtp   the contact network: a line per contact with its normal force
 // and two ParaView time-series indexes in the run directory, particles.pvd
 // and contacts.pvd (open them in ParaView: File > Open). The CSV files are
@@ -44,13 +45,10 @@ struct SnapshotParticles {
     std::vector<std::string> material_names;  // in the order they first appear
     std::vector<std::int32_t> tag;
     std::vector<std::uint8_t> kinematic;   // 1: moves by a prescribed motion (a drum wall particle)
+    std::optional<double> time;            // s, when it was taken; none if the file does not say
 };
 // tumble::Error naming the file if it cannot be read or lacks a column.
 SnapshotParticles read_snapshot_csv(const std::filesystem::path& file);
-
-// The simulated time a snapshot CSV file says it was taken at (its first
-// line, "# time = T s, step = S"), s; none if it does not say.
-std::optional<double> read_snapshot_time(const std::filesystem::path& file);
 
 // The snapshot CSV files of a run directory (DIR/snapshots/NNNNNN.csv), in
 // the order of their numbers; empty if there are none.

@@ -18,6 +18,8 @@
 #include <sstream>
 #include <thread>
 
+#include "io/csv_table.hpp"
+#include "io/json.hpp"
 #include "io/toml_reader.hpp"
 #include "tumble/analysis/bootstrap.hpp"
 #include "tumble/core/error.hpp"
@@ -368,214 +370,6 @@ std::vector<PointOutcome> run_jobs(const std::vector<PointJob>& jobs, unsigned p
     return outcomes;
 }
 
-// ============================================================ JSON
-
-const Json* Json::find(std::string_view key) const {
-    if (type != Type::object) return nullptr;
-    for (const auto& [k, v] : object)
-        if (k == key) return &v;
-    return nullptr;
-}
-
-std::optional<double> Json::number_at(std::string_view key) const {
-    const Json* v = find(key);
-    if (!v || v->type == Type::null) return std::nullopt;
-    if (v->type != Type::number) throw Error("json: \"" + std::string(key) + "\" is not a number");
-    return v->number;
-}
-
-namespace {
-
-class JsonParser {
-public:
-    JsonParser(std::string_view text, const std::string& name) : s_(text), name_(name) {}
-
-    Json document() {
-        Json v = value(0);
-        space();
-        if (i_ != s_.size()) fail("unexpected text after the JSON value");
-        return v;
-    }
-
-private:
-    [[noreturn]] void fail(const std::string& reason) const {
-        std::size_t line = 1, column = 1;
-        for (std::size_t k = 0; k < i_ && k < s_.size(); ++k) {
-            if (s_[k] == '\n') ++line, column = 1;
-            else ++column;
-        }
-        throw Error(fmt::format("{}: line {}, column {}: {}", name_, line, column, reason));
-    }
-    void space() {
-        while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\t' || s_[i_] == '\n' || s_[i_] == '\r')) ++i_;
-    }
-    bool eat(char c) {
-        space();
-        if (i_ < s_.size() && s_[i_] == c) return ++i_, true;
-        return false;
-    }
-    void expect(char c) {
-        if (!eat(c)) fail(fmt::format("expected '{}'", c));
-    }
-    bool word(std::string_view w) {
-        if (s_.substr(i_, w.size()) != w) return false;
-        i_ += w.size();
-        return true;
-    }
-
-    Json value(int depth) {
-        if (depth > 64) fail("nested too deeply");
-        space();
-        if (i_ >= s_.size()) fail("unexpected end of the text");
-        Json v;
-        const char c = s_[i_];
-        if (c == '{') {
-            ++i_;
-            v.type = Json::Type::object;
-            if (eat('}')) return v;
-            do {
-                space();
-                if (i_ >= s_.size() || s_[i_] != '"') fail("expected a string key");
-                std::string key = string();
-                expect(':');
-                v.object.emplace_back(std::move(key), value(depth + 1));
-            } while (eat(','));
-            expect('}');
-        } else if (c == '[') {
-            ++i_;
-            v.type = Json::Type::array;
-            if (eat(']')) return v;
-            do v.array.push_back(value(depth + 1));
-            while (eat(','));
-            expect(']');
-        } else if (c == '"') {
-            v.type = Json::Type::string;
-            v.string = string();
-        } else if (word("true")) {
-            v.type = Json::Type::boolean;
-            v.boolean = true;
-        } else if (word("false")) {
-            v.type = Json::Type::boolean;
-        } else if (word("null")) {
-            v.type = Json::Type::null;
-        } else if (c == '-' || (c >= '0' && c <= '9')) {
-            v.type = Json::Type::number;
-            v.number = number();
-        } else {
-            fail(fmt::format("unexpected character '{}'", c));
-        }
-        return v;
-    }
-
-    double number() {
-        // JSON grammar: -? (0 | [1-9][0-9]*) (. [0-9]+)? ([eE] [+-]? [0-9]+)?
-        const std::size_t start = i_;
-        auto digits = [&] {
-            const std::size_t from = i_;
-            while (i_ < s_.size() && s_[i_] >= '0' && s_[i_] <= '9') ++i_;
-            return i_ - from;
-        };
-        if (s_[i_] == '-') ++i_;
-        if (i_ < s_.size() && s_[i_] == '0') ++i_;
-        else if (digits() == 0) fail("malformed number");
-        if (i_ < s_.size() && s_[i_] == '.') {
-            ++i_;
-            if (digits() == 0) fail("malformed number: digits expected after '.'");
-        }
-        if (i_ < s_.size() && (s_[i_] == 'e' || s_[i_] == 'E')) {
-            ++i_;
-            if (i_ < s_.size() && (s_[i_] == '+' || s_[i_] == '-')) ++i_;
-            if (digits() == 0) fail("malformed number: digits expected in the exponent");
-        }
-        double out = 0.0;
-        const auto [p, ec] = std::from_chars(s_.data() + start, s_.data() + i_, out);
-        if (p != s_.data() + i_ || (ec != std::errc() && ec != std::errc::result_out_of_range))
-            fail("malformed number");
-        if (ec == std::errc::result_out_of_range) fail("number out of range");
-        return out;
-    }
-
-    unsigned hex4() {
-        if (i_ + 4 > s_.size()) fail("truncated \\u escape");
-        unsigned v = 0;
-        for (int k = 0; k < 4; ++k) {
-            const char c = s_[i_++];
-            v <<= 4;
-            if (c >= '0' && c <= '9') v |= static_cast<unsigned>(c - '0');
-            else if (c >= 'a' && c <= 'f') v |= static_cast<unsigned>(c - 'a' + 10);
-            else if (c >= 'A' && c <= 'F') v |= static_cast<unsigned>(c - 'A' + 10);
-            else fail("bad hex digit in \\u escape");
-        }
-        return v;
-    }
-
-    static void utf8(std::string& out, unsigned cp) {
-        if (cp < 0x80) {
-            out += static_cast<char>(cp);
-        } else if (cp < 0x800) {
-            out += static_cast<char>(0xC0 | (cp >> 6));
-            out += static_cast<char>(0x80 | (cp & 0x3F));
-        } else if (cp < 0x10000) {
-            out += static_cast<char>(0xE0 | (cp >> 12));
-            out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-            out += static_cast<char>(0x80 | (cp & 0x3F));
-        } else {
-            out += static_cast<char>(0xF0 | (cp >> 18));
-            out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
-            out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-            out += static_cast<char>(0x80 | (cp & 0x3F));
-        }
-    }
-
-    std::string string() {
-        ++i_;  // the opening quote
-        std::string out;
-        while (true) {
-            if (i_ >= s_.size()) fail("unterminated string");
-            const char c = s_[i_++];
-            if (c == '"') return out;
-            if (static_cast<unsigned char>(c) < 0x20) fail("control character in a string");
-            if (c != '\\') {
-                out += c;
-                continue;
-            }
-            if (i_ >= s_.size()) fail("unterminated string");
-            switch (const char e = s_[i_++]) {
-                case '"': out += '"'; break;
-                case '\\': out += '\\'; break;
-                case '/': out += '/'; break;
-                case 'b': out += '\b'; break;
-                case 'f': out += '\f'; break;
-                case 'n': out += '\n'; break;
-                case 'r': out += '\r'; break;
-                case 't': out += '\t'; break;
-                case 'u': {
-                    unsigned cp = hex4();
-                    if (cp >= 0xD800 && cp <= 0xDBFF) {
-                        if (!word("\\u")) fail("lone high surrogate in \\u escape");
-                        const unsigned low = hex4();
-                        if (low < 0xDC00 || low > 0xDFFF) fail("bad low surrogate in \\u escape");
-                        cp = 0x10000 + ((cp - 0xD800) << 10) + (low - 0xDC00);
-                    } else if (cp >= 0xDC00 && cp <= 0xDFFF) {
-                        fail("lone low surrogate in \\u escape");
-                    }
-                    utf8(out, cp);
-                    break;
-                }
-                default: --i_; fail(fmt::format("bad escape '\\{}'", e));
-            }
-        }
-    }
-
-    std::string_view s_;
-    std::string name_;
-    std::size_t i_ = 0;
-};
-
-}  // namespace
-
-Json parse_json(std::string_view text, const std::string& name) { return JsonParser(text, name).document(); }
-
 // ============================================================ aggregation
 
 std::vector<std::string> components_of_mode(const std::string& mode) {
@@ -610,33 +404,34 @@ PointResult read_point_result(const SweepPoint& p) {
     try {
         const fs::path file = p.directory / point_summary_file;
         const Json j = parse_json(read_text_file(file), file.string());
-        if (j.type != Json::Type::object) throw Error(file.string() + ": not a JSON object");
-        auto num = [&](const Json& o, std::string_view key) { return o.number_at(key).value_or(nan); };
-        if (const Json* comps = j.find("components"); comps && comps->type == Json::Type::array)
-            for (const Json& c : comps->array) {
-                const Json* name = c.find("name");
-                if (!name || name->type != Json::Type::string) throw Error(file.string() + ": a component without a name");
-                const Json* det = c.find("determined");
-                PointResult::Component k{num(c, "D"), num(c, "D_stderr"), num(c, "D_one_term"),
-                                         det && det->type == Json::Type::boolean && det->boolean, nan};
-                // The estimators of issue 14, where determined.
-                auto determined = [](const Json* o) {
-                    const Json* d = o ? o->find("determined") : nullptr;
-                    return d && d->type == Json::Type::boolean && d->boolean;
-                };
-                if (const Json* m = c.find("msd"); determined(m))
-                    k.msd_D = num(*m, "D"), k.msd_lo = num(*m, "D_lo"), k.msd_hi = num(*m, "D_hi");
-                if (const Json* h = c.find("hogg_free"); determined(h))
-                    k.hogg_D = num(*h, "D"), k.hogg_lo = num(*h, "D_lo"), k.hogg_hi = num(*h, "D_hi");
-                r.components[name->string] = k;
-            }
-        else
-            throw Error(file.string() + ": no \"components\" array");
-        if (const Json* depth = j.find("depth_mobility"); depth && depth->type == Json::Type::array)
-            for (const Json& c : depth->array)
-                if (const Json* name = c.find("name"); name && name->type == Json::Type::string)
-                    if (auto it = r.components.find(name->string); it != r.components.end())
-                        it->second.surface_share = num(c, "surface_share");
+        if (!j.is_object()) throw Error(file.string() + ": not a JSON object");
+        auto num = [](const Json& o, std::string_view key) { return json_number(o, key).value_or(nan); };
+        auto is_true = [](const Json& o, const char* key) {
+            const auto it = o.find(key);
+            return it != o.end() && it->is_boolean() && it->get<bool>();
+        };
+        auto name_of = [&](const Json& o) {
+            const auto it = o.find("name");
+            return it != o.end() && it->is_string() ? it->get<std::string>() : std::string();
+        };
+        const auto comps = j.find("components");
+        if (comps == j.end() || !comps->is_array()) throw Error(file.string() + ": no \"components\" array");
+        for (const Json& c : *comps) {
+            const std::string name = name_of(c);
+            if (name.empty()) throw Error(file.string() + ": a component without a name");
+            PointResult::Component k{num(c, "D"), num(c, "D_stderr"), num(c, "D_one_term"), is_true(c, "determined"),
+                                     nan};
+            // The estimators of issue 14, where determined.
+            if (const auto m = c.find("msd"); m != c.end() && is_true(*m, "determined"))
+                k.msd_D = num(*m, "D"), k.msd_lo = num(*m, "D_lo"), k.msd_hi = num(*m, "D_hi");
+            if (const auto h = c.find("hogg_free"); h != c.end() && is_true(*h, "determined"))
+                k.hogg_D = num(*h, "D"), k.hogg_lo = num(*h, "D_lo"), k.hogg_hi = num(*h, "D_hi");
+            r.components[name] = k;
+        }
+        if (const auto depth = j.find("depth_mobility"); depth != j.end() && depth->is_array())
+            for (const Json& c : *depth)
+                if (auto it = r.components.find(name_of(c)); it != r.components.end())
+                    it->second.surface_share = num(c, "surface_share");
         r.ke_ratio_total = num(j, "kinetic_energy_ratio_total");
         r.ke_ratio_total_ref = num(j, "kinetic_energy_ratio_total_equal_velocity");
         r.ke_ratio_per_grain = num(j, "kinetic_energy_ratio_per_grain");
@@ -667,7 +462,7 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
         for (const std::string& c : components)
             out << fmt::format(",D_{0},D_stderr_{0},D_one_term_{0},determined_{0},surface_share_{0},D_msd_{0},D_msd_lo_{0},"
                                "D_msd_hi_{0},D_hogg_free_{0},D_hogg_free_lo_{0},D_hogg_free_hi_{0}",
-                               c);
+                               column_name(c));
         out << ",ke_ratio_total,ke_ratio_total_ref,ke_ratio_per_grain,ke_ratio_per_grain_ref,angle_of_repose,"
                "grain_updates_per_second,status\n";
         for (const PointResult& r : results) {
@@ -704,23 +499,23 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
         using Get = std::function<double(const PointResult&)>;
         std::vector<std::pair<std::string, Get>> quantities;
         for (const std::string& c : components) {
-            quantities.emplace_back("D_msd_" + c, [c, component](const PointResult& r) {
+            quantities.emplace_back("D_msd_" + column_name(c), [c, component](const PointResult& r) {
                 const auto* k = component(r, c);
                 return k ? k->msd_D : nan;
             });
-            quantities.emplace_back("D_hogg_free_" + c, [c, component](const PointResult& r) {
+            quantities.emplace_back("D_hogg_free_" + column_name(c), [c, component](const PointResult& r) {
                 const auto* k = component(r, c);
                 return k ? k->hogg_D : nan;
             });
-            quantities.emplace_back("D_" + c, [c, component](const PointResult& r) {
+            quantities.emplace_back("D_" + column_name(c), [c, component](const PointResult& r) {
                 const auto* k = component(r, c);
                 return k && k->determined ? k->D : nan;
             });
-            quantities.emplace_back("D_one_term_" + c, [c, component](const PointResult& r) {
+            quantities.emplace_back("D_one_term_" + column_name(c), [c, component](const PointResult& r) {
                 const auto* k = component(r, c);
                 return k && k->determined ? k->D_one_term : nan;
             });
-            quantities.emplace_back("surface_share_" + c, [c, component](const PointResult& r) {
+            quantities.emplace_back("surface_share_" + column_name(c), [c, component](const PointResult& r) {
                 const auto* k = component(r, c);
                 return k ? k->surface_share : nan;
             });

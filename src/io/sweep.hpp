@@ -3,9 +3,9 @@
 // speeds, modes and seeds. This header holds the parts that do not need the
 // command line: the sweep file, the expansion into points and their run
 // directories, the state of a point on disk (resume), the split of the
-// points over MPI ranks, the running of child processes, a small JSON
-// reader for the points' summary.json, and the aggregation into sweep.csv
-// and sweep_summary.csv.
+// points over MPI ranks, the running of child processes, the reading of
+// the points' summary.json, and the aggregation into sweep.csv and
+// sweep_summary.csv.
 #pragma once
 
 #include <chrono>
@@ -17,7 +17,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "io/drum_config.hpp"
@@ -153,28 +152,6 @@ std::vector<PointOutcome> run_jobs(const std::vector<PointJob>& jobs, unsigned p
                                    const std::function<void(const PointJob&)>& on_start,
                                    const std::function<void(const PointJob&, const PointOutcome&)>& on_finish,
                                    const std::function<bool()>& stop = {});
-
-// ---------------------------------------------------------------- JSON
-
-// A JSON value: null, bool, number, string, array or object (keys in file
-// order). Enough for summary.json; not a general-purpose library.
-struct Json {
-    enum class Type { null, boolean, number, string, array, object };
-    Type type = Type::null;
-    bool boolean = false;
-    double number = 0.0;
-    std::string string;
-    std::vector<Json> array;
-    std::vector<std::pair<std::string, Json>> object;
-
-    const Json* find(std::string_view key) const;  // nullptr if absent or not an object
-    // A number member, nullopt if absent or null; throws if of another type.
-    std::optional<double> number_at(std::string_view key) const;
-};
-
-// Parses one JSON document (RFC 8259, with \u escapes incl. surrogate pairs);
-// throws tumble::Error "NAME: line L, column C: reason" on malformed input.
-Json parse_json(std::string_view text, const std::string& name = "json");
 
 // ---------------------------------------------------------------- aggregation
 

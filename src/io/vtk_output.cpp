@@ -3,10 +3,14 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <iterator>
 #include <numeric>
 #include <string_view>
 #include <system_error>
+#include <type_traits>
+
+#include <zlib.h>
 
 #include <fmt/format.h>
 
@@ -22,59 +26,127 @@ namespace {
 
 using Buffer = fmt::memory_buffer;
 
-// Array indices of the particles in the order of their global ids.
-std::vector<std::size_t> order_by_id(const ParticleStore& p) {
-    std::vector<std::size_t> by_id(p.size());
-    std::iota(by_id.begin(), by_id.end(), std::size_t{0});
-    std::sort(by_id.begin(), by_id.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
-    return by_id;
-}
-
-// <DataArray> of one value per tuple, `type` a VTK type name (Float64,
-// Int64, Int32, UInt8). fmt's "{}" writes a double in the shortest form that
-// reads back to the same double; small integers are written as integers.
+// The VTK name of the element type of an array.
 template <class T>
-void scalar_array(Buffer& b, std::string_view type, std::string_view name, const std::vector<T>& values) {
-    fmt::format_to(fmt::appender(b), "        <DataArray type=\"{}\" Name=\"{}\" format=\"ascii\">\n", type, name);
-    for (const T& v : values) {
-        if constexpr (sizeof(T) == 1)
-            fmt::format_to(fmt::appender(b), "{}\n", static_cast<int>(v));
-        else
-            fmt::format_to(fmt::appender(b), "{}\n", v);
+constexpr std::string_view vtk_type() {
+    if constexpr (std::is_same_v<T, double>) return "Float64";
+    else if constexpr (std::is_same_v<T, std::int64_t>) return "Int64";
+    else if constexpr (std::is_same_v<T, std::int32_t>) return "Int32";
+    else {
+        static_assert(std::is_same_v<T, std::uint8_t>);
+        return "UInt8";
     }
-    fmt::format_to(fmt::appender(b), "        </DataArray>\n");
 }
 
-// <DataArray> of three Float64 components per tuple.
-void vector_array(Buffer& b, std::string_view name, const std::vector<Vec3>& values) {
-    fmt::format_to(fmt::appender(b),
-                   "        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"ascii\">\n", name);
-    for (const Vec3& v : values) fmt::format_to(fmt::appender(b), "{} {} {}\n", v.x, v.y, v.z);
-    fmt::format_to(fmt::appender(b), "        </DataArray>\n");
+std::vector<double> components(const std::vector<Vec3>& values) {
+    std::vector<double> out;
+    out.reserve(3 * values.size());
+    for (const Vec3& v : values) out.insert(out.end(), {v.x, v.y, v.z});
+    return out;
 }
 
-// The time of the state, which ParaView reads from FieldData "TimeValue".
-void time_field(Buffer& b, const Simulation& sim) {
-    fmt::format_to(fmt::appender(b),
-                   "    <FieldData>\n"
-                   "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">{}</DataArray>\n"
-                   "      <DataArray type=\"Int64\" Name=\"step\" NumberOfTuples=\"1\" format=\"ascii\">{}</DataArray>\n"
-                   "    </FieldData>\n",
-                   sim.time(), sim.step_count());
-}
+// Blocks of this many bytes are compressed one by one (VTK's own default).
+constexpr std::size_t block_size = 32768;
 
-void open_file(Buffer& b, std::string_view type) {
-    // Version 0.1 is read by every VTK and ParaView of the last 15 years;
-    // byte_order matters only for binary data and is given for completeness.
-    fmt::format_to(fmt::appender(b),
-                   "<?xml version=\"1.0\"?>\n"
-                   "<VTKFile type=\"{0}\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-                   "  <{0}>\n",
-                   type);
-}
+void put_uint64(std::string& out, std::uint64_t v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); }
 
-void close_file(Buffer& b, std::string_view type) {
-    fmt::format_to(fmt::appender(b), "    </Piece>\n  </{}>\n</VTKFile>\n", type);
+// A VTK XML file (version 1.0, UInt64 headers) with its data appended in
+// binary, each array compressed as vtkZLibDataCompressor reads it: its bytes
+// cut into blocks of block_size (the last one may be shorter), each block
+// deflated by zlib, preceded by the header [number of blocks][block size]
+// [size of the last block if it is shorter, else 0][compressed size of each
+// block]. Each <DataArray> names the offset of its header in the appended
+// data, counted from the byte after the '_' that opens it.
+class VtkFile {
+public:
+    explicit VtkFile(std::string_view type) : type_(type) {
+        fmt::format_to(fmt::appender(xml_),
+                       "<?xml version=\"1.0\"?>\n"
+                       "<VTKFile type=\"{0}\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\" "
+                       "compressor=\"vtkZLibDataCompressor\">\n"
+                       "  <{0}>\n",
+                       type_);
+    }
+
+    // XML text between the arrays (elements opened and closed).
+    void text(std::string_view xml) { xml_.append(xml); }
+
+    // A <DataArray> of `values`, `components` per tuple.
+    template <class T>
+    void array(std::string_view name, const std::vector<T>& values, int components = 1) {
+        data_array(8, vtk_type<T>(), name, fmt::format("NumberOfComponents=\"{}\"", components), bytes_of(values));
+    }
+
+    // A <DataArray> of one value per tuple, in FieldData.
+    template <class T>
+    void field(std::string_view name, const std::vector<T>& values) {
+        data_array(6, vtk_type<T>(), name, fmt::format("NumberOfTuples=\"{}\"", values.size()), bytes_of(values));
+    }
+
+    // A String <DataArray> in FieldData: each string followed by a zero byte.
+    void strings(std::string_view name, const std::vector<std::string>& values) {
+        std::string bytes;
+        for (const std::string& v : values) bytes.append(v).push_back('\0');
+        data_array(6, "String", name, fmt::format("NumberOfTuples=\"{}\"", values.size()), bytes);
+    }
+
+    // Closes the dataset and writes the XML, then the appended data.
+    void write(const fs::path& file) {
+        fmt::format_to(fmt::appender(xml_), "    </Piece>\n  </{}>\n  <AppendedData encoding=\"raw\">\n   _", type_);
+        std::ofstream out = open_for_writing(file);
+        out.write(xml_.data(), static_cast<std::streamsize>(xml_.size()));
+        out.write(appended_.data(), static_cast<std::streamsize>(appended_.size()));
+        out << "\n  </AppendedData>\n</VTKFile>\n";
+        check_written(out, file);
+    }
+
+private:
+    template <class T>
+    static std::string_view bytes_of(const std::vector<T>& values) {
+        return {reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T)};
+    }
+
+    // The element, indented by `indent`, and its data compressed into the appended data.
+    void data_array(int indent, std::string_view type, std::string_view name, const std::string& size,
+                    std::string_view bytes) {
+        fmt::format_to(fmt::appender(xml_),
+                       "{:{}}<DataArray type=\"{}\" Name=\"{}\" {} format=\"appended\" offset=\"{}\"/>\n", "", indent,
+                       type, name, size, appended_.size());
+        append(bytes);
+    }
+
+    void append(std::string_view raw) {
+        const std::size_t blocks = (raw.size() + block_size - 1) / block_size;
+        put_uint64(appended_, blocks);
+        put_uint64(appended_, block_size);
+        put_uint64(appended_, raw.size() % block_size);
+        const std::size_t sizes_at = appended_.size();
+        appended_.append(blocks * sizeof(std::uint64_t), '\0');
+        for (std::size_t b = 0; b < blocks; ++b) {
+            const std::string_view block = raw.substr(b * block_size, block_size);
+            uLongf packed = compressBound(static_cast<uLong>(block.size()));
+            const std::size_t at = appended_.size();
+            appended_.resize(at + packed);
+            if (compress2(reinterpret_cast<Bytef*>(&appended_[at]), &packed,
+                          reinterpret_cast<const Bytef*>(block.data()), static_cast<uLong>(block.size()),
+                          Z_DEFAULT_COMPRESSION) != Z_OK)
+                throw Error("zlib could not compress a block of a VTK array");
+            appended_.resize(at + packed);
+            const std::uint64_t size = packed;
+            std::memcpy(&appended_[sizes_at + b * sizeof size], &size, sizeof size);
+        }
+    }
+
+    std::string type_;
+    Buffer xml_;
+    std::string appended_;
+};
+
+// The time of the state, which ParaView reads from FieldData "TimeValue",
+// and the step.
+void time_field(VtkFile& f, const Simulation& sim) {
+    f.field("TimeValue", std::vector<double>{sim.time()});
+    f.field("step", std::vector<std::int64_t>{sim.step_count()});
 }
 
 void write_buffer(const fs::path& file, const Buffer& b) {
@@ -131,28 +203,31 @@ void write_vtu_snapshot(const fs::path& file, const Simulation& sim) {
     std::iota(offsets.begin(), offsets.end(), std::int64_t{1});
     const std::vector<std::uint8_t> types(n, 1);
 
-    Buffer b;
-    open_file(b, "UnstructuredGrid");
-    time_field(b, sim);
-    fmt::format_to(fmt::appender(b), "    <Piece NumberOfPoints=\"{0}\" NumberOfCells=\"{0}\">\n", n);
-    fmt::format_to(fmt::appender(b), "      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n");
-    scalar_array(b, "Int64", "id", id);
-    vector_array(b, "velocity", velocity);
-    vector_array(b, "angular_velocity", angular_velocity);
-    scalar_array(b, "Float64", "radius", radius);
-    scalar_array(b, "Int32", "material", material);
-    scalar_array(b, "Int32", "tag", tag);
-    scalar_array(b, "UInt8", "kinematic", kinematic);
-    scalar_array(b, "Int32", "contacts", contacts);
-    fmt::format_to(fmt::appender(b), "      </PointData>\n      <Points>\n");
-    vector_array(b, "position", position);
-    fmt::format_to(fmt::appender(b), "      </Points>\n      <Cells>\n");
-    scalar_array(b, "Int64", "connectivity", connectivity);
-    scalar_array(b, "Int64", "offsets", offsets);
-    scalar_array(b, "UInt8", "types", types);
-    fmt::format_to(fmt::appender(b), "      </Cells>\n");
-    close_file(b, "UnstructuredGrid");
-    write_buffer(file, b);
+    std::vector<std::string> material_names;
+    for (const Material& m : sim.scenario().materials) material_names.push_back(m.name);
+
+    VtkFile f("UnstructuredGrid");
+    f.text("    <FieldData>\n");
+    time_field(f, sim);
+    f.strings("material_names", material_names);
+    f.text(fmt::format("    </FieldData>\n    <Piece NumberOfPoints=\"{0}\" NumberOfCells=\"{0}\">\n", n));
+    f.text("      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n");
+    f.array("id", id);
+    f.array("velocity", components(velocity), 3);
+    f.array("angular_velocity", components(angular_velocity), 3);
+    f.array("radius", radius);
+    f.array("material", material);
+    f.array("tag", tag);
+    f.array("kinematic", kinematic);
+    f.array("contacts", contacts);
+    f.text("      </PointData>\n      <Points>\n");
+    f.array("position", components(position), 3);
+    f.text("      </Points>\n      <Cells>\n");
+    f.array("connectivity", connectivity);
+    f.array("offsets", offsets);
+    f.array("types", types);
+    f.text("      </Cells>\n");
+    f.write(file);
 }
 
 void write_vtp_contact_network(const fs::path& file, const Simulation& sim) {
@@ -182,27 +257,25 @@ void write_vtp_contact_network(const fs::path& file, const Simulation& sim) {
         normal[k] = c.n;
     }
 
-    Buffer b;
-    open_file(b, "PolyData");
-    time_field(b, sim);
-    fmt::format_to(fmt::appender(b),
-                   "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" NumberOfStrips=\"0\" "
-                   "NumberOfPolys=\"0\">\n",
-                   2 * n, n);
-    fmt::format_to(fmt::appender(b), "      <CellData Scalars=\"normal_force\" Vectors=\"normal\">\n");
-    scalar_array(b, "Int64", "id_i", id_i);
-    scalar_array(b, "Int64", "id_j", id_j);
-    scalar_array(b, "Float64", "normal_force", normal_force);
-    scalar_array(b, "Float64", "overlap", overlap);
-    vector_array(b, "normal", normal);
-    fmt::format_to(fmt::appender(b), "      </CellData>\n      <Points>\n");
-    vector_array(b, "position", ends);
-    fmt::format_to(fmt::appender(b), "      </Points>\n      <Lines>\n");
-    scalar_array(b, "Int64", "connectivity", connectivity);
-    scalar_array(b, "Int64", "offsets", offsets);
-    fmt::format_to(fmt::appender(b), "      </Lines>\n");
-    close_file(b, "PolyData");
-    write_buffer(file, b);
+    VtkFile f("PolyData");
+    f.text("    <FieldData>\n");
+    time_field(f, sim);
+    f.text(fmt::format("    </FieldData>\n    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" "
+                       "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n",
+                       2 * n, n));
+    f.text("      <CellData Scalars=\"normal_force\" Vectors=\"normal\">\n");
+    f.array("id_i", id_i);
+    f.array("id_j", id_j);
+    f.array("normal_force", normal_force);
+    f.array("overlap", overlap);
+    f.array("normal", components(normal), 3);
+    f.text("      </CellData>\n      <Points>\n");
+    f.array("position", components(ends), 3);
+    f.text("      </Points>\n      <Lines>\n");
+    f.array("connectivity", connectivity);
+    f.array("offsets", offsets);
+    f.text("      </Lines>\n");
+    f.write(file);
 }
 
 PvdIndex::PvdIndex(fs::path file) : file_(std::move(file)) { rewrite(); }

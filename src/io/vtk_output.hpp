@@ -1,15 +1,18 @@
 // SPDX-License-Identifier: MIT
 // Snapshots that ParaView (or any VTK reader) opens directly, as a time
 // series. VTK XML formats (https://docs.vtk.org/en/latest/design_documents/
-// VTKFileFormats.html), written as ASCII: every double in the shortest
-// decimal form that reads back to the same double, so the files round-trip
-// exactly and two runs with the same input give identical files.
+// VTKFileFormats.html), version 1.0, with the data appended in binary and
+// compressed by zlib (compressor="vtkZLibDataCompressor", header_type
+// UInt64; the layout is described at VtkFile in vtk_output.cpp): numbers
+// read back bit for bit, and two runs with the same input give identical
+// files.
 //
 //   NNNNNN.vtu   the particles: VTK UnstructuredGrid, one VTK_VERTEX cell per
 //                sphere, points = centres X (m), rows ordered by global id.
 //                Point data: id (Int64), velocity (m/s), angular_velocity
 //                (rad/s), radius (m), material (Int32, index into the
-//                scenario's materials), tag (Int32), kinematic (UInt8, 1 for
+//                scenario's materials, whose names are in the FieldData
+//                String array "material_names"), tag (Int32), kinematic (UInt8, 1 for
 //                spheres on a prescribed motion), contacts (Int32, number of
 //                sphere-sphere contacts; flat walls are not counted).
 //   NNNNNN.vtp   the contact network: VTK PolyData, one line per touching

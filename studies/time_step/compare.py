@@ -10,6 +10,7 @@ by Welch's test. Writes results.md beside this file; run with /usr/bin/python3
 import csv
 import json
 import pathlib
+import re
 import sys
 
 import numpy as np
@@ -19,14 +20,20 @@ HERE = pathlib.Path(__file__).resolve().parent
 OUT = HERE / "out"
 
 
+def column_name(name):
+    """A name as tumble writes it into CSV column names (older runs kept the '-')."""
+    return re.sub(r"[^0-9A-Za-z_]", "_", name)
+
+
 def observables(run):
     summary = json.loads((run / "summary.json").read_text())
-    rows = list(csv.DictReader(open(run / "drum_series.csv")))
+    rows = [{column_name(k): v for k, v in r.items()} for r in csv.DictReader(open(run / "drum_series.csv"))]
     late = [r for r in rows if float(r["revolutions"]) >= 1.0]
     values = {"angle of repose (degrees)": summary["angle_of_repose"]}
     for c in summary["components"]:
         name = c["name"]
-        values[f"kinetic energy per grain, {name} (J)"] = np.mean([float(r[f"kinetic_per_grain_{name}"]) for r in late])
+        column = "kinetic_per_grain_" + column_name(name)
+        values[f"kinetic energy per grain, {name} (J)"] = np.mean([float(r[column]) for r in late])
         values[f"MSD D, {name} (m^2/rev)"] = c["msd"]["D"]
     return values
 

@@ -10,7 +10,7 @@
 #include <filesystem>
 
 #include "../unit/test_support.hpp"
-#include "io/sweep.hpp"
+#include "io/json.hpp"
 
 namespace {
 
@@ -23,17 +23,14 @@ TEST_F(DefaultDrum, SummaryHasADWithAnIntervalForEachComponent) {
     ASSERT_EQ(run.exit_code, 0) << run.output;
     const tumble::io::Json j = tumble::io::parse_json(
         tumble::test_support::read_file(dir_ / "run" / "summary.json"), "summary.json");
-    const tumble::io::Json* components = j.find("components");
-    ASSERT_NE(components, nullptr);
-    ASSERT_EQ(components->array.size(), 2u);
-    for (const tumble::io::Json& c : components->array) {
-        const tumble::io::Json* msd = c.find("msd");
-        ASSERT_NE(msd, nullptr);
-        const tumble::io::Json* determined = msd->find("determined");
-        ASSERT_NE(determined, nullptr);
-        EXPECT_TRUE(determined->boolean) << c.find("name")->string;
-        const double D = msd->number_at("D").value_or(NAN), lo = msd->number_at("D_lo").value_or(NAN),
-                     hi = msd->number_at("D_hi").value_or(NAN);
+    const tumble::io::Json& components = j.at("components");
+    ASSERT_EQ(components.size(), 2u);
+    for (const tumble::io::Json& c : components) {
+        const tumble::io::Json& msd = c.at("msd");
+        EXPECT_TRUE(msd.value("determined", false)) << c.value("name", "");
+        const double D = tumble::io::json_number(msd, "D").value_or(NAN),
+                     lo = tumble::io::json_number(msd, "D_lo").value_or(NAN),
+                     hi = tumble::io::json_number(msd, "D_hi").value_or(NAN);
         EXPECT_LT(lo, D);
         EXPECT_GT(hi, D);
         // The size measured on the development machine (docs/DRUM.md): of

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "../unit/test_support.hpp"
-#include "io/sweep.hpp"
+#include "io/json.hpp"
 #include "tumble/setup/drum.hpp"
 #include "tumble/sim/time_step.hpp"
 
@@ -40,9 +40,10 @@ constexpr int kSeeds = 3;
 // The observables of one finished run, by name.
 std::map<std::string, double> observables(const fs::path& run) {
     const tumble::io::Json summary = tumble::io::parse_json(read_file(run / "summary.json"), "summary.json");
-    std::map<std::string, double> values{{"angle of repose", summary.number_at("angle_of_repose").value_or(NAN)}};
-    for (const tumble::io::Json& c : summary.find("components")->array)
-        values["MSD D " + c.find("name")->string] = c.find("msd")->number_at("D").value_or(NAN);
+    std::map<std::string, double> values{
+        {"angle of repose", tumble::io::json_number(summary, "angle_of_repose").value_or(NAN)}};
+    for (const tumble::io::Json& c : summary.at("components"))
+        values["MSD D " + c.value("name", "")] = tumble::io::json_number(c.at("msd"), "D").value_or(NAN);
     // drum_series.csv: the mean over N >= 1 of each kinetic_per_grain_* column.
     std::istringstream csv(read_file(run / "drum_series.csv"));
     std::string line, cell;

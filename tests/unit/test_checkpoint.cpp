@@ -6,10 +6,13 @@
 
 #include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <random>
 
+#include "io/binary.hpp"
 #include "io/checkpoint.hpp"
 #include "io/config.hpp"
 #include "test_support.hpp"
@@ -229,6 +232,44 @@ TEST_F(CheckpointFiles, AnUnwritableDirectoryIsReportedWithThePath) {
         EXPECT_NE(std::string(e.what()).find("000001.tck.tmp"), std::string::npos) << e.what();
     }
     fs::permissions(dir_ / "checkpoints", fs::perms::owner_all);
+}
+
+// ---- CRC-32 (zlib) -------------------------------------------------------
+
+// CRC-32 by its definition (IEEE 802.3, reflected polynomial 0xEDB88320,
+// initial value and final XOR 0xFFFFFFFF), one bit at a time.
+std::uint32_t crc32_by_definition(std::string_view bytes) {
+    std::uint32_t c = 0xFFFFFFFFu;
+    for (unsigned char byte : bytes) {
+        c ^= byte;
+        for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+    }
+    return c ^ 0xFFFFFFFFu;
+}
+
+TEST(Crc32, IsTheStandardCrc) {
+    EXPECT_EQ(io::crc32("123456789"), 0xCBF43926u);  // the standard check value of CRC-32
+    EXPECT_EQ(io::crc32(""), 0u);
+    std::mt19937 random(7);
+    std::string bytes(100000, '\0');
+    for (char& b : bytes) b = static_cast<char>(random());
+    EXPECT_EQ(io::crc32(bytes), crc32_by_definition(bytes));
+}
+
+// A checkpoint written by tumble before its CRC-32 came from zlib (built at
+// commit 49d1b62; `tumble run --stop-at-step 50` of 30 spheres of material
+// "m" dropped into a walled 4 cm box, as test_support::walled_box_scenario,
+// with seed 3) still loads: its stored checksum is the one zlib computes.
+TEST(Crc32, ACheckpointWrittenBeforeZlibStillLoads) {
+    const std::string bytes =
+        test_support::read_file(fs::path(TUMBLE_SOURCE_DIR) / "tests/data/checkpoints/before_zlib.tck");
+    ASSERT_GT(bytes.size(), 4u);
+    std::uint32_t stored = 0;
+    std::memcpy(&stored, bytes.data() + bytes.size() - 4, 4);  // the trailer: little-endian CRC of all before it
+    EXPECT_EQ(io::crc32(std::string_view(bytes).substr(0, bytes.size() - 4)), stored);
+    const io::Checkpoint c = io::decode_checkpoint(bytes, "before_zlib.tck");
+    EXPECT_EQ(c.state.step, 50);
+    EXPECT_EQ(c.scenario.particles.size(), 30u);
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 
 #include "io/config.hpp"
 #include "io/drum_output.hpp"
+#include "io/json.hpp"
 #include "io/sweep.hpp"
 #include "tumble/analysis/hogg.hpp"
 #include "tumble/core/constants.hpp"
@@ -331,28 +332,25 @@ TEST_F(Sweep, RunnerKeepsTheLimitOfParallelJobs) {
 
 // ------------------------------------------------------------ JSON
 
-TEST(SweepJson, ParsesTheSubsetSummaryJsonUses) {
+TEST(SweepJson, ParsesWhatSummaryJsonHolds) {
     const Json j = parse_json(R"( {"a": 1, "b": -2.5e-3, "c": [true, false, null, 0, 1E+2, -0.0],
         "d": {"e": "x\"y\\z\/\n\t\u00e9\ud83d\ude00"}, "empty": {}, "none": [] } )");
-    ASSERT_EQ(j.type, Json::Type::object);
-    EXPECT_EQ(j.number_at("a"), 1.0);
-    EXPECT_EQ(j.number_at("b"), -2.5e-3);
-    const Json* c = j.find("c");
-    ASSERT_TRUE(c);
-    ASSERT_EQ(c->array.size(), 6u);
-    EXPECT_TRUE(c->array[0].boolean);
-    EXPECT_EQ(c->array[1].type, Json::Type::boolean);
-    EXPECT_FALSE(c->array[1].boolean);
-    EXPECT_EQ(c->array[2].type, Json::Type::null);
-    EXPECT_EQ(c->array[4].number, 100.0);
-    EXPECT_EQ(j.find("d")->find("e")->string, "x\"y\\z/\n\t\xc3\xa9\xf0\x9f\x98\x80");
-    EXPECT_EQ(j.find("empty")->type, Json::Type::object);
-    EXPECT_TRUE(j.find("none")->array.empty());
-    EXPECT_EQ(j.find("missing"), nullptr);
-    EXPECT_EQ(j.number_at("missing"), std::nullopt);
-    EXPECT_THROW(j.number_at("d"), Error);
-    EXPECT_EQ(parse_json("{\"x\": null}").number_at("x"), std::nullopt);
-    EXPECT_EQ(parse_json("12345678901234567890").number, 12345678901234567890.0);
+    ASSERT_TRUE(j.is_object());
+    EXPECT_EQ(json_number(j, "a"), 1.0);
+    EXPECT_EQ(json_number(j, "b"), -2.5e-3);
+    const Json& c = j.at("c");
+    ASSERT_EQ(c.size(), 6u);
+    EXPECT_TRUE(c[0].get<bool>());
+    EXPECT_FALSE(c[1].get<bool>());
+    EXPECT_TRUE(c[2].is_null());
+    EXPECT_EQ(c[4].get<double>(), 100.0);
+    // Every escape, and a surrogate pair, decoded to UTF-8.
+    EXPECT_EQ(j.at("d").at("e").get<std::string>(), "x\"y\\z/\n\t\xc3\xa9\xf0\x9f\x98\x80");
+    EXPECT_TRUE(j.at("empty").is_object());
+    EXPECT_TRUE(j.at("none").empty());
+    EXPECT_EQ(json_number(j, "missing"), std::nullopt);
+    EXPECT_THROW(json_number(j, "d"), Error);  // an object, not a number
+    EXPECT_EQ(json_number(parse_json("{\"x\": null}"), "x"), std::nullopt);  // null: undefined
 }
 
 TEST(SweepJson, RefusesMalformedText) {
@@ -365,7 +363,8 @@ TEST(SweepJson, RefusesMalformedText) {
         parse_json("{\n  \"a\": 1,\n  \"b\": ?\n}", "s.json");
         FAIL();
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("s.json: line 3, column 8"), std::string::npos) << e.what();
+        // The name of the text and where in it: line 3, column 8 is the '?'.
+        EXPECT_NE(std::string(e.what()).find("s.json: parse error at line 3, column 8"), std::string::npos) << e.what();
     }
 }
 
@@ -423,10 +422,10 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     ASSERT_EQ(rows.size(), 13u);
     const std::string header =
         "mode,shear_model,friction_normal,ends,omega,froude,seed,revolutions,grains,"
-        "D_material-1,D_stderr_material-1,D_one_term_material-1,determined_material-1,surface_share_material-1,"
-        "D_msd_material-1,D_msd_lo_material-1,D_msd_hi_material-1,D_hogg_free_material-1,D_hogg_free_lo_material-1,D_hogg_free_hi_material-1,"
-        "D_material-2,D_stderr_material-2,D_one_term_material-2,determined_material-2,surface_share_material-2,"
-        "D_msd_material-2,D_msd_lo_material-2,D_msd_hi_material-2,D_hogg_free_material-2,D_hogg_free_lo_material-2,D_hogg_free_hi_material-2,"
+        "D_material_1,D_stderr_material_1,D_one_term_material_1,determined_material_1,surface_share_material_1,"
+        "D_msd_material_1,D_msd_lo_material_1,D_msd_hi_material_1,D_hogg_free_material_1,D_hogg_free_lo_material_1,D_hogg_free_hi_material_1,"
+        "D_material_2,D_stderr_material_2,D_one_term_material_2,determined_material_2,surface_share_material_2,"
+        "D_msd_material_2,D_msd_lo_material_2,D_msd_hi_material_2,D_hogg_free_material_2,D_hogg_free_lo_material_2,D_hogg_free_hi_material_2,"
         "D_left,D_stderr_left,D_one_term_left,determined_left,surface_share_left,"
         "D_msd_left,D_msd_lo_left,D_msd_hi_left,D_hogg_free_left,D_hogg_free_lo_left,D_hogg_free_hi_left,"
         "D_right,D_stderr_right,D_one_term_right,determined_right,surface_share_right,"
@@ -439,31 +438,31 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     EXPECT_EQ(r1["omega"], "3");
     EXPECT_EQ(r1["seed"], "1");
     EXPECT_EQ(r1["grains"], "1000");
-    EXPECT_EQ(r1["D_material-1"], "1e-05");
-    EXPECT_EQ(r1["D_stderr_material-2"], "");  // null
-    EXPECT_EQ(r1["D_one_term_material-2"], "3e-05");
-    EXPECT_EQ(r1["determined_material-2"], "true");
+    EXPECT_EQ(r1["D_material_1"], "1e-05");
+    EXPECT_EQ(r1["D_stderr_material_2"], "");  // null
+    EXPECT_EQ(r1["D_one_term_material_2"], "3e-05");
+    EXPECT_EQ(r1["determined_material_2"], "true");
     EXPECT_EQ(r1["D_left"], "");
     EXPECT_EQ(r1["ke_ratio_total"], "1");
     EXPECT_EQ(r1["ke_ratio_per_grain_ref"], "0.296");
-    EXPECT_EQ(r1["surface_share_material-1"], "0.9");
-    EXPECT_EQ(r1["surface_share_material-2"], "");  // absent from depth_mobility
-    EXPECT_EQ(r1["D_msd_material-1"], "1e-05");
-    EXPECT_EQ(r1["D_msd_lo_material-1"], "9e-06");
-    EXPECT_EQ(r1["D_hogg_free_material-1"], "");  // not determined
-    EXPECT_EQ(r1["D_msd_material-2"], "");         // absent
+    EXPECT_EQ(r1["surface_share_material_1"], "0.9");
+    EXPECT_EQ(r1["surface_share_material_2"], "");  // absent from depth_mobility
+    EXPECT_EQ(r1["D_msd_material_1"], "1e-05");
+    EXPECT_EQ(r1["D_msd_lo_material_1"], "9e-06");
+    EXPECT_EQ(r1["D_hogg_free_material_1"], "");  // not determined
+    EXPECT_EQ(r1["D_msd_material_2"], "");         // absent
     EXPECT_EQ(r1["angle_of_repose"], "38.5");
     EXPECT_EQ(r1["grain_updates_per_second"], "1000000");
     EXPECT_EQ(r1["status"], "finished");
-    EXPECT_EQ(row_map(rows, 3)["determined_material-2"], "false");
+    EXPECT_EQ(row_map(rows, 3)["determined_material_2"], "false");
     EXPECT_EQ(row_map(rows, 5)["status"], "failed");
-    EXPECT_EQ(row_map(rows, 5)["D_material-1"], "");
+    EXPECT_EQ(row_map(rows, 5)["D_material_1"], "");
     EXPECT_EQ(row_map(rows, 6)["status"], "unfinished");
     auto r7 = row_map(rows, 7);
     EXPECT_EQ(r7["mode"], "self");
     EXPECT_EQ(r7["grains"], "458");
     EXPECT_EQ(r7["D_left"], "4e-05");
-    EXPECT_EQ(r7["D_material-1"], "");
+    EXPECT_EQ(r7["D_material_1"], "");
     EXPECT_EQ(r7["ke_ratio_total"], "");
     EXPECT_EQ(row_map(rows, 8)["status"], "finished");  // on disk, but without numbers
     EXPECT_EQ(row_map(rows, 8)["D_left"], "");
@@ -476,30 +475,30 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     EXPECT_EQ(s1["omega"], "3");
     EXPECT_EQ(s1["seeds"], "3");
     EXPECT_EQ(s1["finished"], "3");
-    EXPECT_NEAR(std::stod(s1["D_material-1_mean"]), 3e-5, 1e-18);
-    EXPECT_NEAR(std::stod(s1["D_material-1_std"]), 2e-5, 1e-18);
-    EXPECT_EQ(s1["D_material-1_n"], "3");
+    EXPECT_NEAR(std::stod(s1["D_material_1_mean"]), 3e-5, 1e-18);
+    EXPECT_NEAR(std::stod(s1["D_material_1_std"]), 2e-5, 1e-18);
+    EXPECT_EQ(s1["D_material_1_n"], "3");
     // Three seeds: a bootstrap interval of the mean over seeds, inside the
     // range of the seeds' values and around their mean.
-    EXPECT_LT(std::stod(s1["D_msd_material-1_lo"]), 3e-5);
-    EXPECT_GT(std::stod(s1["D_msd_material-1_hi"]), 3e-5);
-    EXPECT_GE(std::stod(s1["D_msd_material-1_lo"]), 1e-5);
-    EXPECT_LE(std::stod(s1["D_msd_material-1_hi"]), 5e-5);
-    EXPECT_NEAR(std::stod(s1["D_material-2_mean"]), 3e-5, 1e-18);  // the undetermined seed left out
-    EXPECT_EQ(s1["D_material-2_n"], "2");
+    EXPECT_LT(std::stod(s1["D_msd_material_1_lo"]), 3e-5);
+    EXPECT_GT(std::stod(s1["D_msd_material_1_hi"]), 3e-5);
+    EXPECT_GE(std::stod(s1["D_msd_material_1_lo"]), 1e-5);
+    EXPECT_LE(std::stod(s1["D_msd_material_1_hi"]), 5e-5);
+    EXPECT_NEAR(std::stod(s1["D_material_2_mean"]), 3e-5, 1e-18);  // the undetermined seed left out
+    EXPECT_EQ(s1["D_material_2_n"], "2");
     EXPECT_NEAR(std::stod(s1["ke_ratio_total_mean"]), 2.0, 1e-12);
     EXPECT_NEAR(std::stod(s1["ke_ratio_total_std"]), 1.0, 1e-12);
     EXPECT_EQ(s1["D_left_n"], "0");
     EXPECT_EQ(s1["D_left_mean"], "");
     EXPECT_NEAR(std::stod(s1["angle_of_repose_mean"]), 38.5, 1e-12);
-    EXPECT_NEAR(std::stod(s1["surface_share_material-1_mean"]), 0.9, 1e-12);
+    EXPECT_NEAR(std::stod(s1["surface_share_material_1_mean"]), 0.9, 1e-12);
     auto s2 = row_map(sum, 2);
     EXPECT_EQ(s2["omega"], "5");
     EXPECT_EQ(s2["finished"], "1");
-    EXPECT_EQ(s2["D_material-1_mean"], "7e-05");
-    EXPECT_EQ(s2["D_material-1_std"], "");  // one seed: no spread
-    EXPECT_EQ(s2["D_msd_material-1_lo"], "");  // one seed: no interval
-    EXPECT_EQ(s2["D_material-1_n"], "1");
+    EXPECT_EQ(s2["D_material_1_mean"], "7e-05");
+    EXPECT_EQ(s2["D_material_1_std"], "");  // one seed: no spread
+    EXPECT_EQ(s2["D_msd_material_1_lo"], "");  // one seed: no interval
+    EXPECT_EQ(s2["D_material_1_n"], "1");
     EXPECT_EQ(row_map(sum, 3)["mode"], "self");
     EXPECT_EQ(row_map(sum, 3)["finished"], "1");
     EXPECT_EQ(row_map(sum, 4)["finished"], "0");

@@ -125,7 +125,10 @@ def dump(tag, data):
     for kind, arrays in (("point", data.GetPointData()), ("cell", data.GetCellData()), ("field", data.GetFieldData())):
         for k in range(arrays.GetNumberOfArrays()):
             a = arrays.GetAbstractArray(k)
-            print(tag, kind + ":" + a.GetName(), *values(a))
+            if a.IsA("vtkStringArray"):
+                print(tag, "strings:" + a.GetName(), *[a.GetValue(i) for i in range(a.GetNumberOfValues())])
+            else:
+                print(tag, kind + ":" + a.GetName(), *values(a))
 
 for arg in sys.argv[1:]:
     tag, path = arg.split("=", 1)
@@ -261,9 +264,9 @@ TEST(ContactNetwork, AgreesExactlyWithTheForceLoopRecords) {
 
 // ---- The files, read back by VTK -----------------------------------------
 
-// ASCII written in the shortest round-trip form, read by VTK (strtod-exact)
-// and printed by python's repr (also shortest round-trip): every number must
-// come back exactly, so the comparisons are ==.
+// Binary data, compressed (zlib) and read back by VTK's own reader, printed
+// by python's repr (the shortest form that reads back to the same double):
+// every number must come back exactly, so the comparisons are ==.
 TEST_F(VtkOutput, ParticlesAndNetworkReadBackExactlyByVtk) {
     tumble::Simulation sim(small_scenario(true));
     sim.advance(4);
@@ -285,6 +288,10 @@ TEST_F(VtkOutput, ParticlesAndNetworkReadBackExactlyByVtk) {
     EXPECT_EQ(r["vtu cell_types"], std::vector<double>(n, 1.0));  // VTK_VERTEX
     EXPECT_EQ(r["vtu field:TimeValue"], std::vector<double>{sim.time()});
     EXPECT_EQ(r["vtu field:step"], std::vector<double>{4.0});
+    // The names of the materials that point data "material" indexes.
+    std::string names = "vtu strings:material_names";
+    for (const tumble::Material& m : sim.scenario().materials) names += " " + m.name;
+    EXPECT_NE(raw.find(names + "\n"), std::string::npos) << raw;
     for (std::size_t row = 0; row < n; ++row) {
         const std::size_t i = index_of(p, static_cast<std::int64_t>(row));  // rows by global id
         EXPECT_EQ(r["vtu point:id"][row], static_cast<double>(row));
