@@ -40,6 +40,16 @@ def sweep(name):
     return rows
 
 
+def drift_verdicts(name):
+    """{(omega, component index): [verdict per seed]} from the points' summary.json."""
+    found = {}
+    for path in sorted((OUT / name / "points").glob("*/summary.json")):
+        s = json.loads(path.read_text())
+        for k, c in enumerate(s["components"]):
+            found.setdefault((s["omega"], k), []).append(c["drift"]["verdict"])
+    return found
+
+
 def mean_interval(x):
     x = np.asarray(x, float)
     n = len(x)
@@ -69,13 +79,26 @@ def slope(x, y):
     return r.slope, r.slope - half, r.slope + half, r.pvalue
 
 
+def column(row, base, component):
+    """A component's column: BASE_left / BASE_right (self), BASE_material_1
+    (two-component; BASE_material-1 in tables written before the column names
+    lost their hyphens)."""
+    for suffix in (component, component.replace("_", "-")):
+        if f"{base}_{suffix}" in row:
+            return row[f"{base}_{suffix}"]
+    raise KeyError(f"{base}_{component}")
+
+
+SIDES = {"material 1": "material_1", "material 2": "material_2"}
+
+
 def components(rows, mode):
     """Per seed: {component: value} of a column base (D_msd, surface_share)."""
     names = ["material 1", "material 2"] if mode == "two-component" else ["both halves"]
 
     def values(row, base):
         if mode == "two-component":
-            return {"material 1": row[f"{base}_left"], "material 2": row[f"{base}_right"]}
+            return {name: column(row, base, SIDES[name]) for name in names}
         return {"both halves": 0.5 * (row[f"{base}_left"] + row[f"{base}_right"])}
 
     return names, values
@@ -92,15 +115,18 @@ def by_omega(rows):
     return dict(sorted(groups.items()))
 
 
-def table_D(lines, title, rows, mode):
+def table_D(lines, title, rows, mode, sweep_name):
     names, values = components(rows, mode)
+    drift = drift_verdicts(sweep_name)
     lines += [f"### {title}", "",
               "D from the grains' axial MSD, mean over seeds [95 % interval]; D/d^2 per revolution and D/(omega d^2) (d: the grain diameter; the self drum's grains are material 1)", "",
-              "| omega (rad/s) | Froude | seeds | component | D (1e-5 m^2/rev) | D/d^2 per rev | D/(omega d^2) | D per second (1e-5 m^2/s) | surface share | angle of repose (deg) |",
-              "|---|---|---|---|---|---|---|---|---|---|"]
+              "| omega (rad/s) | Froude | seeds | component | D (1e-5 m^2/rev) | D/d^2 per rev | D/(omega d^2) | D per second (1e-5 m^2/s) | surface share | angle of repose (deg) | <z> convecting (seeds) |",
+              "|---|---|---|---|---|---|---|---|---|---|---|"]
     for omega, group in by_omega(rows).items():
-        for name in names:
+        for index, name in enumerate(names):
             d = DIAMETER["material 1" if name == "both halves" else name]
+            verdicts = drift.get((omega, 0), []) + drift.get((omega, 1), []) if mode == "self" else drift.get((omega, index), [])
+            convecting = f"{verdicts.count('convecting')} of {len(verdicts)}" + (" halves" if mode == "self" else "")
             D = [values(r, "D_msd")[name] for r in group]
             share = [values(r, "surface_share")[name] for r in group]
             m, lo, hi, n = mean_interval(D)
@@ -109,7 +135,7 @@ def table_D(lines, title, rows, mode):
                 f"| {omega:g} | {group[0]['froude']:.3f} | {n} | {name} | {fmt_interval(m, lo, hi, 1e-5)} "
                 f"| {fmt_interval(m, lo, hi, d * d)} | {fmt_interval(m, lo, hi, 2 * math.pi * d * d, 3)} "
                 f"| {fmt_interval(*mean_interval(per_second)[:3], 1e-5)} | {fmt_interval(*mean_interval(share)[:3], 1.0)} "
-                f"| {fmt_interval(*mean_interval([r['angle_of_repose'] for r in group])[:3], 1.0, 1)} |")
+                f"| {fmt_interval(*mean_interval([r['angle_of_repose'] for r in group])[:3], 1.0, 1)} | {convecting} |")
     lines.append("")
 
 
@@ -127,10 +153,14 @@ def claim_i(lines, self_rows):
     lo_w, hi_w = min(groups), max(groups)
     d_rev = welch([0.5 * (r["D_msd_left"] + r["D_msd_right"]) for r in groups[lo_w]],
                   [0.5 * (r["D_msd_left"] + r["D_msd_right"]) for r in groups[hi_w]])
+    hogg = [0.5 * (r["D_hogg_free_left"] + r["D_hogg_free_right"]) for r in self_rows]
+    s_hogg = slope(omega, hogg)
     lines += [
         f"- Per revolution, the slope of D against omega over {len(D)} runs: "
         f"{s_rev[0] / 1e-7:.2f} [{s_rev[1] / 1e-7:.2f}, {s_rev[2] / 1e-7:.2f}] 1e-7 m^2/rev per rad/s (p = {s_rev[3]:.2g}); "
         f"D({hi_w:g}) - D({lo_w:g}) = {d_rev[0] / 1e-5:.2f} [{d_rev[1] / 1e-5:.2f}, {d_rev[2] / 1e-5:.2f}] 1e-5 m^2/rev (p = {d_rev[3]:.2g}).",
+        f"- Per revolution, with the Hogg fit's D instead (amplitude free, N >= 1; the paper's kind of D): "
+        f"{s_hogg[0] / 1e-7:.2f} [{s_hogg[1] / 1e-7:.2f}, {s_hogg[2] / 1e-7:.2f}] 1e-7 m^2/rev per rad/s (p = {s_hogg[3]:.2g}).",
         f"- Per second, the slope of D against omega: {s_sec[0] / 1e-6:.2f} [{s_sec[1] / 1e-6:.2f}, {s_sec[2] / 1e-6:.2f}] 1e-6 m^2/s per rad/s (p = {s_sec[3]:.2g}).",
         ""]
 
@@ -142,16 +172,26 @@ def claim_ii(lines, two_rows):
         return
     groups = by_omega(two_rows)
     speeds = list(groups)
-    lines += ["Change of D between neighbouring speeds (higher minus lower), 1e-5 m^2/rev [95 % Welch interval], and relative to the lower speed's mean:", "",
-              "| from -> to (rad/s) | component | difference | relative | p |", "|---|---|---|---|---|"]
-    for a, b in zip(speeds, speeds[1:]):
-        for side, name in (("left", "material 1"), ("right", "material 2")):
-            x = [r[f"D_msd_{side}"] for r in groups[a]]
-            y = [r[f"D_msd_{side}"] for r in groups[b]]
-            d, lo, hi, p = welch(x, y)
-            ref = np.mean(x)
-            lines.append(f"| {a:g} -> {b:g} | {name} | {d / 1e-5:+.2f} [{lo / 1e-5:+.2f}, {hi / 1e-5:+.2f}] "
-                         f"| {d / ref:+.0%} [{lo / ref:+.0%}, {hi / ref:+.0%}] | {p:.2g} |")
+    for base, what in (("D_msd", "the grains' MSD D"),
+                       ("D_hogg_free", "the Hogg fit to <z>(N) (amplitude free, N >= 1), the paper's kind of D")):
+        lines += [f"Change of {what} between neighbouring speeds (higher minus lower), 1e-5 m^2/rev [95 % Welch interval], and relative to the lower speed's mean:", "",
+                  "| from -> to (rad/s) | component | difference | relative | p |", "|---|---|---|---|---|"]
+        for a, b in zip(speeds, speeds[1:]):
+            for name, side in SIDES.items():
+                x = [column(r, base, side) for r in groups[a]]
+                y = [column(r, base, side) for r in groups[b]]
+                d, lo, hi, p = welch(x, y)
+                ref = np.mean(x)
+                lines.append(f"| {a:g} -> {b:g} | {name} | {d / 1e-5:+.2f} [{lo / 1e-5:+.2f}, {hi / 1e-5:+.2f}] "
+                             f"| {d / ref:+.0%} [{lo / ref:+.0%}, {hi / ref:+.0%}] | {p:.2g} |")
+        lines.append("")
+    lines += ["The Hogg fit's D against the MSD D at each speed (means over seeds [95 %]; their ratio):", "",
+              "| omega (rad/s) | component | Hogg D (1e-5 m^2/rev) | MSD D | Hogg / MSD |", "|---|---|---|---|---|"]
+    for omega, group in groups.items():
+        for name, side in SIDES.items():
+            hogg = mean_interval([column(r, "D_hogg_free", side) for r in group])
+            msd = mean_interval([column(r, "D_msd", side) for r in group])
+            lines.append(f"| {omega:g} | {name} | {fmt_interval(*hogg[:3], 1e-5)} | {fmt_interval(*msd[:3], 1e-5)} | {hogg[0] / msd[0]:.2f} |")
     lines.append("")
 
 
@@ -172,8 +212,8 @@ def claim_iv(lines, self_rows, two_rows):
     self_groups, two_groups = by_omega(self_rows), by_omega(two_rows)
     for omega in sorted(set(self_groups) & set(two_groups)):
         base = [0.5 * (r["surface_share_left"] + r["surface_share_right"]) for r in self_groups[omega]]
-        for side, name in (("left", "material 1"), ("right", "material 2")):
-            d, lo, hi, p = welch(base, [r[f"surface_share_{side}"] for r in two_groups[omega]])
+        for name, side in SIDES.items():
+            d, lo, hi, p = welch(base, [column(r, "surface_share", side) for r in two_groups[omega]])
             lines.append(f"| {omega:g} | {name} | {d:+.3f} [{lo:+.3f}, {hi:+.3f}] | {p:.2g} |")
     lines.append("")
 
@@ -222,13 +262,13 @@ def main():
                        ("periodic_self", periodic_self), ("periodic_two-component", periodic_two)):
         lines.append(f"- {name}: {len(rows)} finished points")
     lines.append("")
-    table_D(lines, "Self-diffusion, end caps", caps_self, "self")
-    table_D(lines, "Two-component, end caps", caps_two, "two-component")
+    table_D(lines, "Self-diffusion, end caps", caps_self, "self", "caps_self")
+    table_D(lines, "Two-component, end caps", caps_two, "two-component", "caps_two-component")
     if periodic_self:
-        table_D(lines, "Self-diffusion, periodic axis", periodic_self, "self")
+        table_D(lines, "Self-diffusion, periodic axis", periodic_self, "self", "periodic_self")
         ends(lines, caps_self, periodic_self, "self")
     if periodic_two:
-        table_D(lines, "Two-component, periodic axis", periodic_two, "two-component")
+        table_D(lines, "Two-component, periodic axis", periodic_two, "two-component", "periodic_two-component")
         ends(lines, caps_two, periodic_two, "two-component")
     claim_i(lines, caps_self)
     claim_ii(lines, caps_two)
