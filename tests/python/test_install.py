@@ -36,6 +36,18 @@ def test_installed_drum_and_plot_from_elsewhere(prefix, tmp_path):
     assert (tmp_path / "figures" / "fig_z.png").is_file()
 
 
+def test_installed_plot_runs_the_installed_script(prefix, tmp_path):
+    """Not the source tree's: an installed script that only leaves a mark."""
+    script = prefix / "share" / "tumble" / "tools" / "plot_drum.py"
+    original = script.read_text()
+    try:
+        script.write_text("import pathlib, sys\npathlib.Path('mark').write_text(' '.join(sys.argv[1:]))\n")
+        subprocess.run([str(prefix / "bin" / "tumble"), "plot", "some-run"], cwd=tmp_path, check=True)
+        assert (tmp_path / "mark").read_text() == "run some-run"
+    finally:
+        script.write_text(original)
+
+
 def test_installed_module_imports(prefix, tmp_path):
     site = prefix / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "dist-packages"
     env = {**os.environ, "PYTHONPATH": str(site)}

@@ -81,7 +81,9 @@ def drum_settings(config=None, **options):
     tumble drum's (DRUM_OPTIONS: mode, grains, fill, omega, rpm, froude,
     revolutions, length, diameter, seed, shear, out, ...). Checked as the
     command line checks them (tumble.Error)."""
-    if isinstance(config, DrumSettings) and not options:
+    if isinstance(config, DrumSettings):
+        if options:
+            raise TypeError("drum_settings: options apply to a file or a dict, not to DrumSettings")
         return config
     if config is not None and not isinstance(config, dict) and not options:
         return _core.load_drum_settings(config)
