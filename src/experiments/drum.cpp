@@ -357,7 +357,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     return loop.run({});
 }
 
-DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet, DrumSampleHook on_sample) {
+DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet) {
     DrumPlan plan = load_plan(checkpoint.record);
     plan.quiet = quiet;
     plan.info.isa = isa_description();  // this machine's, which may differ from the interrupted run's
@@ -376,7 +376,7 @@ DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool qui
                    plan.rotating ? fmt::format("{:.4g} revolutions",
                                                plan.info.omega * (sim.time() - plan.info.settle_time) / (2.0 * pi))
                                  : std::string("settling"));
-    DrumLoop loop(sim, std::move(plan), dir, load_policy(checkpoint.record), true, std::move(on_sample));
+    DrumLoop loop(sim, std::move(plan), dir, load_policy(checkpoint.record), true, {});
     return loop.run(checkpoint.record.numbers("snapshot_times"));
 }
 

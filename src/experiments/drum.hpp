@@ -56,8 +56,7 @@ struct DrumOutcome {
 DrumOutcome run_drum(const DrumRunOptions& options);
 
 // Continues the run of `checkpoint` (the newest intact one of `directory`).
-DrumOutcome resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet,
-                        DrumSampleHook on_sample = {});
+DrumOutcome resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet);
 
 // The analysis of a finished run directory again (summary.json,
 // summary.txt), returned as text; first_revolution: the start-up left out
