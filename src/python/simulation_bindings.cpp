@@ -63,6 +63,34 @@ py::dict contacts(const Simulation& sim) {
                     py::arg("slip") = array_of(slip, copy), py::arg("angular_slip") = array_of(angular_slip, copy));
 }
 
+// The contacts the last step recorded (Simulation::set_contact_recording),
+// with their forces, as columns.
+py::dict contact_records(const Simulation& sim) {
+    std::vector<std::int64_t> id_i, id_j;
+    std::vector<Vec3> normal, force, torque_i, torque_j, slip;
+    std::vector<double> overlap, normal_force, twisting_couple, angular_slip;
+    for (const ContactRecord& c : sim.contact_records()) {
+        id_i.push_back(c.id_i);
+        id_j.push_back(c.id_j);
+        normal.push_back(c.geometry.n);
+        overlap.push_back(c.geometry.overlap);
+        force.push_back(c.forces.force_i);
+        torque_i.push_back(c.forces.torque_i);
+        torque_j.push_back(c.forces.torque_j);
+        normal_force.push_back(c.forces.normal_force);
+        twisting_couple.push_back(c.forces.twisting_couple);
+        slip.push_back(c.history.slip);
+        angular_slip.push_back(c.history.angular_slip);
+    }
+    const py::handle copy;
+    return py::dict(py::arg("id_i") = array_of(id_i, copy), py::arg("id_j") = array_of(id_j, copy),
+                    py::arg("normal") = array_of(normal, copy), py::arg("overlap") = array_of(overlap, copy),
+                    py::arg("force") = array_of(force, copy), py::arg("torque_i") = array_of(torque_i, copy),
+                    py::arg("torque_j") = array_of(torque_j, copy), py::arg("normal_force") = array_of(normal_force, copy),
+                    py::arg("twisting_couple") = array_of(twisting_couple, copy), py::arg("slip") = array_of(slip, copy),
+                    py::arg("angular_slip") = array_of(angular_slip, copy));
+}
+
 // Runs `sim` for `total` steps, asking until(sim) every check_every steps
 // whether to stop; the GIL is free while the engine works, and Ctrl-C stops
 // the loop (KeyboardInterrupt) between two checks. Returns the steps done.
@@ -186,6 +214,14 @@ the store to other memory).)");
              "j to i), overlap (m), normal_force (N, > 0 pushes apart), and their history: slip (the tangential "
              "displacement of i relative to j, m; eq. 8) and angular_slip (rad; eq. 9). Flat-wall contacts are "
              "not listed")
+        .def("set_contact_recording", &Simulation::set_contact_recording, py::arg("on"),
+             "Keep a record of every contact of each step, with its forces (contact_records); slows the force "
+             "loop, which then runs on one thread")
+        .def("contact_records", &contact_records,
+             "The contacts of the last step as recorded (set_contact_recording), as columns (copies): id_i, id_j "
+             "(a flat wall is -1 - face, face = 2 axis + (0 at lo, 1 at hi)), normal (j to i), overlap (m), force "
+             "(on i; j feels -force, N), torque_i, torque_j (N m), normal_force (N), twisting_couple (N m), slip, "
+             "angular_slip (the history after the step)")
         .def(
             "set_motion",
             [](Simulation& s, std::size_t k, double angular_velocity, const std::array<double, 3>& axis_point,

@@ -157,3 +157,17 @@ def test_example_scenario_file_runs():
     sim = tumble.Simulation(tumble.scenario(SOURCE / "examples" / "two_spheres.toml"))
     sim.run(steps=20)
     assert sim.size == 2 and sim.material_names == ["material-1"]
+
+
+def test_recorded_contact_forces_add_up_to_the_particle_forces():
+    sim = tumble.Simulation(tumble.Scenario.from_toml(SCENARIO))
+    sim.run(duration=0.15)
+    sim.set_contact_recording(True)
+    sim.step()
+    r = sim.contact_records()
+    assert np.any(r["id_j"] < 0) and np.all(r["id_i"] >= 0)  # flat-wall contacts too
+    total = np.zeros((sim.size, 3))
+    np.add.at(total, r["id_i"], r["force"])
+    spheres = r["id_j"] >= 0
+    np.add.at(total, r["id_j"][spheres], -r["force"][spheres])
+    np.testing.assert_allclose(total, sim.forces[sim.by_id], rtol=1e-9, atol=1e-12)
