@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <unistd.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -14,8 +15,23 @@
 
 namespace tumble::cli {
 
+namespace {
+
+// The script beside an installed tumble (cmake --install puts it in
+// PREFIX/share/tumble/tools, the program in PREFIX/bin), else the source
+// tree's, for tumble run from its build directory.
+std::string plot_script() {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path installed = fs::read_symlink("/proc/self/exe", ec).parent_path() / "../share/tumble/tools/plot_drum.py";
+    if (!ec && fs::exists(installed, ec)) return installed.lexically_normal().string();
+    return std::string(TUMBLE_TOOLS_DIR) + "/plot_drum.py";
+}
+
+}  // namespace
+
 int plot_command(const std::string& mode, const std::vector<std::string>& inputs, const std::string& out, bool quiet) {
-    std::vector<std::string> arguments{"python3", std::string(TUMBLE_TOOLS_DIR) + "/plot_drum.py", mode};
+    std::vector<std::string> arguments{"python3", plot_script(), mode};
     arguments.insert(arguments.end(), inputs.begin(), inputs.end());
     if (!out.empty()) {
         arguments.push_back("--out");

@@ -102,8 +102,10 @@ HealthLimits drum_limits(const Scenario& s) {
 // Settling and rotation from wherever `sim` stands, then the analysis.
 class DrumLoop {
 public:
-    DrumLoop(Simulation& sim, DrumPlan plan, fs::path dir, CheckpointPolicy policy, bool continuing)
-        : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)), period_(2.0 * pi / plan_.info.omega),
+    DrumLoop(Simulation& sim, DrumPlan plan, fs::path dir, CheckpointPolicy policy, bool continuing,
+             DrumSampleHook on_sample)
+        : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)), on_sample_(std::move(on_sample)),
+          period_(2.0 * pi / plan_.info.omega),
           steps_(std::llround(plan_.info.revolutions * period_ / sim.dt())),
           sample_every_(std::max<std::int64_t>(1, std::llround(period_ / plan_.info.samples_per_revolution / sim.dt()))),
           snapshot_every_(plan_.snapshots_per_revolution > 0
@@ -248,8 +250,10 @@ private:
     void sample() {
         const double start = static_cast<double>(plan_.rotation_start_step) * sim_.dt();
         const double revolutions = plan_.info.omega * (sim_.time() - start) / (2.0 * pi);
-        drum_series_->write(revolutions, sim_.time(), analysis::measure_drum(sim_.particles(), frame_));
+        const analysis::DrumState state = analysis::measure_drum(sim_.particles(), frame_);
+        drum_series_->write(revolutions, sim_.time(), state);
         series_.write(sim_.observe());
+        if (on_sample_) on_sample_({revolutions, state, sim_});
     }
 
     int finish() {
@@ -287,6 +291,7 @@ private:
     Simulation& sim_;
     DrumPlan plan_;
     fs::path dir_;
+    DrumSampleHook on_sample_;
     double period_;  // s per revolution
     std::int64_t steps_, sample_every_, snapshot_every_;
     analysis::DrumFrame frame_;
@@ -356,7 +361,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
                    info.inner_length, sim.dt(), info.isa);
         fmt::print("settling (rms grain speed below {} m/s, at most {} s)\n", s.settle_speed, s.settle_max_time);
     }
-    DrumLoop loop(sim, std::move(plan), s.output, options.checkpoints, false);
+    DrumLoop loop(sim, std::move(plan), s.output, options.checkpoints, false, options.on_sample);
     return loop.run({});
 }
 
@@ -380,7 +385,7 @@ DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool qui
                    plan.rotating ? fmt::format("{:.4g} revolutions",
                                                plan.info.omega * (sim.time() - plan.info.settle_time) / (2.0 * pi))
                                  : std::string("settling"));
-    DrumLoop loop(sim, std::move(plan), dir, load_policy(checkpoint.record), true);
+    DrumLoop loop(sim, std::move(plan), dir, load_policy(checkpoint.record), true, {});
     return loop.run(checkpoint.record.numbers("snapshot_times"));
 }
 

@@ -6,14 +6,29 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "experiments/progress.hpp"
 #include "experiments/run_control.hpp"
 #include "io/checkpoint.hpp"
 #include "io/drum_config.hpp"
+#include "tumble/analysis/drum_measure.hpp"
+#include "tumble/sim/simulation.hpp"
 
 namespace tumble::experiments {
+
+// One sample of the rotation (N = 0, then --samples per revolution, and the
+// final state), as written to drum_series.csv and profiles.csv: what a
+// caller's hook sees. The references are valid during the call only.
+struct DrumSample {
+    double revolutions = 0.0;  // N since the start of rotation
+    const analysis::DrumState& state;
+    const Simulation& simulation;
+};
+// Called after each sample is written. An exception it throws ends the run
+// (the run directory keeps its newest checkpoint: resume continues it).
+using DrumSampleHook = std::function<void(const DrumSample&)>;
 
 struct DrumRunOptions {
     io::DrumSettings settings;  // from --config and the command line
@@ -27,6 +42,7 @@ struct DrumRunOptions {
     int threads = 1;               // 0: every core of the machine (resolve_threads)
     double max_memory_gib = 0.0;   // refuse a run estimated to need more; 0: half the machine's (limits.hpp)
     bool large_drum = false;       // accept a wall far larger than its grains (check_drum_size)
+    DrumSampleHook on_sample;      // none by default (the Python module passes its callback)
 };
 
 // How a run ended: exit_code 0 (finished and analysed), exit_stopped (a

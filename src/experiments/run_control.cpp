@@ -36,6 +36,8 @@ void install_stop_signals() {
 
 bool stop_signalled() { return stop_flag != 0; }
 
+void clear_stop_signal() { stop_flag = 0; }
+
 Checkpointer::Checkpointer(std::filesystem::path run_directory, CheckpointPolicy policy, HealthLimits limits)
     : directory_(std::move(run_directory)), policy_(policy), limits_(limits), last_(std::chrono::steady_clock::now()) {
     install_stop_signals();

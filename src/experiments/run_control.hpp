@@ -41,6 +41,9 @@ public:
 // Installs the SIGINT/SIGTERM handlers (once per process).
 void install_stop_signals();
 bool stop_signalled();
+// Forgets a stop that was asked for (a process that goes on after the run:
+// the Python module).
+void clear_stop_signal();
 
 class Checkpointer {
 public:

@@ -606,8 +606,12 @@ private:
 
 }  // namespace
 
+RunConfig read_run_config(const toml::table& root, const fs::path& name, const fs::path& base_dir) {
+    return ScenarioReader(name, base_dir).read(root);
+}
+
 RunConfig parse_run_config(std::string_view toml_text, const fs::path& name, const fs::path& base_dir) {
-    return ScenarioReader(name, base_dir).read(parse_toml(toml_text, name));
+    return read_run_config(parse_toml(toml_text, name), name, base_dir);
 }
 
 RunConfig load_run_config(const fs::path& file) {

@@ -60,7 +60,10 @@ void check_drum_settings(const DrumSettings& s, const std::string& source) {
 }
 
 DrumSettings load_drum_settings(const std::filesystem::path& file) {
-    const toml::table root = parse_toml(read_text_file(file), file);
+    return read_drum_settings(parse_toml(read_text_file(file), file), file);
+}
+
+DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::path& file) {
     const Reader r(file);
     DrumSettings s;
     r.only_keys(root, "", {"drum", "fill", "rotation", "measure", "settle", "time_step", "model", "output"});

@@ -19,6 +19,7 @@
 #include <toml++/toml.h>
 
 #include "io/config.hpp"
+#include "io/drum_config.hpp"
 #include "io/names.hpp"
 #include "tumble/core/keyword.hpp"
 #include "tumble/core/vec3.hpp"
@@ -33,6 +34,13 @@ std::string read_text_file(const std::filesystem::path& file, std::size_t max_by
 
 // Parses TOML; a syntax error becomes ConfigError "FILE: line L, column C: ...".
 toml::table parse_toml(std::string_view text, const std::filesystem::path& name);
+
+// The scenario reader (config.hpp) and the drum reader (drum_config.hpp) on
+// a table already parsed or built (the Python module builds one from a
+// dict); `name` stands for the file in messages.
+RunConfig read_run_config(const toml::table& root, const std::filesystem::path& name,
+                          const std::filesystem::path& base_dir);
+DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::path& name);
 
 // Key paths (config.hpp): "a.b", "a[3]".
 inline std::string join(const std::string& path, std::string_view key) {

@@ -31,9 +31,11 @@ std::vector<ContactLink> contact_network(const Simulation& sim) {
         const double distance2 = norm2(d);
         const double reach = p.radius[i] + p.radius[j];
         if (distance2 >= reach * reach) continue;
-        if (p.id[i] > p.id[j]) {  // orient lower id first; n flips with the pair
+        ContactHistory history = pairs.history(k);
+        if (p.id[i] > p.id[j]) {  // orient lower id first; n and the history flip with the pair
             std::swap(i, j);
             d = -d;
+            history = history.swapped();
         }
         const ContactGeometry g =
             make_contact_geometry(d, std::sqrt(distance2), p.radius[i], p.radius[j], p.velocity[i] - p.velocity[j],
@@ -48,7 +50,7 @@ std::vector<ContactLink> contact_network(const Simulation& sim) {
         if (model.viscous) F_n += kuwabara_kono_force(c.B_star, g.contact_radius, g.v_n);
         if (model.attraction) F_n += attraction_force(c.attraction, g.contact_radius);
 
-        links.push_back({p.id[i], p.id[j], p.position[i] - g.lever_i * g.n, g.n, g.overlap, F_n});
+        links.push_back({p.id[i], p.id[j], p.position[i] - g.lever_i * g.n, g.n, g.overlap, F_n, history});
     }
     std::sort(links.begin(), links.end(), [](const ContactLink& x, const ContactLink& y) {
         return x.id_i != y.id_i ? x.id_i < y.id_i : x.id_j < y.id_j;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "tumble/contact/history.hpp"
 #include "tumble/core/vec3.hpp"
 #include "tumble/sim/simulation.hpp"
 
@@ -29,6 +30,9 @@ struct ContactLink {
     // attraction (eq. 7), from the present positions and velocities.
     // Positive pushes the spheres apart.
     double normal_force = 0.0;
+    // The contact's memory (eq. 8's slip of i relative to j, eq. 9's twist
+    // about n), seen from i, as the last step left it.
+    ContactHistory history;
 };
 
 // Every touching pair of the neighbour list, sorted by (id_i, id_j).

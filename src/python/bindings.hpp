@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+// The Python module tumble._core (pybind11): the engine's Simulation, the
+// scenario and drum readers, the drum protocol and the analysis, bound for
+// the pure-Python package src/python/tumble, which is what users import.
+// One file per part; this header holds what they share.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <type_traits>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <toml++/toml.h>
+
+#include "tumble/core/vec3.hpp"
+#include "tumble/particles/particle_store.hpp"
+
+namespace tumble::python {
+
+namespace py = pybind11;
+
+void bind_scenario(py::module_& m);
+void bind_simulation(py::module_& m);
+void bind_drum(py::module_& m);
+void bind_analysis(py::module_& m);
+
+// The TOML table of a Python dict (a scenario or drum settings given as a
+// dict, in the layout of the file): tables from dicts, arrays from lists,
+// tuples and numpy arrays; bool, int, float and str values. `name` stands
+// for the file in messages (io::ConfigError).
+toml::table toml_from_dict(const py::dict& d, const std::filesystem::path& name);
+
+// A numpy array of `values`: a Vec3 field becomes N x 3. With an owner, a
+// read-only view of the vector's memory that keeps the owner alive (no
+// copy); without (py::handle()), a copy.
+template <class T>
+py::array array_of(const std::vector<T>& values, py::handle owner) {
+    py::array a;
+    if constexpr (std::is_same_v<T, Vec3>) {
+        static_assert(sizeof(Vec3) == 3 * sizeof(double) && std::is_standard_layout_v<Vec3>);
+        a = py::array(py::dtype::of<double>(), {values.size(), std::size_t{3}}, {sizeof(Vec3), sizeof(double)},
+                      reinterpret_cast<const double*>(values.data()), owner);
+    } else {
+        a = py::array(py::dtype::of<T>(), {values.size()}, {sizeof(T)}, values.data(), owner);
+    }
+    if (owner) a.attr("setflags")(py::arg("write") = false);
+    return a;
+}
+
+// The per-particle arrays shown to Python, in the store's order, by name:
+// f(name, member pointer, doc).
+template <class F>
+void for_each_particle_field(F&& f) {
+    f("ids", &ParticleStore::id, "global id (int64): the particle's index in the scenario, never changes");
+    f("positions", &ParticleStore::position, "positions, m (N x 3)");
+    f("velocities", &ParticleStore::velocity, "velocities, m/s (N x 3)");
+    f("angular_velocities", &ParticleStore::angular_velocity, "spins, rad/s (N x 3)");
+    f("forces", &ParticleStore::force,
+      "force of the contacts and flat walls on each particle at the last step, N (N x 3; gravity not included)");
+    f("torques", &ParticleStore::torque, "torque of the contacts on each particle at the last step, N m (N x 3)");
+    f("radii", &ParticleStore::radius, "radii, m");
+    f("masses", &ParticleStore::mass, "masses, kg");
+    f("materials", &ParticleStore::material, "material index (int32) into material_names");
+    f("motions", &ParticleStore::motion, "prescribed motion (int32): -1 free, else the motion's index (kinematic)");
+    f("tags", &ParticleStore::tag, "the scenario's tag (int32), e.g. the half a drum grain started in");
+}
+
+}  // namespace tumble::python

@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: MIT
+// The drum experiment (experiments/drum.hpp) for Python: its settings, the
+// protocol with a callback at every sample, and the analysis of a run.
+#include <csignal>
+
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "bindings.hpp"
+#include "experiments/drum.hpp"
+#include "io/drum_config.hpp"
+#include "io/toml_reader.hpp"
+#include "tumble/core/constants.hpp"
+
+namespace tumble::python {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// While the protocol runs, tumble's SIGINT and SIGTERM handlers (Ctrl-C
+// writes a checkpoint and stops the run, run_control.hpp); Python's again
+// afterwards.
+class StopSignals {
+public:
+    StopSignals() {
+        sigaction(SIGINT, nullptr, &interrupt_);
+        sigaction(SIGTERM, nullptr, &terminate_);
+    }
+    ~StopSignals() {
+        sigaction(SIGINT, &interrupt_, nullptr);
+        sigaction(SIGTERM, &terminate_, nullptr);
+        experiments::clear_stop_signal();
+    }
+
+private:
+    struct sigaction interrupt_ {}, terminate_ {};
+};
+
+py::object namespace_of(py::dict fields) { return py::module_::import("types").attr("SimpleNamespace")(**fields); }
+
+// What the callback receives at a sample: the measurement (drum_series.csv,
+// profiles.csv) and copies of the particle arrays, in the store's order.
+py::object sample_of(const experiments::DrumSample& s) {
+    py::list components;
+    for (const analysis::ComponentState& c : s.state.components)
+        components.append(namespace_of(py::dict(
+            py::arg("grains") = c.grains, py::arg("mass") = c.mass, py::arg("mean_z") = c.mean_z,
+            py::arg("mean_z_stderr") = c.mean_z_stderr, py::arg("kinetic_energy") = c.kinetic_energy,
+            py::arg("kinetic_per_grain") = c.kinetic_per_grain,
+            py::arg("concentration") = array_of(c.concentration, py::handle()))));
+    py::dict particles;
+    for_each_particle_field([&](const char* name, auto field, const char*) {
+        particles[name] = array_of(s.simulation.particles().*field, py::handle());
+    });
+    const Vec3& centre = s.state.bed_centre;
+    return namespace_of(py::dict(py::arg("revolutions") = s.revolutions, py::arg("time") = s.simulation.time(),
+                                 py::arg("step") = s.simulation.step_count(),
+                                 py::arg("angle_of_repose") = s.state.angle_of_repose,
+                                 py::arg("fill_fraction") = s.state.fill_fraction,
+                                 py::arg("bed_centre") = std::array<double, 3>{centre.x, centre.y, centre.z},
+                                 py::arg("components") = components, py::arg("particles") = particles));
+}
+
+}  // namespace
+
+void bind_drum(py::module_& m) {
+    py::class_<io::DrumSettings>(m, "DrumSettings", "Settings of the drum experiment (tumble.drum_settings)")
+        .def_readonly("mode", &io::DrumSettings::mode)
+        .def_property_readonly("grains", &io::DrumSettings::grain_count, "the number of grains it makes")
+        .def_property_readonly("omega", &io::DrumSettings::omega, "rad/s")
+        .def_readonly("revolutions", &io::DrumSettings::revolutions)
+        .def_readonly("seed", &io::DrumSettings::seed)
+        .def_property_readonly("length", [](const io::DrumSettings& s) { return s.geometry.length; }, "m")
+        .def_property_readonly("diameter", [](const io::DrumSettings& s) { return s.geometry.diameter; }, "m")
+        .def_property_readonly("wall_radius", [](const io::DrumSettings& s) { return s.geometry.wall_radius; }, "m")
+        .def_property_readonly("periodic_axis", [](const io::DrumSettings& s) { return s.geometry.periodic_axis; })
+        .def_readonly("spin_up_time", &io::DrumSettings::spin_up_time, "s")
+        .def_readonly("samples_per_revolution", &io::DrumSettings::samples_per_revolution)
+        .def_readonly("profile_bins", &io::DrumSettings::profile_bins)
+        .def_readonly("snapshots_per_revolution", &io::DrumSettings::snapshots_per_revolution)
+        .def_readonly("dt", &io::DrumSettings::dt, "s; 0: chosen from the materials")
+        .def_property_readonly("shear", [](const io::DrumSettings& s) { return keyword_of(shear_models, s.shear); })
+        .def_property_readonly("friction_normal",
+                               [](const io::DrumSettings& s) { return keyword_of(friction_normals, s.friction_normal); })
+        .def_readonly("output", &io::DrumSettings::output, "the run directory");
+
+    m.def("load_drum_settings", &io::load_drum_settings, py::arg("path"), "A drum settings file (TOML)");
+    m.def(
+        "drum_settings_from_dict",
+        [](const py::dict& d, const fs::path& name) { return io::read_drum_settings(toml_from_dict(d, name), name); },
+        py::arg("settings"), py::arg("name") = "<dict>", "Drum settings laid out as the file: {'fill': {...}, ...}");
+
+    m.def(
+        "run_drum",
+        [](const io::DrumSettings& settings, const std::function<void(py::object)>& on_sample, int threads, bool force,
+           bool quiet, double checkpoint_revolutions, double checkpoint_minutes, std::int64_t stop_at_step,
+           bool allow_unsafe_dt, double max_memory_gib) {
+            experiments::DrumRunOptions o;
+            o.settings = settings;
+            o.force = force;
+            o.quiet = quiet;
+            o.plot = false;
+            o.threads = threads;
+            o.checkpoint_revolutions = checkpoint_revolutions;
+            o.checkpoints.every_minutes = checkpoint_minutes;
+            o.checkpoints.stop_at_step = stop_at_step;
+            o.allow_unsafe_dt = allow_unsafe_dt;
+            o.max_memory_gib = max_memory_gib;
+            if (on_sample)
+                o.on_sample = [&on_sample](const experiments::DrumSample& s) {
+                    py::gil_scoped_acquire python;
+                    on_sample(sample_of(s));
+                };
+            experiments::DrumOutcome outcome;
+            bool interrupted = false;
+            {
+                const StopSignals signals;
+                py::gil_scoped_release engine_works;
+                outcome = experiments::run_drum(o);
+                interrupted = experiments::stop_signalled();
+            }
+            if (interrupted) {
+                PyErr_SetString(PyExc_KeyboardInterrupt, ("the drum run stopped with a checkpoint; continue with: "
+                                                          "tumble resume " + outcome.directory.string()).c_str());
+                throw py::error_already_set();
+            }
+            return py::make_tuple(outcome.exit_code, outcome.directory);
+        },
+        py::arg("settings"), py::arg("on_sample") = nullptr, py::arg("threads") = 1, py::arg("force") = false,
+        py::arg("quiet") = true, py::arg("checkpoint_every_revolutions") = 1.0,
+        py::arg("checkpoint_every_minutes") = 10.0, py::arg("stop_at_step") = 0, py::arg("allow_unsafe_dt") = false,
+        py::arg("max_memory_gib") = 0.0,
+        "The drum protocol (experiments/drum.hpp) into settings.output; on_sample(sample) after every sample. "
+        "Returns (exit code, directory)");
+
+    m.def("analyze_drum", &experiments::analyze_drum, py::arg("directory"), py::arg("first_revolution") = 1.0,
+          "Analyses a finished drum run again (summary.json, summary.txt); returns the summary text");
+}
+
+}  // namespace tumble::python

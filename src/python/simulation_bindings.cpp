@@ -1,0 +1,250 @@
+// SPDX-License-Identifier: MIT
+// tumble.Scenario (a scenario read and checked, io/config.hpp) and
+// tumble.Simulation (the engine, sim/simulation.hpp) with its particles as
+// numpy views of the structure-of-arrays store.
+#include <array>
+#include <optional>
+#include <string>
+
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "bindings.hpp"
+#include "experiments/drum_setup.hpp"
+#include "experiments/limits.hpp"
+#include "experiments/machine.hpp"
+#include "io/config.hpp"
+#include "io/output.hpp"
+#include "io/toml_reader.hpp"
+#include "tumble/sim/contact_network.hpp"
+#include "tumble/sim/simulation.hpp"
+
+namespace tumble::python {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+Vec3 vec3(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+py::dict observables(const Observables& o) {
+    py::list per_material;
+    for (const MaterialEnergies& e : o.per_material)
+        per_material.append(py::dict(py::arg("particles") = e.particles,
+                                     py::arg("kinetic_translational") = e.kinetic_translational,
+                                     py::arg("kinetic_rotational") = e.kinetic_rotational));
+    return py::dict(py::arg("time") = o.time, py::arg("step") = o.step, py::arg("per_material") = per_material,
+                    py::arg("kinetic_translational") = o.kinetic_translational,
+                    py::arg("kinetic_rotational") = o.kinetic_rotational, py::arg("contact_energy") = o.contact_energy,
+                    py::arg("contacts") = o.contacts, py::arg("max_overlap_ratio") = o.max_overlap_ratio,
+                    py::arg("neighbor_builds") = o.neighbor_builds);
+}
+
+// The contact network (sim/contact_network.hpp) as columns.
+py::dict contacts(const Simulation& sim) {
+    const std::vector<ContactLink> links = contact_network(sim);
+    std::vector<std::int64_t> id_i, id_j;
+    std::vector<Vec3> point, normal, slip;
+    std::vector<double> overlap, normal_force, angular_slip;
+    for (const ContactLink& c : links) {
+        id_i.push_back(c.id_i);
+        id_j.push_back(c.id_j);
+        point.push_back(c.point);
+        normal.push_back(c.n);
+        overlap.push_back(c.overlap);
+        normal_force.push_back(c.normal_force);
+        slip.push_back(c.history.slip);
+        angular_slip.push_back(c.history.angular_slip);
+    }
+    const py::handle copy;
+    return py::dict(py::arg("id_i") = array_of(id_i, copy), py::arg("id_j") = array_of(id_j, copy),
+                    py::arg("point") = array_of(point, copy), py::arg("normal") = array_of(normal, copy),
+                    py::arg("overlap") = array_of(overlap, copy), py::arg("normal_force") = array_of(normal_force, copy),
+                    py::arg("slip") = array_of(slip, copy), py::arg("angular_slip") = array_of(angular_slip, copy));
+}
+
+// The contacts the last step recorded (Simulation::set_contact_recording),
+// with their forces, as columns.
+py::dict contact_records(const Simulation& sim) {
+    std::vector<std::int64_t> id_i, id_j;
+    std::vector<Vec3> normal, force, torque_i, torque_j, slip;
+    std::vector<double> overlap, normal_force, twisting_couple, angular_slip;
+    for (const ContactRecord& c : sim.contact_records()) {
+        id_i.push_back(c.id_i);
+        id_j.push_back(c.id_j);
+        normal.push_back(c.geometry.n);
+        overlap.push_back(c.geometry.overlap);
+        force.push_back(c.forces.force_i);
+        torque_i.push_back(c.forces.torque_i);
+        torque_j.push_back(c.forces.torque_j);
+        normal_force.push_back(c.forces.normal_force);
+        twisting_couple.push_back(c.forces.twisting_couple);
+        slip.push_back(c.history.slip);
+        angular_slip.push_back(c.history.angular_slip);
+    }
+    const py::handle copy;
+    return py::dict(py::arg("id_i") = array_of(id_i, copy), py::arg("id_j") = array_of(id_j, copy),
+                    py::arg("normal") = array_of(normal, copy), py::arg("overlap") = array_of(overlap, copy),
+                    py::arg("force") = array_of(force, copy), py::arg("torque_i") = array_of(torque_i, copy),
+                    py::arg("torque_j") = array_of(torque_j, copy), py::arg("normal_force") = array_of(normal_force, copy),
+                    py::arg("twisting_couple") = array_of(twisting_couple, copy), py::arg("slip") = array_of(slip, copy),
+                    py::arg("angular_slip") = array_of(angular_slip, copy));
+}
+
+// Runs `sim` for `total` steps, asking until(sim) every check_every steps
+// whether to stop; the GIL is free while the engine works, and Ctrl-C stops
+// the loop (KeyboardInterrupt) between two checks. Returns the steps done.
+std::int64_t run(py::object self, std::int64_t total, const py::object& until, std::int64_t check_every) {
+    Simulation& sim = self.cast<Simulation&>();
+    if (check_every < 1) throw Error("check_every must be >= 1, got " + std::to_string(check_every));
+    std::int64_t done = 0;
+    while (done < total) {
+        const std::int64_t n = std::min(check_every, total - done);
+        {
+            py::gil_scoped_release engine_works;
+            sim.advance(n);
+        }
+        done += n;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        if (!until.is_none() && py::bool_(until(self))) break;
+    }
+    return done;
+}
+
+}  // namespace
+
+void bind_scenario(py::module_& m) {
+    py::class_<io::RunConfig>(m, "Scenario", "A scenario, read and checked (docs/SCENARIO.md); build with from_file, "
+                                             "from_toml, from_dict or drum")
+        .def_static("from_file", &io::load_run_config, py::arg("path"), "Reads a scenario file (TOML)")
+        .def_static("from_toml", &io::parse_run_config, py::arg("text"), py::arg("name") = "<toml>",
+                    py::arg("base_dir") = fs::path("."),
+                    "Reads scenario text; `name` stands for the file in messages, `base_dir` resolves CSV files")
+        .def_static(
+            "from_dict",
+            [](const py::dict& d, const fs::path& name, const fs::path& base_dir) {
+                return io::read_run_config(toml_from_dict(d, name), name, base_dir);
+            },
+            py::arg("scenario"), py::arg("name") = "<dict>", py::arg("base_dir") = fs::path("."),
+            "A scenario from a dict laid out as the file: {'simulation': {...}, 'material': [{...}], ...}")
+        .def_static(
+            "drum",
+            [](const io::DrumSettings& s, bool allow_unsafe_dt) {
+                io::RunConfig c;
+                c.scenario = experiments::build_drum(s, allow_unsafe_dt).scenario;
+                c.seed = s.seed;
+                c.output.directory = s.output;
+                c.source = "drum";
+                return c;
+            },
+            py::arg("settings"), py::arg("allow_unsafe_dt") = false,
+            "The paper's drum of the settings (tumble.drum_settings), at rest: its wall is motion 0 "
+            "(Simulation.set_motion turns it); duration 0, the protocol (tumble.run_drum) decides")
+        .def_readonly("duration", &io::RunConfig::duration, "simulated time of the file, s")
+        .def_readonly("seed", &io::RunConfig::seed)
+        .def_property_readonly("output_directory", [](const io::RunConfig& c) { return c.output.directory; })
+        .def_property_readonly("time_series_interval", [](const io::RunConfig& c) { return c.output.time_series_interval; })
+        .def_property_readonly("snapshot_interval", [](const io::RunConfig& c) { return c.output.snapshot_interval; })
+        .def_readonly("source", &io::RunConfig::source)
+        .def_property_readonly("particle_count", [](const io::RunConfig& c) { return c.scenario.particles.size(); })
+        .def_property_readonly("material_names", [](const io::RunConfig& c) {
+            std::vector<std::string> names;
+            for (const Material& mat : c.scenario.materials) names.push_back(mat.name);
+            return names;
+        });
+}
+
+void bind_simulation(py::module_& m) {
+    py::class_<Simulation> sim(m, "Simulation", R"(A running simulation of a Scenario.
+
+The particle arrays (positions, velocities, ...) are read-only numpy views of
+the engine's memory, without a copy, that keep the simulation alive. The
+particles are stored in an order that changes when the engine re-sorts them
+in space (at neighbour-list rebuilds): follow grains by `ids`, and read an
+array again after stepping rather than keeping an old view (a re-sort moves
+the store to other memory).)");
+    sim.def(py::init([](const io::RunConfig& scenario, int threads) {
+                return std::make_unique<Simulation>(scenario.scenario, experiments::resolve_threads(threads));
+            }),
+            py::arg("scenario"), py::arg("threads") = 1,
+            "threads: of the time step (0: every core); the same count gives the same numbers bit for bit")
+        .def(
+            "step", [](Simulation& s) { py::gil_scoped_release engine_works; s.step(); }, "One time step")
+        .def(
+            "advance", [](Simulation& s, std::int64_t steps) { py::gil_scoped_release engine_works; s.advance(steps); },
+            py::arg("steps"), "`steps` time steps in one go (the same numbers as one step at a time)")
+        .def(
+            "run",
+            [](py::object self, std::optional<std::int64_t> steps, std::optional<double> duration,
+               const py::object& until, std::int64_t check_every) {
+                const Simulation& s = self.cast<const Simulation&>();
+                if (steps.has_value() == duration.has_value()) throw Error("run: give steps or duration (one)");
+                const std::int64_t total = steps ? *steps : experiments::step_count(*duration, s.dt(), "run: duration");
+                return run(self, total, until, check_every);
+            },
+            py::arg("steps") = py::none(), py::arg("duration") = py::none(), py::arg("until") = py::none(),
+            py::arg("check_every") = 100,
+            "Runs `steps` steps (or `duration` seconds), stopping early when until(sim) is true, asked every "
+            "check_every steps; returns the steps done")
+        .def_property_readonly("time", &Simulation::time, "s")
+        .def_property_readonly("dt", &Simulation::dt, "time step, s")
+        .def_property_readonly("step_count", &Simulation::step_count)
+        .def_property("threads", &Simulation::threads, &Simulation::set_threads)
+        .def_property_readonly("size", [](const Simulation& s) { return s.particles().size(); })
+        .def_property_readonly("free_count", [](const Simulation& s) { return s.particles().free_count(); })
+        .def_property_readonly("material_names",
+                               [](const Simulation& s) {
+                                   std::vector<std::string> names;
+                                   for (const Material& mat : s.scenario().materials) names.push_back(mat.name);
+                                   return names;
+                               })
+        .def_property_readonly(
+            "by_id",
+            [](const Simulation& s) {
+                const ParticleStore& p = s.particles();
+                std::vector<std::int64_t> index(p.size());
+                for (std::size_t i = 0; i < p.size(); ++i) index[static_cast<std::size_t>(p.id[i])] = static_cast<std::int64_t>(i);
+                return array_of(index, py::handle());
+            },
+            "indices that put the arrays in global-id order: sim.positions[sim.by_id] (a copy)")
+        .def("observe", [](const Simulation& s) { return observables(s.observe()); },
+             "energies, contact count, largest overlap: a row of time_series.csv")
+        .def("contacts", &contacts,
+             "the touching pairs, lower id first, as columns (copies): id_i, id_j, point (m), normal (unit, from "
+             "j to i), overlap (m), normal_force (N, > 0 pushes apart), and their history: slip (the tangential "
+             "displacement of i relative to j, m; eq. 8) and angular_slip (rad; eq. 9). Flat-wall contacts are "
+             "not listed")
+        .def("set_contact_recording", &Simulation::set_contact_recording, py::arg("on"),
+             "Keep a record of every contact of each step, with its forces (contact_records); slows the force "
+             "loop, which then runs on one thread")
+        .def("contact_records", &contact_records,
+             "The contacts of the last step as recorded (set_contact_recording), as columns (copies): id_i, id_j "
+             "(a flat wall is -1 - face, face = 2 axis + (0 at lo, 1 at hi)), normal (j to i), overlap (m), force "
+             "(on i; j feels -force, N), torque_i, torque_j (N m), normal_force (N), twisting_couple (N m), slip, "
+             "angular_slip (the history after the step)")
+        .def(
+            "set_motion",
+            [](Simulation& s, std::size_t k, double angular_velocity, const std::array<double, 3>& axis_point,
+               const std::array<double, 3>& axis_direction, const std::array<double, 3>& velocity) {
+                if (k >= s.scenario().motions.size()) throw Error("set_motion: no motion " + std::to_string(k));
+                s.set_motion(k, RigidMotion{vec3(axis_point), vec3(axis_direction), angular_velocity, vec3(velocity)});
+            },
+            py::arg("motion"), py::arg("angular_velocity"), py::arg("axis_point") = std::array<double, 3>{},
+            py::arg("axis_direction") = std::array<double, 3>{0.0, 0.0, 1.0},
+            py::arg("velocity") = std::array<double, 3>{},
+            "Replaces prescribed motion k from now on (rad/s about the axis, m/s); its particles go on from "
+            "where they are")
+        .def(
+            "write_snapshot",
+            [](const Simulation& s, const fs::path& directory, int number) {
+                return io::write_snapshot(directory, number, s);
+            },
+            py::arg("directory"), py::arg("number"), "Writes DIRECTORY/snapshots/NNNNNN.csv as tumble run does");
+    for_each_particle_field([&](const char* name, auto field, const char* doc) {
+        sim.def_property_readonly(
+            name, [field](py::object self) { return array_of(self.cast<const Simulation&>().particles().*field, self); },
+            doc);
+    });
+}
+
+}  // namespace tumble::python

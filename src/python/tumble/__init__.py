@@ -1,0 +1,140 @@
+# SPDX-License-Identifier: MIT
+"""tumble: discrete-element simulation of visco-elastic spheres and the
+rotating-drum experiment of Kohring's paper, from Python.
+
+    import tumble
+    sim = tumble.Simulation(tumble.Scenario.from_file("examples/demo.toml"))
+    sim.run(steps=1000)
+    x = sim.positions[sim.by_id]          # N x 3, in global-id order
+
+The particle arrays of a Simulation are read-only numpy views of the
+engine's memory (no copy). The engine re-sorts its particles in space, so
+their order changes between steps: follow grains by `ids` (or index with
+`by_id`), and read an array again after stepping instead of keeping a view.
+
+The drum experiment: tumble.run_drum(...) (the protocol of `tumble drum`,
+with a callback at every sample); its settings are tumble drum's options.
+Run directories: tumble.io.Run(directory). README.md, section "Python".
+"""
+
+import copy
+import os
+import pathlib
+import tomllib
+
+from tumble._core import (  # noqa: F401
+    BlewUp,
+    DrumSettings,
+    Error,
+    Scenario,
+    Simulation,
+    analyze_drum,
+    axial_msd,
+    drum_tracks,
+    fit_hogg,
+    hogg_concentration,
+    hogg_mean_position,
+)
+from tumble._core import version as __version__  # noqa: F401
+from tumble import _core
+
+# tumble drum's options -> (table, key) of a drum settings file (docs/DRUM.md,
+# examples/drum_*.toml).
+DRUM_OPTIONS = {
+    "length": ("drum", "length"),
+    "diameter": ("drum", "diameter"),
+    "wall_radius": ("drum", "wall_radius"),
+    "periodic_axis": ("drum", "periodic_axis"),
+    "mode": ("fill", "mode"),
+    "grains": ("fill", "grains"),
+    "fill": ("fill", "fill_fraction"),
+    "seed": ("fill", "seed"),
+    "omega": ("rotation", "omega"),
+    "rpm": ("rotation", "rpm"),
+    "froude": ("rotation", "froude"),
+    "revolutions": ("rotation", "revolutions"),
+    "spin_up": ("rotation", "spin_up_time"),
+    "samples": ("measure", "samples_per_revolution"),
+    "bins": ("measure", "profile_bins"),
+    "snapshots": ("measure", "snapshots_per_revolution"),
+    "settle_speed": ("settle", "speed"),
+    "settle_max_time": ("settle", "max_time"),
+    "dt": ("time_step", "dt"),
+    "shear": ("model", "shear"),
+    "friction_normal": ("model", "friction_normal"),
+    "out": ("output", "directory"),
+}
+# Options that replace each other, as on the command line.
+_ALTERNATIVES = (("grains", "fill"), ("omega", "rpm", "froude"))
+
+
+def scenario(source, base_dir="."):
+    """A Scenario from a file (path) or a dict laid out as the file."""
+    if isinstance(source, dict):
+        return Scenario.from_dict(source, base_dir=base_dir)
+    return Scenario.from_file(source)
+
+
+def drum_settings(config=None, **options):
+    """The drum's settings: tumble drum's defaults, then `config` (a drum
+    settings file, or a dict laid out as one), then the options, named as
+    tumble drum's (DRUM_OPTIONS: mode, grains, fill, omega, rpm, froude,
+    revolutions, length, diameter, seed, shear, out, ...). Checked as the
+    command line checks them (tumble.Error)."""
+    if isinstance(config, DrumSettings):
+        if options:
+            raise TypeError("drum_settings: options apply to a file or a dict, not to DrumSettings")
+        return config
+    if config is not None and not isinstance(config, dict) and not options:
+        return _core.load_drum_settings(config)
+    if isinstance(config, dict):
+        table, name = copy.deepcopy(config), "<dict>"
+    elif config is not None:
+        with open(config, "rb") as file:
+            table, name = tomllib.load(file), f"{os.fspath(config)} and the options"
+    else:
+        table, name = {}, "<options>"
+    for option, value in options.items():
+        if option not in DRUM_OPTIONS:
+            raise TypeError(f"drum_settings: unknown setting {option!r}; known: {', '.join(DRUM_OPTIONS)}")
+        for group in _ALTERNATIVES:
+            if option in group:
+                for other in group:
+                    section, key = DRUM_OPTIONS[other]
+                    table.get(section, {}).pop(key, None)
+        section, key = DRUM_OPTIONS[option]
+        table.setdefault(section, {})[key] = value
+    return _core.drum_settings_from_dict(table, name)
+
+
+def drum_scenario(config=None, allow_unsafe_dt=False, **options):
+    """The paper's drum of these settings as a Scenario, filled and at rest
+    (the wall is motion 0: Simulation.set_motion(0, omega) turns it)."""
+    return Scenario.drum(drum_settings(config, **options), allow_unsafe_dt=allow_unsafe_dt)
+
+
+def run_drum(config=None, *, on_sample=None, threads=1, force=False, quiet=True, checkpoint_every_revolutions=1.0,
+             checkpoint_every_minutes=10.0, stop_at_step=0, allow_unsafe_dt=False, max_memory_gib=0.0, **options):
+    """The drum experiment of `tumble drum` (docs/DRUM.md) into the settings'
+    output directory (option `out`): settle, turn, sample, photograph,
+    analyse; no figures (tumble plot DIR draws them).
+
+    on_sample(sample) is called after every sample is written (N = 0, then
+    `samples` per revolution, and the end), with sample.revolutions, .time,
+    .step, .angle_of_repose, .fill_fraction, .bed_centre, .components (per
+    tag: grains, mass, mean_z, mean_z_stderr, kinetic_energy,
+    kinetic_per_grain, concentration) and .particles (copies of the particle
+    arrays, in the store's order: follow grains by 'ids'). An exception it
+    raises ends the run; the directory keeps its newest checkpoint (tumble
+    resume DIR continues it). Ctrl-C writes a checkpoint, stops the run and
+    raises KeyboardInterrupt.
+
+    Returns the run directory (pathlib.Path); read it with tumble.io.Run."""
+    settings = drum_settings(config, **options)
+    _, directory = _core.run_drum(settings, on_sample=on_sample, threads=threads, force=force, quiet=quiet,
+                                  checkpoint_every_revolutions=checkpoint_every_revolutions,
+                                  checkpoint_every_minutes=checkpoint_every_minutes, stop_at_step=stop_at_step,
+                                  allow_unsafe_dt=allow_unsafe_dt, max_memory_gib=max_memory_gib)
+    return pathlib.Path(directory)
+
+from tumble import io  # noqa: E402,F401  (tumble.io.Run: run directories)

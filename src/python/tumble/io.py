@@ -1,0 +1,147 @@
+# SPDX-License-Identifier: MIT
+"""Reading a run directory of `tumble run` or `tumble drum` (docs/DRUM.md,
+"Files of a run directory") into pandas data frames and numpy arrays.
+
+    run = tumble.io.Run("drum-out")
+    run.drum_series["mean_z_material_1"]      # a pandas Series
+    run.snapshot(-1)                           # the last particle snapshot, by id
+    run.msd(0)                                 # D of component 0 from its grains' axial MSD
+
+Column names are read with '-' as '_' (mean_z_material-1 -> mean_z_material_1),
+so that they are valid identifiers and the same whichever way a version of
+tumble wrote them; comment lines (#) are skipped.
+"""
+
+import json
+import math
+import pathlib
+import re
+import tomllib
+
+import numpy as np
+
+from tumble import _core
+
+
+def read_csv(path):
+    """A CSV file of a run as a pandas DataFrame (comments skipped, '-' in
+    column names as '_'); numbers read back to the very doubles written."""
+    import pandas
+
+    frame = pandas.read_csv(path, comment="#", float_precision="round_trip")
+    frame.columns = [name.strip().replace("-", "_") for name in frame.columns]
+    return frame
+
+
+def read_snapshot(path):
+    """A particle snapshot (snapshots/NNNNNN.csv) as a DataFrame in global-id
+    order, with its time (s) and step in frame.attrs."""
+    frame = read_csv(path)
+    with open(path) as file:
+        header = re.search(r"time\s*=\s*([^\s,]+).*?step\s*=\s*(\d+)", file.readline())
+    if header:
+        frame.attrs["time"], frame.attrs["step"] = float(header.group(1)), int(header.group(2))
+    return frame
+
+
+def snapshot_arrays(frame):
+    """The numpy arrays of a snapshot frame, named as Simulation's: ids,
+    positions, velocities, angular_velocities (N x 3), radii, tags."""
+    return {
+        "ids": frame["id"].to_numpy(),
+        "positions": frame[["x", "y", "z"]].to_numpy(),
+        "velocities": frame[["vx", "vy", "vz"]].to_numpy(),
+        "angular_velocities": frame[["wx", "wy", "wz"]].to_numpy(),
+        "radii": frame["radius"].to_numpy(),
+        "tags": frame["tag"].to_numpy(),
+    }
+
+
+class Run:
+    """A run directory. Each table is read when first asked for."""
+
+    def __init__(self, directory):
+        self.directory = pathlib.Path(directory)
+        if not self.directory.is_dir():
+            raise FileNotFoundError(f"{self.directory}: not a run directory")
+        self._tables = {}
+
+    def table(self, name):
+        """Any CSV file of the run (e.g. 'depth_mobility.csv') as a DataFrame."""
+        if name not in self._tables:
+            self._tables[name] = read_csv(self.directory / name)
+        return self._tables[name]
+
+    @property
+    def time_series(self):
+        """time_series.csv: energies, contacts, largest overlap per sample."""
+        return self.table("time_series.csv")
+
+    @property
+    def drum_series(self):
+        """drum_series.csv: per sample N, time, angle of repose, and per component <z> and energies."""
+        return self.table("drum_series.csv")
+
+    @property
+    def profiles(self):
+        """profiles.csv: C(z, N) per sample, component and bin."""
+        return self.table("profiles.csv")
+
+    @property
+    def axial_msd_table(self):
+        """axial_msd.csv: the grains' axial MSD against lag, per component."""
+        return self.table("axial_msd.csv")
+
+    @property
+    def summary(self):
+        """summary.json: the analysis (undefined numbers are None)."""
+        return json.loads((self.directory / "summary.json").read_text())
+
+    @property
+    def info(self):
+        """What was run: drum_run.toml of a drum run, run.json of tumble run."""
+        drum = self.directory / "drum_run.toml"
+        if drum.exists():
+            with open(drum, "rb") as file:
+                return tomllib.load(file)
+        return json.loads((self.directory / "run.json").read_text())
+
+    @property
+    def components(self):
+        """The drum's components (name, grains, mass, start_side), by tag."""
+        return self.info["component"]
+
+    @property
+    def snapshot_files(self):
+        return sorted((self.directory / "snapshots").glob("*.csv"))
+
+    def snapshot(self, k=-1):
+        """Particle snapshot k (negative counts from the last) as a DataFrame in id order."""
+        return read_snapshot(self.snapshot_files[k])
+
+    def mean_z(self, component):
+        """(N, <z>) of a drum component, numpy arrays (revolutions, m)."""
+        name = self.components[component]["name"].replace("-", "_")
+        return self.drum_series["revolutions"].to_numpy(), self.drum_series[f"mean_z_{name}"].to_numpy()
+
+    def fit_hogg(self, component, first_revolution=1.0, drift=False, fixed_D=None):
+        """The Hogg fit with the amplitude free (tumble.fit_hogg) of a drum
+        component's <z>(N), mirrored if it started at z < 0."""
+        N, z = self.mean_z(component)
+        side = self.components[component]["start_side"]
+        return _core.fit_hogg(N, side * z, self.info["inner_length"], first_revolution=first_revolution,
+                              drift=drift, fixed_D=fixed_D)
+
+    def tracks(self, component):
+        """(revolutions, z[frame, grain]) of a drum component's grains in the snapshots from N = 0."""
+        revolutions, z = _core.drum_tracks(self.directory, component)
+        return np.asarray(revolutions), np.asarray(z)
+
+    def msd(self, component, first_revolution=1.0, block=2.0):
+        """D of a drum component from its grains' axial MSD (tumble.axial_msd)
+        over the snapshots from first_revolution, blocks of `block` revolutions."""
+        revolutions, z = self.tracks(component)
+        keep = revolutions >= first_revolution - 1e-9
+        info = self.info
+        half_length = math.inf if info["periodic_axis"] else 0.5 * info["inner_length"]
+        return _core.axial_msd(revolutions[keep], z[keep], block=block, half_length=half_length)

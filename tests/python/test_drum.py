@@ -1,0 +1,75 @@
+# SPDX-License-Identifier: MIT
+"""The drum protocol from Python: the callback at every sample, the
+settings as tumble drum's options, the drum as a scenario to step."""
+
+import numpy as np
+import pytest
+
+import tumble
+from conftest import TINY_DRUM
+
+
+def test_callback_sees_every_sample(tiny_drum):
+    directory, samples = tiny_drum
+    series = tumble.io.Run(directory).drum_series
+    # N = 0, 10 per revolution for 0.4 revolutions, and the final state if it
+    # falls between two samples: one call per row of drum_series.csv.
+    assert 5 <= len(samples) == len(series)
+    np.testing.assert_array_equal([s.revolutions for s in samples], series["revolutions"])
+    assert samples[0].revolutions == 0.0 and samples[-1].revolutions == pytest.approx(0.4, abs=0.01)
+    for s, (_, row) in zip(samples, series.iterrows()):
+        assert [c.mean_z for c in s.components] == [row["mean_z_left"], row["mean_z_right"]]
+        assert s.time == row["time"]
+    steps = [s.step for s in samples]
+    assert steps == sorted(steps) and len(set(steps)) == len(steps)
+
+
+def test_sample_particles_are_sensible(tiny_drum):
+    _, samples = tiny_drum
+    for s in samples:
+        p = s.particles
+        free = p["motions"] < 0
+        assert free.sum() == 6 and sorted(p["ids"]) == list(range(len(p["ids"])))
+        assert p["positions"].shape == (len(p["ids"]), 3)
+        assert np.all(np.hypot(p["positions"][free, 0], p["positions"][free, 1]) < 0.015)  # inside the drum
+        left, right = s.components
+        assert left.grains + right.grains == 6
+        # <z> of each half is the mean of its grains' z.
+        z = p["positions"][free, 2]
+        tags = p["tags"][free]
+        assert left.mean_z == pytest.approx(z[tags == 0].mean(), abs=1e-12)
+    # Copies: the first sample's arrays still hold the settled bed.
+    assert not np.array_equal(samples[0].particles["velocities"], samples[-1].particles["velocities"])
+
+
+def test_settings_are_the_command_lines():
+    s = tumble.drum_settings(mode="self", grains=458, rpm=30, length=0.2, seed=4, shear="coulomb")
+    assert (s.mode, s.grains, s.length, s.seed, s.shear) == ("self", 458, 0.2, 4, "coulomb")
+    assert s.omega == pytest.approx(30 * 2 * np.pi / 60)
+    assert tumble.drum_settings({"rotation": {"rpm": 30}}, omega=2.0).omega == 2.0  # an option replaces the file's
+    with pytest.raises(tumble.Error, match="mode"):
+        tumble.drum_settings(mode="three")
+    with pytest.raises(TypeError, match="unknown setting"):
+        tumble.drum_settings(speed=3)
+
+
+def test_drum_as_a_scenario_to_step():
+    settings = {k: v for k, v in TINY_DRUM.items()}
+    sim = tumble.Simulation(tumble.drum_scenario(**settings))
+    sim.run(steps=2000)
+    sim.set_motion(0, angular_velocity=settings["omega"])
+    wall = sim.motions >= 0
+    sim.run(steps=200)
+    speed = np.linalg.norm(sim.velocities[wall], axis=1)
+    radius = np.hypot(sim.positions[wall, 0], sim.positions[wall, 1])
+    np.testing.assert_allclose(speed, settings["omega"] * radius, rtol=1e-9, atol=1e-12)
+
+
+def test_an_exception_in_the_callback_ends_the_run(tmp_path):
+    def fail(sample):
+        if sample.revolutions > 0.1:
+            raise RuntimeError("enough")
+
+    with pytest.raises(RuntimeError, match="enough"):
+        tumble.run_drum(out=tmp_path / "run", on_sample=fail, **TINY_DRUM)
+    assert not (tmp_path / "run" / "summary.json").exists()

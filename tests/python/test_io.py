@@ -1,0 +1,60 @@
+# SPDX-License-Identifier: MIT
+"""Run directories read into numpy and pandas, and the analysis of
+src/tumble/analysis called on what was read."""
+
+import numpy as np
+import pytest
+
+import tumble
+
+
+def test_drum_run_directory(tiny_drum):
+    directory, samples = tiny_drum
+    run = tumble.io.Run(directory)
+    assert run.info["mode"] == "self" and [c["name"] for c in run.components] == ["left", "right"]
+    assert list(run.drum_series.columns[:2]) == ["revolutions", "time"]
+    assert set(run.profiles.columns) >= {"revolutions", "component", "bin", "z", "concentration"}
+    assert len(run.time_series) >= len(samples)
+    assert run.summary["components"][0]["grains"] + run.summary["components"][1]["grains"] == 6
+    # The snapshots: 000000 at N = 0, then 10 per revolution.
+    assert len(run.snapshot_files) == 5
+    last = run.snapshot(-1)
+    assert list(last["id"]) == sorted(last["id"]) and last.attrs["step"] == samples[-1].step
+    arrays = tumble.io.snapshot_arrays(last)
+    order = np.argsort(samples[-1].particles["ids"])
+    np.testing.assert_array_equal(arrays["positions"], samples[-1].particles["positions"][order])
+
+
+def test_tracks_hogg_and_msd_of_a_run(tiny_drum):
+    directory, _ = tiny_drum
+    run = tumble.io.Run(directory)
+    revolutions, z = run.tracks(1)
+    assert z.shape == (5, 3) and revolutions[0] == 0.0
+    N, mean_z = run.mean_z(1)
+    assert mean_z[0] == pytest.approx(z[0].mean(), abs=1e-12)
+    fit = run.fit_hogg(1, first_revolution=0.0)
+    assert fit["points"] == len(N) and not fit["determined"]  # too few samples: the fit says so
+    msd = run.msd(1, first_revolution=0.0, block=0.2)
+    assert set(msd) >= {"D", "interval", "lag", "msd", "determined", "note"} and not msd["determined"]
+
+
+def test_hogg_fit_finds_a_known_D():
+    L, D = 0.12, 1.5e-5
+    N = np.linspace(0.0, 30.0, 121)
+    z = tumble.hogg_mean_position(D, N, L)
+    assert z[0] == pytest.approx(L / 4)
+    fit = tumble.fit_hogg(N, z, L)
+    assert fit["determined"] and fit["D"] == pytest.approx(D, rel=1e-6)
+    assert fit["amplitude"] == pytest.approx(L / 4, rel=1e-6)
+    assert tumble.hogg_concentration(0.03, D, 0.0, L) == 1.0
+
+
+def test_msd_finds_the_D_of_random_walkers():
+    rng = np.random.default_rng(1)
+    D, frames, grains, h = 2e-5, 161, 400, 0.125  # m^2/rev, frames 1/8 revolution apart
+    steps = rng.normal(0.0, np.sqrt(2 * D * h), size=(frames - 1, grains))
+    z = np.vstack([np.zeros(grains), np.cumsum(steps, axis=0)])
+    estimate = tumble.axial_msd(np.arange(frames) * h, z)
+    assert estimate["determined"]
+    assert estimate["interval"][0] < D < estimate["interval"][1]
+    assert estimate["D"] == pytest.approx(D, rel=0.1)
