@@ -35,8 +35,13 @@ def read_csv(path):
 
 def read_snapshot(path):
     """A particle snapshot (snapshots/NNNNNN.csv) as a DataFrame in global-id
-    order, with its time (s) and step in frame.attrs."""
+    order, with its time (s) and step in frame.attrs: from its time and step
+    columns, or from the first line "# time = T s, step = S" of snapshots
+    written before it had them."""
     frame = read_csv(path)
+    if {"time", "step"} <= set(frame.columns) and len(frame):
+        frame.attrs["time"], frame.attrs["step"] = float(frame["time"].iloc[0]), int(frame["step"].iloc[0])
+        return frame
     with open(path) as file:
         header = re.search(r"time\s*=\s*([^\s,]+).*?step\s*=\s*(\d+)", file.readline())
     if header:
