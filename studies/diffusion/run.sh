@@ -22,6 +22,8 @@ for sweep in caps_two-component caps_self periodic_two-component periodic_self l
   "$tumble" sweep "$study/sweep_$sweep.toml" -j "${JOBS:-2}"
   # The lag analysis needs the long run's snapshots, which keep.sh deletes.
   [[ $sweep != long_self ]] || /usr/bin/python3 "$study/msd_lags.py"
+  # The periodic runs' first Fourier mode needs their profiles.csv (not kept in git).
+  [[ $sweep != periodic_self ]] || /usr/bin/python3 "$study/periodic_modes.py"
   bash "$study/keep.sh"
 done
 # The tables (results.md) and the figures and sweep tables docs/RESULTS.md shows.

@@ -126,7 +126,9 @@ def table_D(lines, title, rows, mode, sweep_name):
         for index, name in enumerate(names):
             d = DIAMETER["material 1" if name == "both halves" else name]
             verdicts = drift.get((omega, 0), []) + drift.get((omega, 1), []) if mode == "self" else drift.get((omega, index), [])
-            convecting = f"{verdicts.count('convecting')} of {len(verdicts)}" + (" halves" if mode == "self" else "")
+            tested = [v for v in verdicts if v != "undetermined"]  # undetermined on a periodic axis
+            convecting = (f"{tested.count('convecting')} of {len(tested)}" + (" halves" if mode == "self" else "")
+                          if tested else "not applicable")
             D = [values(r, "D_msd")[name] for r in group]
             share = [values(r, "surface_share")[name] for r in group]
             m, lo, hi, n = mean_interval(D)
