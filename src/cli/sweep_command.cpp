@@ -1,220 +1,35 @@
 // SPDX-License-Identifier: MIT
-// tumble sweep (docs/SWEEP.md): runs `tumble drum` for every (mode, omega,
-// seed) of a sweep file, each point a child process in its own directory,
-// several at once; skips finished points (resume); splits the points over
-// MPI ranks when started under mpirun; writes sweep.csv and
-// sweep_summary.csv.
+// tumble sweep (docs/SWEEP.md): the points and their state (--list), or the
+// sweep of experiments/sweep.hpp with this executable as each point's
+// program, then the figures over speeds from its sweep.csv.
 #include "cli/sweep_command.hpp"
 #include "cli/commands.hpp"
-#include "experiments/limits.hpp"
-#include "experiments/progress.hpp"
-
-#include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <fstream>
-#include <map>
-#include <optional>
-#include <thread>
 
 #include <fmt/format.h>
 
-#include "io/checkpoint.hpp"
-#include "io/run_lock.hpp"
 #include "io/sweep.hpp"
-#include "tumble/sim/time_step.hpp"
-#include "tumble/setup/drum.hpp"
-#include "io/toml_reader.hpp"
-#include "tumble/core/error.hpp"
 
 namespace tumble::cli {
 
-namespace fs = std::filesystem;
-
-namespace {
-
-// True when a point is settled for rank 0's wait: a readable summary.json,
-// or a failure marker of this job (or of any job when the job is unknown).
-bool point_done(const io::SweepPoint& p, const std::string& job) {
-    const io::PointState s = io::point_state(p.directory);
-    if (s == io::PointState::finished) return io::read_point_result(p).note.empty();  // not half-written
-    if (s == io::PointState::failed) {
-        const auto marker_job = io::failure_marker_job(p.directory);
-        return job.empty() || (marker_job && *marker_job == job);
-    }
-    return false;
-}
-
-// Every point checked as tumble drum will check it (step counts, samples),
-// with the time step the drum chooses for its mode, before any point runs.
-void check_points(const std::vector<io::SweepPoint>& points, const std::string& sweep_file) {
-    std::map<std::string, double> dt_of_mode;
-    const io::DrumSettings defaults;
-    for (const io::SweepPoint& p : points) {
-        if (!dt_of_mode.count(p.mode))
-            dt_of_mode[p.mode] = assess_time_step(build_drum_scenario({}, p.mode, p.grains, p.seed).scenario).dt;
-        try {
-            check_drum_durations(p.revolutions, p.omega, p.samples_per_revolution, defaults.settle_max_time,
-                                 dt_of_mode[p.mode]);
-        } catch (const Error& e) {
-            throw Error(sweep_file + ": point " + p.name + " (sweep.revolutions, and the speeds): " + e.what());
-        }
-    }
-}
-
-}  // namespace
-
 int sweep_command(const SweepOptions& o) {
-    using Clock = std::chrono::steady_clock;
-    const io::SweepSettings settings = io::load_sweep_settings(o.sweep_file);
-    const fs::path dir = o.output_directory.empty() ? settings.output : fs::path(o.output_directory);
-    const std::vector<io::SweepPoint> points = io::expand_sweep(settings, dir);
-    check_points(points, o.sweep_file);
-    const io::RankInfo rank = io::detect_rank();
-    const std::string who = rank.under_mpi() ? fmt::format("[rank {}/{}] ", rank.rank, rank.size) : std::string();
-    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const unsigned jobs = o.jobs > 0 ? o.jobs : std::max(1u, cores / static_cast<unsigned>(rank.local_size));
-    const std::vector<std::size_t> mine = io::points_of_rank(points.size(), rank.rank, rank.size);
-
     if (o.list) {
-        if (rank.rank != 0) return 0;
-        fmt::print("tumble sweep {}: {} points in {}\n", o.sweep_file, points.size(), dir.string());
-        for (const io::SweepPoint& p : points)
+        const SweepPlan plan = sweep_plan(o.sweep_file, o.output_directory);
+        if (io::detect_rank().rank != 0) return 0;
+        fmt::print("tumble sweep {}: {} points in {}\n", o.sweep_file, plan.points.size(), plan.directory.string());
+        for (const io::SweepPoint& p : plan.points)
             fmt::print("  {:4} {:<40} {}\n", p.index, p.name, io::to_string(io::point_state(p.directory)));
         return 0;
     }
-
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec) throw Error(dir.string() + ": cannot create the sweep directory: " + ec.message());
-    // Under MPI, rank 0 holds the sweep directory's lock; each point's run holds its own.
-    std::optional<io::RunLock> lock;
-    if (rank.rank == 0) lock.emplace(dir);
-    fs::create_directories(dir / "points", ec);
-    if (ec) throw Error((dir / "points").string() + ": cannot create the folder: " + ec.message());
-    if (rank.rank == 0) {
-        std::ofstream copy(dir / "sweep.toml", std::ios::trunc);  // what was asked, for the record
-        copy << "# copy of " << o.sweep_file << " as last run by tumble sweep\n"
-             << io::read_text_file(o.sweep_file);
-    }
-
-    // This rank's points: skip the finished ones, resume the interrupted ones
-    // that have a checkpoint, run the others from the start.
-    const fs::path binary = o.tumble_binary.empty() ? io::self_executable() : fs::path(o.tumble_binary);
-    std::vector<io::PointJob> todo;
-    std::size_t skipped = 0;
-    for (std::size_t i : mine) {
-        const io::SweepPoint& p = points[i];
-        const io::PointState s = io::point_state(p.directory);
-        if (s == io::PointState::finished) {
-            ++skipped;
-            continue;
-        }
-        const bool resume = s != io::PointState::pending && io::resumable(p.directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0)));
-        if (s != io::PointState::pending && !o.quiet)
-            fmt::print("{}{}: {} before; {}\n", who, p.name, io::to_string(s),
-                       resume ? "resuming it from its newest checkpoint" : "running it again from the start");
-        fs::remove(p.directory / io::point_failed_file, ec);
-        std::vector<std::string> argv{binary.string()};
-        for (std::string& a : resume ? io::resume_arguments(p) : io::drum_arguments(p)) argv.push_back(std::move(a));
-        todo.push_back({i, std::move(argv), p.directory / io::point_log_file});
-    }
-    if (!o.quiet)
-        fmt::print("{}tumble sweep: {} points in {} ({} for this rank: {} finished before, {} to run, {} at once)\n",
-                   who, points.size(), dir.string(), mine.size(), skipped, todo.size(), jobs);
-
-    install_stop_signals();  // SIGINT, SIGTERM: the running points checkpoint and stop
-    const auto start = Clock::now();
-    std::size_t done = 0, failed_here = 0;
-    auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-    // In a log, a line at the steady interval between the points' own lines
-    // (a point can run for hours); on a terminal those lines are enough.
-    ProgressStyle style = progress_style(o.quiet, o.progress_every);
-    if (style.output == ProgressStyle::Output::terminal) style.output = ProgressStyle::Output::none;
-    Progress progress(who + "sweep", 0, static_cast<std::int64_t>(todo.size()), style, {.unit = "points"});
-    io::run_jobs(
-        todo, jobs,
-        [&](const io::PointJob& job) {
-            if (!o.quiet) fmt::print("{}start  {} ({})\n", who, points[job.point].name, format_duration(elapsed()));
-        },
-        [&](const io::PointJob& job, const io::PointOutcome& out) {
-            ++done;
-            const io::SweepPoint& p = points[job.point];
-            const bool ok = out.exit_code == 0 && io::point_state(p.directory) == io::PointState::finished;
-            if (out.exit_code == exit_stopped && stop_signalled()) {
-                fmt::print(stderr, "{}stopped {} with a checkpoint (resumed by the next sweep)\n", who, p.name);
-                return;
-            }
-            if (!ok) {
-                ++failed_here;
-                io::write_failure_marker(p.directory, out.exit_code, rank.job);
-                fmt::print(stderr, "{}FAILED {} (exit code {}{}); log: {}\n", who, p.name, out.exit_code,
-                           out.exit_code == 0 ? ", but no summary.json" : "", job.log.string());
-            }
-            if (!o.quiet) {
-                const double t = elapsed();
-                const double eta = t / static_cast<double>(done) * static_cast<double>(todo.size() - done);
-                fmt::print("{}{} {} in {} [{}/{}; elapsed {}, ETA {}]\n", who, ok ? "done  " : "failed", p.name,
-                           format_duration(out.seconds), done, todo.size(), format_duration(t), format_duration(eta));
-            }
-        },
-        [&] {  // polled while the points run
-            progress.update(static_cast<std::int64_t>(done));
-            return stop_signalled();
-        });
-    if (stop_signalled()) {
-        fmt::print(stderr, "{}tumble sweep: stopped by a signal; the running points wrote checkpoints. Continue "
-                           "with the same command: tumble sweep {} -o {}\n",
-                   who, o.sweep_file, dir.string());
-        return exit_stopped;
-    }
-
-    if (rank.rank != 0) {
-        // Exit code 0 even if points failed: mpirun would kill rank 0 before
-        // it aggregates. Rank 0 reports the failures (failure markers) and
-        // its exit code counts them.
-        if (!o.quiet) fmt::print("{}finished: {} of {} points failed\n", who, failed_here, todo.size());
-        return 0;
-    }
-
-    // Rank 0 waits for the other ranks' points.
-    if (rank.under_mpi()) {
-        const auto wait_start = Clock::now();
-        auto last_report = wait_start;
-        while (true) {
-            std::size_t waiting = 0;
-            for (const io::SweepPoint& p : points)
-                if (!point_done(p, rank.job)) ++waiting;
-            if (waiting == 0) break;
-            const double waited = std::chrono::duration<double>(Clock::now() - wait_start).count();
-            if (waited > o.wait_timeout) {
-                fmt::print(stderr, "{}gave up waiting after {} for {} points of the other ranks\n", who,
-                           format_duration(waited), waiting);
-                break;
-            }
-            if (!o.quiet && Clock::now() - last_report > std::chrono::minutes(1)) {
-                fmt::print("{}waiting for {} points of the other ranks\n", who, waiting);
-                last_report = Clock::now();
-            }
-            std::this_thread::sleep_for(std::chrono::seconds(1));
-        }
-    }
-
-    std::vector<io::PointResult> results;
-    for (const io::SweepPoint& p : points) results.push_back(io::read_point_result(p));
-    const std::size_t missing = io::write_sweep_tables(dir, results);
-    for (const io::PointResult& r : results)
-        if (!r.note.empty()) fmt::print(stderr, "{}no result for {}: {}\n", who, r.point.name, r.note);
-    if (!o.quiet)
-        fmt::print("{}sweep: {} of {} points with results; written {} and {} ({})\n", who,
-                   points.size() - missing, points.size(), (dir / "sweep.csv").string(),
-                   (dir / "sweep_summary.csv").string(), format_duration(elapsed()));
+    SweepRunOptions options = o;
+    options.tumble_binary = io::self_executable();
+    const SweepOutcome outcome = run_sweep(options);
     // The figures over speeds (figs. 3, 5, 6): a convenience, so a machine
     // without matplotlib only gets a warning.
-    if (plot_command("sweep", {(dir / "sweep.csv").string()}, "", o.quiet) != 0)
-        fmt::print(stderr, "{}sweep: warning: the figures could not be drawn (tools/plot_drum.py sweep {})\n", who,
-                   (dir / "sweep.csv").string());
-    return missing || failed_here ? 1 : 0;
+    const std::string table = (outcome.directory / "sweep.csv").string();
+    if (outcome.tables_written && plot_command("sweep", {table}, "", o.quiet) != 0)
+        fmt::print(stderr, "{}sweep: warning: the figures could not be drawn (tools/plot_drum.py sweep {})\n",
+                   io::detect_rank().line_prefix(), table);
+    return outcome.exit_code;
 }
 
 }  // namespace tumble::cli

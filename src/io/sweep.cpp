@@ -265,6 +265,10 @@ RankInfo detect_rank(const std::function<const char*(const char*)>& getenv) {
     return info;
 }
 
+std::string RankInfo::line_prefix() const {
+    return under_mpi() ? fmt::format("[rank {}/{}] ", rank, size) : std::string();
+}
+
 RankInfo detect_rank() {
     return detect_rank([](const char* name) -> const char* { return std::getenv(name); });
 }

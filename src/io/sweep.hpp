@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 // tumble sweep (docs/SWEEP.md): the drum experiment over a list of rotation
-// speeds, modes and seeds. This header holds the parts that do not need the
-// command line: the sweep file, the expansion into points and their run
-// directories, the state of a point on disk (resume), the split of the
-// points over MPI ranks, the running of child processes, the reading of
-// the points' summary.json, and the aggregation into sweep.csv and
-// sweep_summary.csv.
+// speeds, modes and seeds. This header holds the parts that the sweep's run
+// (experiments/sweep.hpp) is built of: the sweep file, the expansion into
+// points and their run directories, the state of a point on disk (resume),
+// the split of the points over MPI ranks, the running of child processes,
+// the reading of the points' summary.json, and the aggregation into
+// sweep.csv and sweep_summary.csv.
 #pragma once
 
 #include <chrono>
@@ -108,6 +108,8 @@ struct RankInfo {
     int local_size = 1;  // ranks on this node (for the default -j)
     std::string job;     // shared by the ranks of one mpirun; empty if unknown
     bool under_mpi() const { return size > 1; }
+    // "[rank R/S] " under MPI, else empty: the start of a sweep's lines.
+    std::string line_prefix() const;
 };
 // From OMPI_COMM_WORLD_RANK/SIZE/LOCAL_SIZE, or PMI_RANK/PMI_SIZE (MPICH,
 // Intel MPI; MPI_LOCALNRANKS), and PMIX_NAMESPACE / OMPI_MCA_ess_base_jobid

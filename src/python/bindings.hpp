@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: MIT
 // The Python module tumble._core (pybind11): the engine's Simulation, the
-// scenario and drum readers, the drum protocol and the analysis, bound for
-// the pure-Python package src/python/tumble, which is what users import.
+// scenario and drum readers, the drum protocol, the sweep and the analysis,
+// bound for the pure-Python package src/python/tumble, which is what users
+// import.
 // One file per part; this header holds what they share.
 #pragma once
 
+#include <csignal>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -14,6 +17,7 @@
 #include <pybind11/pybind11.h>
 #include <toml++/toml.h>
 
+#include "experiments/run_control.hpp"
 #include "tumble/core/vec3.hpp"
 #include "tumble/particles/particle_store.hpp"
 
@@ -24,6 +28,7 @@ namespace py = pybind11;
 void bind_scenario(py::module_& m);
 void bind_simulation(py::module_& m);
 void bind_drum(py::module_& m);
+void bind_sweep(py::module_& m);
 void bind_analysis(py::module_& m);
 
 // The TOML table of a Python dict (a scenario or drum settings given as a
@@ -31,6 +36,46 @@ void bind_analysis(py::module_& m);
 // tuples and numpy arrays; bool, int, float and str values. `name` stands
 // for the file in messages (io::ConfigError).
 toml::table toml_from_dict(const py::dict& d, const std::filesystem::path& name);
+
+// While a protocol runs, tumble's SIGINT and SIGTERM handlers (Ctrl-C
+// writes a checkpoint and stops the run, run_control.hpp); Python's again
+// afterwards.
+class StopSignals {
+public:
+    StopSignals() {
+        sigaction(SIGINT, nullptr, &interrupt_);
+        sigaction(SIGTERM, nullptr, &terminate_);
+    }
+    ~StopSignals() {
+        sigaction(SIGINT, &interrupt_, nullptr);
+        sigaction(SIGTERM, &terminate_, nullptr);
+        experiments::clear_stop_signal();
+    }
+
+private:
+    struct sigaction interrupt_ {}, terminate_ {};
+};
+
+// work() (a protocol of experiments/, which takes the GIL for any call into
+// Python) without the GIL and under StopSignals; its result, or, if a
+// signal stopped it, KeyboardInterrupt with stopped_message(result) (how to
+// continue).
+template <class Work, class Message>
+auto run_stoppable(Work&& work, Message&& stopped_message) {
+    decltype(work()) result;
+    bool interrupted = false;
+    {
+        const StopSignals signals;
+        py::gil_scoped_release released;
+        result = work();
+        interrupted = experiments::stop_signalled();
+    }
+    if (interrupted) {
+        PyErr_SetString(PyExc_KeyboardInterrupt, std::string(stopped_message(result)).c_str());
+        throw py::error_already_set();
+    }
+    return result;
+}
 
 // A numpy array of `values`: a Vec3 field becomes N x 3. With an owner, a
 // read-only view of the vector's memory that keeps the owner alive (no

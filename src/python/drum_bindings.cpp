@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The drum experiment (experiments/drum.hpp) for Python: its settings, the
 // protocol with a callback at every sample, and the analysis of a run.
-#include <csignal>
-
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -18,25 +16,6 @@ namespace tumble::python {
 namespace fs = std::filesystem;
 
 namespace {
-
-// While the protocol runs, tumble's SIGINT and SIGTERM handlers (Ctrl-C
-// writes a checkpoint and stops the run, run_control.hpp); Python's again
-// afterwards.
-class StopSignals {
-public:
-    StopSignals() {
-        sigaction(SIGINT, nullptr, &interrupt_);
-        sigaction(SIGTERM, nullptr, &terminate_);
-    }
-    ~StopSignals() {
-        sigaction(SIGINT, &interrupt_, nullptr);
-        sigaction(SIGTERM, &terminate_, nullptr);
-        experiments::clear_stop_signal();
-    }
-
-private:
-    struct sigaction interrupt_ {}, terminate_ {};
-};
 
 py::object namespace_of(py::dict fields) { return py::module_::import("types").attr("SimpleNamespace")(**fields); }
 
@@ -113,19 +92,12 @@ void bind_drum(py::module_& m) {
                     py::gil_scoped_acquire python;
                     on_sample(sample_of(s));
                 };
-            experiments::DrumOutcome outcome;
-            bool interrupted = false;
-            {
-                const StopSignals signals;
-                py::gil_scoped_release engine_works;
-                outcome = experiments::run_drum(o);
-                interrupted = experiments::stop_signalled();
-            }
-            if (interrupted) {
-                PyErr_SetString(PyExc_KeyboardInterrupt, ("the drum run stopped with a checkpoint; continue with: "
-                                                          "tumble resume " + outcome.directory.string()).c_str());
-                throw py::error_already_set();
-            }
+            const experiments::DrumOutcome outcome = run_stoppable(
+                [&] { return experiments::run_drum(o); },
+                [](const experiments::DrumOutcome& stopped) {
+                    return "the drum run stopped with a checkpoint; continue with: tumble resume " +
+                           stopped.directory.string();
+                });
             return py::make_tuple(outcome.exit_code, outcome.directory);
         },
         py::arg("settings"), py::arg("on_sample") = nullptr, py::arg("threads") = 1, py::arg("force") = false,

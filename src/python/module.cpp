@@ -7,7 +7,7 @@
 PYBIND11_MODULE(_core, m) {
     namespace py = pybind11;
     using namespace tumble::python;
-    m.doc() = "tumble's engine, readers, drum protocol and analysis (import tumble, not this)";
+    m.doc() = "tumble's engine, readers, drum protocol, sweep and analysis (import tumble, not this)";
     m.attr("version") = TUMBLE_VERSION;
     // Bad input and failed runs (the reason, naming the file and key where
     // there is one); a run that became unphysical (the diagnostic).
@@ -16,5 +16,6 @@ PYBIND11_MODULE(_core, m) {
     bind_scenario(m);
     bind_simulation(m);
     bind_drum(m);
+    bind_sweep(m);
     bind_analysis(m);
 }

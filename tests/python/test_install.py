@@ -48,9 +48,22 @@ def test_installed_plot_runs_the_installed_script(prefix, tmp_path):
         script.write_text(original)
 
 
-def test_installed_module_imports(prefix, tmp_path):
+def installed_python(prefix, cwd, code):
+    """What `code` prints with the installed module first on the path (and
+    no TUMBLE_BINARY), and where that module is."""
     site = prefix / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "dist-packages"
-    env = {**os.environ, "PYTHONPATH": str(site)}
-    found = subprocess.run([sys.executable, "-c", "import tumble; print(tumble.__file__)"], cwd=tmp_path, env=env,
-                           check=True, capture_output=True, text=True).stdout
-    assert pathlib.Path(found.strip()).is_relative_to(site)
+    env = {name: value for name, value in os.environ.items() if name != "TUMBLE_BINARY"}
+    printed = subprocess.run([sys.executable, "-c", code], cwd=cwd, env={**env, "PYTHONPATH": str(site)},
+                             check=True, capture_output=True, text=True).stdout
+    return printed.strip(), site
+
+
+def test_installed_module_imports(prefix, tmp_path):
+    found, site = installed_python(prefix, tmp_path, "import tumble; print(tumble.__file__)")
+    assert pathlib.Path(found).is_relative_to(site)
+
+
+def test_installed_module_runs_the_installed_program(prefix, tmp_path):
+    """run_sweep's points: the tumble installed beside the module, not the build tree's."""
+    found, _ = installed_python(prefix, tmp_path, "import tumble; print(tumble.find_tumble_binary())")
+    assert pathlib.Path(found) == (prefix / "bin" / "tumble").resolve()

@@ -14,12 +14,15 @@ their order changes between steps: follow grains by `ids` (or index with
 
 The drum experiment: tumble.run_drum(...) (the protocol of `tumble drum`,
 with a callback at every sample); its settings are tumble drum's options.
-Run directories: tumble.io.Run(directory). README.md, section "Python".
+A sweep over speeds, modes and seeds: tumble.run_sweep(sweep_file) (that of
+`tumble sweep`). Run directories: tumble.io.Run(directory). README.md,
+section "Python".
 """
 
 import copy
 import os
 import pathlib
+import shutil
 import tomllib
 
 from tumble._core import (  # noqa: F401
@@ -36,7 +39,7 @@ from tumble._core import (  # noqa: F401
     hogg_mean_position,
 )
 from tumble._core import version as __version__  # noqa: F401
-from tumble import _core
+from tumble import _core, _paths
 
 # tumble drum's options -> (table, key) of a drum settings file (docs/DRUM.md,
 # examples/drum_*.toml).
@@ -136,5 +139,52 @@ def run_drum(config=None, *, on_sample=None, threads=1, force=False, quiet=True,
                                   checkpoint_every_minutes=checkpoint_every_minutes, stop_at_step=stop_at_step,
                                   allow_unsafe_dt=allow_unsafe_dt, max_memory_gib=max_memory_gib)
     return pathlib.Path(directory)
+
+def find_tumble_binary():
+    """The tumble program that run_sweep's points run: $TUMBLE_BINARY if it is
+    set; else this package's own if it exists (installed: the one installed
+    beside it, PREFIX/bin/tumble; in build/python: the build tree's); else
+    tumble on the PATH. FileNotFoundError naming what was tried if none."""
+    if os.environ.get("TUMBLE_BINARY"):
+        tried = {"TUMBLE_BINARY": os.environ["TUMBLE_BINARY"]}
+    else:
+        tried = {"this package's": pathlib.Path(__file__).parent / _paths.TUMBLE_PROGRAM,
+                 "on the PATH": shutil.which("tumble")}
+    for path in tried.values():
+        if path and os.path.isfile(path) and os.access(path, os.X_OK):
+            return pathlib.Path(path).resolve()
+    raise FileNotFoundError("tumble: no tumble program for the sweep's points; tried "
+                            + "; ".join(f"{where}: {os.fspath(path) if path else 'none'}"
+                                        for where, path in tried.items())
+                            + " (set TUMBLE_BINARY, or pass tumble_binary)")
+
+
+def sweep_points(sweep_file, out=None):
+    """The points of a sweep file (docs/SWEEP.md) in plan order, each a dict:
+    name, mode, omega (rad/s), seed, directory (under `out`, default the
+    file's [output] directory) and state (pending, unfinished, failed,
+    finished), as `tumble sweep --list`; runs nothing."""
+    return _core.sweep_points(os.fspath(sweep_file), os.fspath(out or ""))
+
+
+def run_sweep(sweep_file, out=None, jobs=0, quiet=True, tumble_binary=None):
+    """The sweep of `tumble sweep` (docs/SWEEP.md): every point of the sweep
+    file a `tumble drum` child process in out/points/NAME (out: default the
+    file's [output] directory), `jobs` at once (0: the cores); finished
+    points are skipped and interrupted ones resumed; then out/sweep.csv and
+    out/sweep_summary.csv (tumble.io.read_csv reads them). No figures
+    (python3 tools/plot_drum.py sweep out/sweep.csv draws them).
+
+    tumble_binary: the program the points run (default: find_tumble_binary()).
+    Ctrl-C stops the points with checkpoints (the next call resumes them) and
+    raises KeyboardInterrupt.
+
+    Returns a dict: directory, points, with_results (points with numbers in
+    sweep.csv), failed (points that failed in this call; each leaves its
+    log.txt), exit_code (that of tumble sweep: 0, or 1 if a point has no
+    results)."""
+    return _core.run_sweep(os.fspath(sweep_file), os.fspath(out or ""), jobs, quiet,
+                           os.fspath(tumble_binary or find_tumble_binary()))
+
 
 from tumble import io  # noqa: E402,F401  (tumble.io.Run: run directories)
