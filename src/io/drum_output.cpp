@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -210,18 +209,9 @@ std::size_t nearest_sample(const std::vector<double>& N, double target) {
 
 analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_start, double omega) {
     const CsvTable csv = read_csv_table(file);
-    // The time column, or the first line "# time = T s, step = S" of a
-    // snapshot written before it.
-    double time = 0.0;
-    if (std::find(csv.header.begin(), csv.header.end(), "time") != csv.header.end() && !csv.rows.empty()) {
-        time = csv.numbers("time").front();
-    } else {
-        std::ifstream in(file);
-        std::string first;
-        if (!std::getline(in, first) || std::sscanf(first.c_str(), "# time = %lf s", &time) != 1)
-            throw Error(file.string() +
-                        ": not a particle snapshot (no time column, and no first line \"# time = T s, ...\")");
-    }
+    const std::optional<double> time = snapshot_time(csv);
+    if (!time)
+        throw Error(file.string() + ": not a particle snapshot (no time column, and no first line \"# time = T s, ...\")");
     const std::vector<double> id = csv.numbers("id"), x = csv.numbers("x"), y = csv.numbers("y"),
                               z = csv.numbers("z"), radius = csv.numbers("radius"), tag = csv.numbers("tag"),
                               kinematic = csv.numbers("kinematic"), vx = csv.numbers("vx"), vy = csv.numbers("vy"),
@@ -239,7 +229,7 @@ analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_
     std::iota(order.begin(), order.end(), std::size_t{0});
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
     analysis::GrainFrame frame;
-    frame.revolutions = omega * (time - rotation_start) / (2.0 * tumble::pi);
+    frame.revolutions = omega * (*time - rotation_start) / (2.0 * tumble::pi);
     for (std::size_t k : order) {
         if (kinematic[k] != 0.0) continue;
         frame.id.push_back(static_cast<std::int64_t>(id[k]));

@@ -45,11 +45,10 @@ void SnapshotSeries::add_to_indexes(double time) {
     times_.push_back(time);
 }
 
-namespace {
-// Snapshots written before the `time` column had it on their first line,
-// "# time = T s, step = S".
-std::optional<double> time_from_first_line(const fs::path& file) {
-    std::ifstream in(file);
+std::optional<double> snapshot_time(const CsvTable& csv) {
+    if (std::find(csv.header.begin(), csv.header.end(), "time") != csv.header.end() && !csv.rows.empty())
+        return csv.numbers("time").front();
+    std::ifstream in(csv.file);
     std::string first;
     std::getline(in, first);
     const std::string prefix = "# time = ";
@@ -59,7 +58,6 @@ std::optional<double> time_from_first_line(const fs::path& file) {
     if (end == first.c_str() + prefix.size() || !std::isfinite(t)) return std::nullopt;
     return t;
 }
-}  // namespace
 
 SnapshotParticles read_snapshot_csv(const fs::path& file) {
     const CsvTable csv = read_csv_table(file);
@@ -69,10 +67,7 @@ SnapshotParticles read_snapshot_csv(const fs::path& file) {
     const std::size_t material = csv.column("material");
     SnapshotParticles p;
     p.radius = radius;
-    if (std::find(csv.header.begin(), csv.header.end(), "time") != csv.header.end() && !csv.rows.empty())
-        p.time = csv.numbers("time").front();
-    else
-        p.time = time_from_first_line(file);
+    p.time = snapshot_time(csv);
     for (std::size_t i = 0; i < csv.rows.size(); ++i) {
         p.position.push_back({x[i], y[i], z[i]});
         p.tag.push_back(static_cast<std::int32_t>(tag[i]));

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "io/csv_table.hpp"
 #include "io/vtk_output.hpp"
 #include "tumble/sim/simulation.hpp"
 
@@ -49,6 +50,11 @@ struct SnapshotParticles {
 };
 // tumble::Error naming the file if it cannot be read or lacks a column.
 SnapshotParticles read_snapshot_csv(const std::filesystem::path& file);
+
+// The simulated time a snapshot CSV was taken at, s: its `time` column, or
+// the first line "# time = T s, step = S" of snapshots written before it
+// had one; none if it says neither.
+std::optional<double> snapshot_time(const CsvTable& csv);
 
 // The snapshot CSV files of a run directory (DIR/snapshots/NNNNNN.csv), in
 // the order of their numbers; empty if there are none.
