@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages tumble needs, if any is missing (as root).
 #     bash scripts/install-deps.sh [EXTRA_PACKAGE ...]   (extras: e.g. scripts/fuzz.sh's clang)
 set -euo pipefail
-packages=(g++ cmake make pkg-config libtomlplusplus-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev python3 python3-vtk9 python3-matplotlib python3-numpy openmpi-bin libpng-dev ffmpeg
+packages=(g++ cmake make pkg-config libtomlplusplus-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev python3 python3-vtk9 python3-matplotlib python3-numpy openmpi-bin libopenmpi-dev libpng-dev ffmpeg
           pybind11-dev python3-pybind11 python3-dev python3-pytest python3-pandas
           nlohmann-json3-dev zlib1g-dev "$@")
 missing=()

@@ -17,6 +17,7 @@
 #include "tumble/contact/contact_law.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
+#include "tumble/core/mpi.hpp"
 
 namespace {
 
@@ -302,16 +303,13 @@ int main(int argc, char** argv) {
     SweepOptions sweep;
     CLI::App* sweep_cmd = app.add_subcommand(
         "sweep", "The drum experiment over rotation speeds, modes and seeds, one child run per point "
-                 "(resumable; splits over MPI ranks under mpirun; see docs/SWEEP.md)");
+                 "(resumable; under mpirun or srun the ranks share the points; see docs/SWEEP.md)");
     sweep_cmd->add_option("sweep_file", sweep.sweep_file, "Sweep file (TOML; examples/sweep_*.toml)")->required();
     sweep_cmd->add_option("-o,--out", sweep.output_directory, "Sweep directory (default: the file's [output] directory)");
     sweep_cmd->add_option("-j,--jobs", sweep.jobs,
                           "Points run at once (per MPI rank; default: the cores of this node / its ranks)")
         ->check(CLI::PositiveNumber);
     sweep_cmd->add_flag("--list", sweep.list, "Print the points and their state; run nothing");
-    sweep_cmd->add_option("--wait-timeout", sweep.wait_timeout,
-                          "Under MPI: seconds rank 0 waits for the other ranks' points (default 7 days)")
-        ->check(finite_positive);
     sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "Print nothing but errors and failed points");
     add_progress_option(sweep_cmd, sweep.progress_every);
 
@@ -322,7 +320,14 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         return usage_error(app, e, argc, argv);
     }
+    // MPI, if a launcher started this process (core/mpi.hpp); finalised on
+    // return. An error on one of several ranks ends them all.
+    std::optional<tumble::mpi::Session> mpi;
     try {
+        mpi.emplace(argc, argv);
+        if (tumble::mpi::size() > 1 && !sweep_cmd->parsed())
+            throw tumble::Error("only tumble sweep runs on several MPI ranks so far (each rank a share of the "
+                                "points); run this command without mpirun or srun");
         if (run_cmd->parsed()) return run_command(run);
         if (bench_cmd->parsed()) {
             const bool drum_case = bench.bench_case == "long-drum";
@@ -377,13 +382,16 @@ int main(int argc, char** argv) {
             return drum_command(drum);
         }
     } catch (const BlewUp& e) {
-        fmt::print(stderr, "tumble: error: {}\n", e.what());
+        fmt::print(stderr, "tumble: {}error: {}\n", tumble::mpi::line_prefix(), e.what());
+        tumble::mpi::abort_others(exit_blew_up);
         return exit_blew_up;
     } catch (const tumble::Error& e) {
-        fmt::print(stderr, "tumble: error: {}\n", e.what());
+        fmt::print(stderr, "tumble: {}error: {}\n", tumble::mpi::line_prefix(), e.what());
+        tumble::mpi::abort_others(exit_bad_input);
         return exit_bad_input;
     } catch (const std::exception& e) {
-        fmt::print(stderr, "tumble: unexpected error: {}\n", e.what());
+        fmt::print(stderr, "tumble: {}unexpected error: {}\n", tumble::mpi::line_prefix(), e.what());
+        tumble::mpi::abort_others(exit_unexpected);
         return exit_unexpected;
     }
     return 1;

@@ -8,13 +8,14 @@
 #include <fmt/format.h>
 
 #include "io/sweep.hpp"
+#include "tumble/core/mpi.hpp"
 
 namespace tumble::cli {
 
 int sweep_command(const SweepOptions& o) {
     if (o.list) {
         const SweepPlan plan = sweep_plan(o.sweep_file, o.output_directory);
-        if (io::detect_rank().rank != 0) return 0;
+        if (tumble::mpi::rank() != 0) return 0;
         fmt::print("tumble sweep {}: {} points in {}\n", o.sweep_file, plan.points.size(), plan.directory.string());
         for (const io::SweepPoint& p : plan.points)
             fmt::print("  {:4} {:<40} {}\n", p.index, p.name, io::to_string(io::point_state(p.directory)));
@@ -28,7 +29,7 @@ int sweep_command(const SweepOptions& o) {
     const std::string table = (outcome.directory / "sweep.csv").string();
     if (outcome.tables_written && plot_command("sweep", {table}, "", o.quiet) != 0)
         fmt::print(stderr, "{}sweep: warning: the figures could not be drawn (tools/plot_drum.py sweep {})\n",
-                   io::detect_rank().line_prefix(), table);
+                   tumble::mpi::line_prefix(), table);
     return outcome.exit_code;
 }
 

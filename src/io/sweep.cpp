@@ -23,6 +23,7 @@
 #include "io/toml_reader.hpp"
 #include "tumble/analysis/bootstrap.hpp"
 #include "tumble/core/error.hpp"
+#include "tumble/core/mpi.hpp"
 
 extern char** environ;
 
@@ -214,70 +215,12 @@ PointState point_state(const fs::path& dir) {
     return PointState::pending;
 }
 
-void write_failure_marker(const fs::path& dir, int exit_code, const std::string& job) {
+void write_failure_marker(const fs::path& dir, int exit_code) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     std::ofstream out(dir / point_failed_file, std::ios::trunc);
-    out << "exit code " << exit_code << "\njob " << job << "\n";
+    out << "exit code " << exit_code << "\n";
     if (!out) throw Error((dir / point_failed_file).string() + ": cannot write the failure marker");
-}
-
-std::optional<std::string> failure_marker_job(const fs::path& dir) {
-    std::ifstream in(dir / point_failed_file);
-    if (!in) return std::nullopt;
-    std::string line, job;
-    while (std::getline(in, line))
-        if (line.rfind("job ", 0) == 0) job = line.substr(4);
-    return job;
-}
-
-// ============================================================ MPI
-
-RankInfo detect_rank(const std::function<const char*(const char*)>& getenv) {
-    auto number = [&](const char* name) -> std::optional<int> {
-        const char* v = getenv(name);
-        if (!v || !*v) return std::nullopt;
-        int out = 0;
-        const char* end = v + std::strlen(v);
-        auto [p, ec] = std::from_chars(v, end, out);
-        if (ec != std::errc() || p != end) throw Error(fmt::format("{}={}: not an integer", name, v));
-        return out;
-    };
-    RankInfo info;
-    std::optional<int> rank = number("OMPI_COMM_WORLD_RANK"), size = number("OMPI_COMM_WORLD_SIZE");
-    std::optional<int> local = number("OMPI_COMM_WORLD_LOCAL_SIZE");
-    if (!rank || !size) {
-        rank = number("PMI_RANK"), size = number("PMI_SIZE");
-        local = number("MPI_LOCALNRANKS");
-    }
-    if (rank && size) {
-        if (*size < 1 || *rank < 0 || *rank >= *size)
-            throw Error(fmt::format("MPI rank {} of {} from the environment makes no sense", *rank, *size));
-        info.rank = *rank;
-        info.size = *size;
-        info.local_size = local && *local >= 1 ? *local : 1;
-    }
-    for (const char* name : {"PMIX_NAMESPACE", "OMPI_MCA_ess_base_jobid", "PMI_JOBID", "SLURM_JOB_ID"})
-        if (const char* v = getenv(name); v && *v) {
-            info.job = v;
-            break;
-        }
-    return info;
-}
-
-std::string RankInfo::line_prefix() const {
-    return under_mpi() ? fmt::format("[rank {}/{}] ", rank, size) : std::string();
-}
-
-RankInfo detect_rank() {
-    return detect_rank([](const char* name) -> const char* { return std::getenv(name); });
-}
-
-std::vector<std::size_t> points_of_rank(std::size_t points, int rank, int size) {
-    std::vector<std::size_t> out;
-    for (std::size_t i = static_cast<std::size_t>(rank); i < points; i += static_cast<std::size_t>(size))
-        out.push_back(i);
-    return out;
 }
 
 // ============================================================ child processes
@@ -292,8 +235,14 @@ int spawn_process(const std::vector<std::string>& argv, const fs::path& log) {
     posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
     posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
     posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    std::vector<char*> environment;
+    for (char** e = environ; *e; ++e) {
+        const std::string_view entry(*e);
+        if (!mpi::is_launcher_variable(entry.substr(0, entry.find('=')))) environment.push_back(*e);
+    }
+    environment.push_back(nullptr);
     pid_t pid = 0;
-    const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+    const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environment.data());
     posix_spawn_file_actions_destroy(&actions);
     if (rc != 0) throw Error(fmt::format("cannot start {}: {}", argv[0], std::strerror(rc)));
     return pid;
@@ -312,50 +261,53 @@ fs::path self_executable() {
     return p;
 }
 
-std::vector<PointOutcome> run_jobs(const std::vector<PointJob>& jobs, unsigned parallel,
+std::vector<PointOutcome> run_jobs(const NextJob& next, unsigned parallel,
                                    const std::function<void(const PointJob&)>& on_start,
                                    const std::function<void(const PointJob&, const PointOutcome&)>& on_finish,
                                    const std::function<bool()>& stop) {
     using Clock = std::chrono::steady_clock;
     struct Running {
-        std::size_t job;
+        PointJob job;
         pid_t pid;
         Clock::time_point start;
     };
     parallel = std::max(1u, parallel);
     std::vector<PointOutcome> outcomes;
     std::vector<Running> running;
-    std::size_t next = 0;
-    auto finish = [&](std::size_t job, int code, Clock::time_point start) {
-        const PointOutcome o{jobs[job].point, code, std::chrono::duration<double>(Clock::now() - start).count()};
+    auto finish = [&](const PointJob& job, int code, Clock::time_point start) {
+        const PointOutcome o{job.point, code, std::chrono::duration<double>(Clock::now() - start).count()};
         outcomes.push_back(o);
-        if (on_finish) on_finish(jobs[job], o);
+        if (on_finish) on_finish(job, o);
     };
-    bool stopping = false;
-    while ((next < jobs.size() && !stopping) || !running.empty()) {
+    bool exhausted = false, stopping = false;
+    while ((!exhausted && !stopping) || !running.empty()) {
         if (!stopping && stop && stop()) {
             stopping = true;
             for (const Running& r : running) ::kill(r.pid, SIGTERM);
         }
-        while (!stopping && next < jobs.size() && running.size() < parallel) {
-            const PointJob& job = jobs[next];
-            if (on_start) on_start(job);
+        while (!stopping && !exhausted && running.size() < parallel) {
+            std::optional<PointJob> job = next();
+            if (!job) {
+                exhausted = true;
+                break;
+            }
+            if (on_start) on_start(*job);
             const auto start = Clock::now();
             {
                 std::error_code ec;
-                fs::create_directories(job.log.parent_path(), ec);
-                std::ofstream header(job.log, std::ios::trunc);
+                fs::create_directories(job->log.parent_path(), ec);
+                std::ofstream header(job->log, std::ios::trunc);
                 header << "# tumble sweep:";
-                for (const std::string& a : job.argv) header << ' ' << a;
+                for (const std::string& a : job->argv) header << ' ' << a;
                 header << '\n';
             }
             try {
-                running.push_back({next, static_cast<pid_t>(spawn_process(job.argv, job.log)), start});
+                const auto pid = static_cast<pid_t>(spawn_process(job->argv, job->log));
+                running.push_back({std::move(*job), pid, start});
             } catch (const Error& e) {
-                std::ofstream(job.log, std::ios::app) << e.what() << '\n';
-                finish(next, 127, start);
+                std::ofstream(job->log, std::ios::app) << e.what() << '\n';
+                finish(*job, 127, start);
             }
-            ++next;
         }
         bool reaped = false;
         for (std::size_t k = 0; k < running.size();) {
@@ -372,6 +324,15 @@ std::vector<PointOutcome> run_jobs(const std::vector<PointJob>& jobs, unsigned p
         if (!reaped && !running.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     return outcomes;
+}
+
+std::vector<PointOutcome> run_jobs(const std::vector<PointJob>& jobs, unsigned parallel,
+                                   const std::function<void(const PointJob&)>& on_start,
+                                   const std::function<void(const PointJob&, const PointOutcome&)>& on_finish,
+                                   const std::function<bool()>& stop) {
+    std::size_t next = 0;
+    return run_jobs([&]() -> std::optional<PointJob> { return next < jobs.size() ? std::optional(jobs[next++]) : std::nullopt; },
+                    parallel, on_start, on_finish, stop);
 }
 
 // ============================================================ aggregation
@@ -393,22 +354,36 @@ bool has_numbers(const PointResult& r) { return r.state == PointState::finished 
 }  // namespace
 
 PointResult read_point_result(const SweepPoint& p) {
-    PointResult r{p, point_state(p.directory), "", {}, nan, nan, nan, nan, nan, nan};
-    if (r.state == PointState::failed) {
+    const PointState state = point_state(p.directory);
+    if (state == PointState::failed) {
         std::ifstream in(p.directory / point_failed_file);
         std::string line;
         std::getline(in, line);
-        r.note = "failed (" + line + "); log: " + (p.directory / point_log_file).string();
+        PointResult r{p, state, "failed (" + line + "); log: " + (p.directory / point_log_file).string(), {},
+                      nan, nan, nan, nan, nan, nan};
         return r;
     }
-    if (r.state != PointState::finished) {
-        r.note = std::string(to_string(r.state)) + ": no summary.json";
-        return r;
-    }
+    if (state != PointState::finished)
+        return {p, state, std::string(to_string(state)) + ": no summary.json", {}, nan, nan, nan, nan, nan, nan};
+    const fs::path file = p.directory / point_summary_file;
     try {
-        const fs::path file = p.directory / point_summary_file;
-        const Json j = parse_json(read_text_file(file), file.string());
-        if (!j.is_object()) throw Error(file.string() + ": not a JSON object");
+        return point_result_from_summary(p, read_text_file(file), file.string());
+    } catch (const Error& e) {
+        return {p, state, std::string("unreadable summary.json: ") + e.what(), {}, nan, nan, nan, nan, nan, nan};
+    }
+}
+
+PointResult failed_point_result(const SweepPoint& p, int exit_code, const std::string& where) {
+    return {p, PointState::failed,
+            fmt::format("failed ({}exit code {}); log: {}", where, exit_code, (p.directory / point_log_file).string()),
+            {}, nan, nan, nan, nan, nan, nan};
+}
+
+PointResult point_result_from_summary(const SweepPoint& p, const std::string& text, const std::string& source) {
+    PointResult r{p, PointState::finished, "", {}, nan, nan, nan, nan, nan, nan};
+    try {
+        const Json j = parse_json(text, source);
+        if (!j.is_object()) throw Error(source + ": not a JSON object");
         auto num = [](const Json& o, std::string_view key) { return json_number(o, key).value_or(nan); };
         auto is_true = [](const Json& o, const char* key) {
             const auto it = o.find(key);
@@ -419,10 +394,10 @@ PointResult read_point_result(const SweepPoint& p) {
             return it != o.end() && it->is_string() ? it->get<std::string>() : std::string();
         };
         const auto comps = j.find("components");
-        if (comps == j.end() || !comps->is_array()) throw Error(file.string() + ": no \"components\" array");
+        if (comps == j.end() || !comps->is_array()) throw Error(source + ": no \"components\" array");
         for (const Json& c : *comps) {
             const std::string name = name_of(c);
-            if (name.empty()) throw Error(file.string() + ": a component without a name");
+            if (name.empty()) throw Error(source + ": a component without a name");
             PointResult::Component k{num(c, "D"), num(c, "D_stderr"), num(c, "D_one_term"), is_true(c, "determined"),
                                      nan};
             // The estimators of issue 14, where determined.

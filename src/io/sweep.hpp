@@ -3,7 +3,7 @@
 // speeds, modes and seeds. This header holds the parts that the sweep's run
 // (experiments/sweep.hpp) is built of: the sweep file, the expansion into
 // points and their run directories, the state of a point on disk (resume),
-// the split of the points over MPI ranks, the running of child processes,
+// the running of child processes,
 // the reading of the points' summary.json, and the aggregation into
 // sweep.csv and sweep_summary.csv.
 #pragma once
@@ -94,37 +94,16 @@ enum class PointState {
 const char* to_string(PointState s);
 PointState point_state(const std::filesystem::path& point_directory);
 
-// The failure marker: "exit code N\njob TOKEN\n". The token tells a marker
-// of this MPI job from a stale one (empty outside MPI).
-void write_failure_marker(const std::filesystem::path& point_directory, int exit_code, const std::string& job);
-// The job token of the marker, or nullopt if there is none.
-std::optional<std::string> failure_marker_job(const std::filesystem::path& point_directory);
-
-// ---------------------------------------------------------------- MPI
-
-struct RankInfo {
-    int rank = 0;
-    int size = 1;
-    int local_size = 1;  // ranks on this node (for the default -j)
-    std::string job;     // shared by the ranks of one mpirun; empty if unknown
-    bool under_mpi() const { return size > 1; }
-    // "[rank R/S] " under MPI, else empty: the start of a sweep's lines.
-    std::string line_prefix() const;
-};
-// From OMPI_COMM_WORLD_RANK/SIZE/LOCAL_SIZE, or PMI_RANK/PMI_SIZE (MPICH,
-// Intel MPI; MPI_LOCALNRANKS), and PMIX_NAMESPACE / OMPI_MCA_ess_base_jobid
-// / PMI_JOBID / SLURM_JOB_ID for the job token. `getenv` is injectable for tests.
-RankInfo detect_rank(const std::function<const char*(const char*)>& getenv);
-RankInfo detect_rank();
-
-// The indices of the points that `rank` of `size` runs: index % size == rank.
-std::vector<std::size_t> points_of_rank(std::size_t points, int rank, int size);
+// The failure marker: "exit code N\n".
+void write_failure_marker(const std::filesystem::path& point_directory, int exit_code);
 
 // ---------------------------------------------------------------- child processes
 
 // Starts `argv` (argv[0] the program path) with stdout and stderr appended
-// to `log` and stdin from /dev/null; returns the pid. Throws tumble::Error
-// if the process cannot be started.
+// to `log`, stdin from /dev/null and this process's environment less an MPI
+// launcher's variables (mpi::is_launcher_variable: a child of a rank is not
+// one of the ranks); returns the pid. Throws tumble::Error if the process
+// cannot be started.
 int spawn_process(const std::vector<std::string>& argv, const std::filesystem::path& log);
 
 // Exit code of a finished child: its exit status, or 128 + signal.
@@ -145,11 +124,20 @@ struct PointOutcome {
     double seconds;
 };
 
-// Runs `jobs` with up to `parallel` at once, in order. `on_start(job)` and
-// `on_finish(job, outcome)` are called from the calling thread. Once
-// `stop()` returns true, no job is started and each running one is sent
-// SIGTERM (a drum writes a checkpoint and stops) and waited for. Returns the
-// outcomes in the order the jobs finished.
+// Runs the jobs that `next()` hands out, up to `parallel` at once, until it
+// returns nullopt (it is not asked again) and the running ones have ended.
+// `on_start(job)` and `on_finish(job, outcome)` are called from the calling
+// thread; `stop()` is polled every 20 ms or so while jobs run (it may do
+// other work, as answering other MPI ranks). Once it returns true, no job is
+// started and each running one is sent SIGTERM (a drum writes a checkpoint
+// and stops) and waited for. Returns the outcomes in the order the jobs
+// finished.
+using NextJob = std::function<std::optional<PointJob>()>;
+std::vector<PointOutcome> run_jobs(const NextJob& next, unsigned parallel,
+                                   const std::function<void(const PointJob&)>& on_start,
+                                   const std::function<void(const PointJob&, const PointOutcome&)>& on_finish,
+                                   const std::function<bool()>& stop = {});
+// The same for a list of jobs, in order.
 std::vector<PointOutcome> run_jobs(const std::vector<PointJob>& jobs, unsigned parallel,
                                    const std::function<void(const PointJob&)>& on_start,
                                    const std::function<void(const PointJob&, const PointOutcome&)>& on_finish,
@@ -185,6 +173,11 @@ struct PointResult {
 
 // Reads the point's summary.json if it is finished (state and note otherwise).
 PointResult read_point_result(const SweepPoint& p);
+// The result of a finished point from the text of its summary.json (an MPI
+// rank sends it to rank 0); `source` names it in a note. Or of a point whose
+// run ended with a non-zero exit code (where: the rank's line prefix).
+PointResult point_result_from_summary(const SweepPoint& p, const std::string& summary_json, const std::string& source);
+PointResult failed_point_result(const SweepPoint& p, int exit_code, const std::string& where);
 
 // Writes DIR/sweep.csv (one row per point, plan order) and
 // DIR/sweep_summary.csv (mean, standard deviation, count, and the 95 %

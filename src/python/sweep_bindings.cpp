@@ -6,10 +6,22 @@
 
 #include "bindings.hpp"
 #include "experiments/sweep.hpp"
+#include "tumble/core/mpi.hpp"
 
 namespace tumble::python {
 
 namespace fs = std::filesystem;
+
+namespace {
+// Under an MPI launcher (mpirun python3 script.py) the ranks share the
+// sweep's points as under tumble sweep: MPI is started at the first sweep
+// (core/mpi.hpp; nothing without a launcher) and ends with the process.
+void start_mpi_once() {
+    static int argc = 0;
+    static char** argv = nullptr;
+    static const mpi::Session session(argc, argv);
+}
+}  // namespace
 
 void bind_sweep(py::module_& m) {
     m.def(
@@ -32,6 +44,7 @@ void bind_sweep(py::module_& m) {
         "run_sweep",
         [](const std::string& sweep_file, const std::string& out, unsigned jobs, bool quiet,
            const fs::path& tumble_binary) {
+            start_mpi_once();
             const experiments::SweepRunOptions o{.sweep_file = sweep_file, .output_directory = out, .jobs = jobs,
                                                  .quiet = quiet, .tumble_binary = tumble_binary};
             const experiments::SweepOutcome outcome = run_stoppable(

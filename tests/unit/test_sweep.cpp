@@ -5,6 +5,7 @@
 // last test runs the real command end to end.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/wait.h>
 
 #include "test_support.hpp"
 
@@ -26,6 +27,7 @@
 #include "io/json.hpp"
 #include "io/sweep.hpp"
 #include "tumble/analysis/hogg.hpp"
+#include "tumble/core/mpi.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 
@@ -219,10 +221,8 @@ TEST_F(Sweep, PointStates) {
     fs::create_directories(dir_ / "b");
     write("b/drum_series.csv", "x\n");
     EXPECT_EQ(point_state(dir_ / "b"), PointState::unfinished);
-    write_failure_marker(dir_ / "c", 3, "job7");
+    write_failure_marker(dir_ / "c", 3);
     EXPECT_EQ(point_state(dir_ / "c"), PointState::failed);
-    EXPECT_EQ(failure_marker_job(dir_ / "c"), std::optional<std::string>("job7"));
-    EXPECT_EQ(failure_marker_job(dir_ / "b"), std::nullopt);
     write("d/summary.json", "{}");
     EXPECT_EQ(point_state(dir_ / "d"), PointState::finished);
     write("c/summary.json", "{}");  // a later success wins over an old marker
@@ -231,46 +231,41 @@ TEST_F(Sweep, PointStates) {
 
 // ------------------------------------------------------------ MPI
 
-TEST(SweepMpi, RankSplitCoversEveryPointOnce) {
-    for (int size = 1; size <= 6; ++size)
-        for (std::size_t n = 0; n <= 13; ++n) {
-            std::vector<int> seen(n, 0);
-            for (int r = 0; r < size; ++r)
-                for (std::size_t i : points_of_rank(n, r, size)) {
-                    ASSERT_LT(i, n);
-                    EXPECT_EQ(static_cast<int>(i % static_cast<std::size_t>(size)), r);
-                    ++seen[i];
-                }
-            for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(seen[i], 1) << "point " << i << " of " << n << ", size " << size;
-        }
-}
-
-TEST(SweepMpi, RankFromEnvironment) {
+// Whether a launcher started the process, from its variables; a child of
+// a rank does not inherit them.
+TEST(SweepMpi, LauncherFromEnvironment) {
     auto env = [](std::map<std::string, std::string> m) {
         return [m](const char* name) -> const char* {
             auto it = m.find(name);
             return it == m.end() ? nullptr : it->second.c_str();
         };
     };
-    RankInfo none = detect_rank(env({}));
-    EXPECT_EQ(none.rank, 0);
-    EXPECT_EQ(none.size, 1);
-    EXPECT_FALSE(none.under_mpi());
-    RankInfo ompi = detect_rank(env({{"OMPI_COMM_WORLD_RANK", "2"},
-                                     {"OMPI_COMM_WORLD_SIZE", "4"},
-                                     {"OMPI_COMM_WORLD_LOCAL_SIZE", "2"},
-                                     {"PMIX_NAMESPACE", "12345"}}));
-    EXPECT_EQ(ompi.rank, 2);
-    EXPECT_EQ(ompi.size, 4);
-    EXPECT_EQ(ompi.local_size, 2);
-    EXPECT_EQ(ompi.job, "12345");
-    EXPECT_TRUE(ompi.under_mpi());
-    RankInfo pmi = detect_rank(env({{"PMI_RANK", "1"}, {"PMI_SIZE", "3"}}));
-    EXPECT_EQ(pmi.rank, 1);
-    EXPECT_EQ(pmi.size, 3);
-    EXPECT_EQ(pmi.local_size, 1);
-    EXPECT_THROW(detect_rank(env({{"PMI_RANK", "3"}, {"PMI_SIZE", "3"}})), Error);
-    EXPECT_THROW(detect_rank(env({{"PMI_RANK", "x"}, {"PMI_SIZE", "3"}})), Error);
+    EXPECT_FALSE(mpi::launched_by_mpi(env({})));
+    EXPECT_FALSE(mpi::launched_by_mpi(env({{"SLURM_JOB_ID", "7"}})));  // a batch job, not a launcher
+    EXPECT_TRUE(mpi::launched_by_mpi(env({{"OMPI_COMM_WORLD_SIZE", "4"}})));
+    EXPECT_TRUE(mpi::launched_by_mpi(env({{"PMIX_RANK", "0"}})));
+    EXPECT_TRUE(mpi::launched_by_mpi(env({{"PMI_RANK", "1"}, {"PMI_SIZE", "3"}})));
+    for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_NAMESPACE", "PMI_FD", "MPI_LOCALNRANKS"})
+        EXPECT_TRUE(mpi::is_launcher_variable(name)) << name;
+    for (const char* name : {"PATH", "OMP_NUM_THREADS", "SLURM_JOB_ID", "TUMBLE_ISA"})
+        EXPECT_FALSE(mpi::is_launcher_variable(name)) << name;
+    // Without a launcher the world is one rank.
+    EXPECT_EQ(mpi::rank(), 0);
+    EXPECT_EQ(mpi::size(), 1);
+    EXPECT_EQ(mpi::line_prefix(), "");
+}
+
+TEST_F(Sweep, ChildrenDoNotInheritTheLaunchersVariables) {
+    ::setenv("OMPI_COMM_WORLD_SIZE", "2", 1);
+    ::setenv("TUMBLE_TEST_KEPT", "yes", 1);
+    const fs::path log = dir_ / "env.txt";
+    int status = 0;
+    ::waitpid(spawn_process({"/usr/bin/env"}, log), &status, 0);
+    ::unsetenv("OMPI_COMM_WORLD_SIZE");
+    ::unsetenv("TUMBLE_TEST_KEPT");
+    const std::string seen = slurp(log);
+    EXPECT_EQ(seen.find("OMPI_COMM_WORLD_SIZE"), std::string::npos) << seen;
+    EXPECT_NE(seen.find("TUMBLE_TEST_KEPT=yes"), std::string::npos) << seen;
 }
 
 // ------------------------------------------------------------ child processes
@@ -403,7 +398,7 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     write("points/two-component_omega3.000_seed3/summary.json", summary_json("two-component", 5e-5, 9e-5, false, 3.0, 3e6));
     // two-component omega 5: seed 1 finished, seed 2 failed, seed 3 unfinished.
     write("points/two-component_omega5.000_seed1/summary.json", summary_json("two-component", 7e-5, 8e-5, true, 1.5, 1e6));
-    write_failure_marker(dir_ / "points/two-component_omega5.000_seed2", 2, "");
+    write_failure_marker(dir_ / "points/two-component_omega5.000_seed2", 2);
     fs::create_directories(dir_ / "points/two-component_omega5.000_seed3");
     // self omega 3: one finished, one with a broken summary.json; omega 5: none.
     write("points/self_omega3.000_seed1/summary.json", summary_json("self", 4e-5, 6e-5, true, 0, 5e5));
@@ -739,22 +734,49 @@ TEST_F(Sweep, KilledHalfWayAndRestartedGivesTheUninterruptedTable) {
     EXPECT_EQ(without_speed(read_csv(killed / "sweep.csv")), without_speed(read_csv(whole / "sweep.csv")));
 }
 
-// END TO END under mpirun (skipped without mpirun or the sweep command): two
-// ranks split the tiny sweep; rank 0 aggregates all four points.
+// END TO END under mpirun (skipped without mpirun, or without MPI in this
+// build): rank 0 hands the points of the tiny sweep to 2 ranks and gathers
+// their results by message; every point runs once, and the table is the
+// serial sweep's (each point is deterministic for its seed). Then 3 ranks
+// (oversubscribed: more ranks than cores), which resume nothing.
 TEST_F(Sweep, EndToEndUnderMpirun) {
     const std::string bin = tumble_binary();
-    if (!has_sweep_command(bin))
-        GTEST_SKIP() << bin << " has no `sweep` command yet (wire it into src/cli/main.cpp; docs/SWEEP.md)";
     if (run("mpirun --version").exit_code != 0) GTEST_SKIP() << "no mpirun";
+    if (!mpi::built_with_mpi()) GTEST_SKIP() << "built without MPI (TUMBLE_MPI=OFF)";
     const std::string file = std::string(TUMBLE_SOURCE_DIR) + "/examples/sweep_tiny.toml";
-    const fs::path out = dir_ / "mpi";
-    const Result r = run("mpirun --allow-run-as-root --oversubscribe -np 2 " + bin + " sweep " + file + " -o " +
-                         out.string() + " -j 1");
+    const std::string mpirun = "mpirun --allow-run-as-root --oversubscribe ";
+    const fs::path serial = dir_ / "serial", out = dir_ / "mpi";
+    ASSERT_EQ(run(bin + " sweep -q " + file + " -o " + serial.string() + " -j 2").exit_code, 0);
+    const Result r = run(mpirun + "-np 2 " + bin + " sweep " + file + " -o " + out.string() + " -j 1");
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    EXPECT_NE(r.output.find("[rank 1/2]"), std::string::npos) << r.output;
-    const auto rows = read_csv(out / "sweep.csv");
-    ASSERT_EQ(rows.size(), 5u) << r.output;
-    for (std::size_t i = 1; i < rows.size(); ++i) EXPECT_EQ(row_map(rows, i)["status"], "finished");
+    EXPECT_NE(r.output.find("on each of 2 ranks"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("(rank 1)"), std::string::npos) << r.output;  // rank 1 ran a point, rank 0 heard of it
+    for (const char* point : {"self_omega3.000_seed1", "self_omega3.000_seed2", "self_omega5.000_seed1",
+                              "self_omega5.000_seed2"}) {
+        std::size_t starts = 0;
+        for (std::size_t at = r.output.find(std::string("start  ") + point); at != std::string::npos;
+             at = r.output.find(std::string("start  ") + point, at + 1))
+            ++starts;
+        EXPECT_EQ(starts, 1u) << point << "\n" << r.output;
+    }
+    EXPECT_EQ(without_speed(read_csv(out / "sweep.csv")), without_speed(read_csv(serial / "sweep.csv")));
+
+    const Result again = run(mpirun + "-np 3 " + bin + " sweep " + file + " -o " + out.string());
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    EXPECT_NE(again.output.find("4 finished before, 0 to run"), std::string::npos) << again.output;
+    EXPECT_EQ(without_speed(read_csv(out / "sweep.csv")), without_speed(read_csv(serial / "sweep.csv")));
+}
+
+// Any other command refuses several ranks (it would run the same work on
+// each), before any work, naming the way out.
+TEST_F(Sweep, OtherCommandsRefuseSeveralRanks) {
+    if (run("mpirun --version").exit_code != 0) GTEST_SKIP() << "no mpirun";
+    if (!mpi::built_with_mpi()) GTEST_SKIP() << "built without MPI (TUMBLE_MPI=OFF)";
+    const Result r = run("mpirun --allow-run-as-root --oversubscribe -np 2 " + tumble_binary() +
+                         " drum --grains 20 --revolutions 0.1 -o " + (dir_ / "drum").string());
+    EXPECT_NE(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("only tumble sweep runs on several MPI ranks"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "drum"));
 }
 
 }  // namespace

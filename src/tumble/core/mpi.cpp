@@ -1,0 +1,134 @@
+// SPDX-License-Identifier: MIT
+#include "tumble/core/mpi.hpp"
+
+#include <cstdlib>
+#include <string>
+
+#include "tumble/core/error.hpp"
+
+#ifdef TUMBLE_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace tumble::mpi {
+
+namespace {
+int world_rank = 0, world_size = 1, world_node_size = 1;
+
+// The size of the world the launcher announced, or 0 if it said none.
+int announced_size(const std::function<const char*(const char*)>& getenv) {
+    for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+        if (const char* v = getenv(name); v && *v) return std::atoi(v);
+    return 0;
+}
+}  // namespace
+
+bool launched_by_mpi(const std::function<const char*(const char*)>& getenv) {
+    for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+        if (const char* v = getenv(name); v && *v) return true;
+    return false;
+}
+
+bool launched_by_mpi() {
+    return launched_by_mpi([](const char* name) -> const char* { return std::getenv(name); });
+}
+
+bool is_launcher_variable(std::string_view name) {
+    for (std::string_view prefix : {"OMPI_", "PMIX_", "PMI_", "MPI_LOCALNRANKS"})
+        if (name.substr(0, prefix.size()) == prefix) return true;
+    return false;
+}
+
+int rank() { return world_rank; }
+int size() { return world_size; }
+int node_size() { return world_node_size; }
+std::string line_prefix() {
+    return world_size > 1 ? "[rank " + std::to_string(world_rank) + "/" + std::to_string(world_size) + "] " : "";
+}
+
+#ifdef TUMBLE_HAVE_MPI
+
+bool built_with_mpi() { return true; }
+
+Session::Session(int& argc, char**& argv) {
+    if (!launched_by_mpi()) return;
+    int provided = 0;
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    active_ = true;
+    MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &world_size);
+    MPI_Comm node;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, world_rank, MPI_INFO_NULL, &node);
+    MPI_Comm_size(node, &world_node_size);
+    MPI_Comm_free(&node);
+    const int announced = announced_size([](const char* name) -> const char* { return std::getenv(name); });
+    if (world_size == 1 && announced > 1) {
+        MPI_Finalize();
+        active_ = false;
+        throw Error("the launcher announced " + std::to_string(announced) +
+                    " ranks but MPI started this process alone: the launcher and tumble's MPI library do not "
+                    "match (Slurm: srun --mpi=pmix, or mpirun from the MPI tumble was built with)");
+    }
+}
+
+Session::~Session() {
+    if (active_) MPI_Finalize();
+}
+
+void abort_others(int code) {
+    if (world_size > 1) MPI_Abort(MPI_COMM_WORLD, code);
+}
+
+void send(int to, int tag, std::string_view text) {
+    if (world_size == 1) throw Error("MPI: no other rank to send to");
+    MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, to, tag, MPI_COMM_WORLD);
+}
+
+namespace {
+Message receive_probed(const MPI_Status& status) {
+    int count = 0;
+    MPI_Get_count(&status, MPI_CHAR, &count);
+    Message m{status.MPI_SOURCE, status.MPI_TAG, std::string(static_cast<std::size_t>(count), '\0')};
+    MPI_Recv(m.text.data(), count, MPI_CHAR, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    return m;
+}
+}  // namespace
+
+Message receive(int from, int tag) {
+    if (world_size == 1) throw Error("MPI: no other rank to receive from");
+    MPI_Status status;
+    MPI_Probe(from == any_rank ? MPI_ANY_SOURCE : from, tag, MPI_COMM_WORLD, &status);
+    return receive_probed(status);
+}
+
+std::optional<Message> poll() {
+    if (world_size == 1) return std::nullopt;
+    int arrived = 0;
+    MPI_Status status;
+    MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
+    if (!arrived) return std::nullopt;
+    return receive_probed(status);
+}
+
+#else  // built without MPI
+
+bool built_with_mpi() { return false; }
+
+Session::Session(int&, char**&) {
+    const int announced = announced_size([](const char* name) -> const char* { return std::getenv(name); });
+    if (announced > 1)
+        throw Error("started by an MPI launcher with " + std::to_string(announced) +
+                    " ranks, but this tumble was built without MPI (CMake option TUMBLE_MPI, libopenmpi-dev): "
+                    "every rank would run the same work; rebuild with MPI or run tumble without the launcher");
+}
+
+Session::~Session() = default;
+
+void abort_others(int) {}
+void send(int, int, std::string_view) { throw Error("MPI: tumble was built without MPI"); }
+Message receive(int, int) { throw Error("MPI: tumble was built without MPI"); }
+std::optional<Message> poll() { return std::nullopt; }
+
+#endif
+
+}  // namespace tumble::mpi
