@@ -32,6 +32,8 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                                          {"grains", static_cast<std::int64_t>(c.grains)},
                                          {"mass", c.mass},
                                          {"start_side", c.start_side}});
+    toml::array edges;
+    for (double z : info.band_edges) edges.push_back(z);
     const toml::table t{{"mode", info.mode},
                         {"omega", info.omega},
                         {"froude", info.froude},
@@ -55,6 +57,9 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                         {"friction_normal", info.friction_normal},
                         {"periodic_axis", info.periodic_axis},
                         {"spin_up_time", info.spin_up_time},
+                        {"arrangement", info.arrangement},
+                        {"band_edges", edges},
+                        {"cap_friction", info.cap_friction},
                         {"component", components}};
     std::ostringstream text;
     text << "# tumble drum run: what was run (read by `tumble analyze`)\n" << t << '\n';
@@ -97,6 +102,10 @@ DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
     info.friction_normal = t["friction_normal"].value_or(std::string("net"));
     info.periodic_axis = t["periodic_axis"].value_or(false);  // absent before the periodic drum
     info.spin_up_time = t["spin_up_time"].value_or(0.0);       // absent before the spin-up ramp
+    // Absent before the arrangements (2026-11-30): halves, the wall's friction.
+    info.arrangement = t["arrangement"].value_or(std::string("halves"));
+    if (const toml::node* n = t.get("band_edges")) info.band_edges = r.numbers(*n, "band_edges");
+    info.cap_friction = t["cap_friction"].value_or(-1.0);
     const auto entries = r.tables(t, "", "component");
     for (std::size_t i = 0; i < entries.size(); ++i) {
         const std::string p = at("component", i);
