@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "io/csv_table.hpp"
 #include "io/json.hpp"
@@ -517,6 +518,12 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                         series.revolutions.empty() ? 0.0 : series.revolutions.back());
     text << fmt::format("  shear model {}, friction limited by the {} normal force\n", info.shear_model,
                         info.friction_normal);
+    const std::string edges =
+        info.band_edges.size() > 2 ? fmt::format(", band edges z = {:.4g} m", fmt::join(info.band_edges, " ")) : "";
+    text << fmt::format("  start {}{}; end caps: {}\n", info.arrangement, edges,
+                        info.periodic_axis          ? "none (periodic axis)"
+                        : info.cap_friction >= 0.0 ? fmt::format("friction {:.3g}", info.cap_friction)
+                                                   : std::string("the wall's friction"));
     text << fmt::format("  {} wall particles; inner radius {:.4g} m, bed length L = {:.4g} m\n", info.wall_particles,
                         info.inner_radius, L);
     text << fmt::format("  solid fraction {:.3f} of the drum volume; fill fraction {:.3f} (bed cross-section after "
@@ -637,6 +644,8 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     Json summary{{"mode", info.mode},
                  {"shear_model", info.shear_model},
                  {"friction_normal", info.friction_normal},
+                 {"arrangement", info.arrangement},
+                 {"cap_friction", info.cap_friction},
                  {"omega", info.omega},
                  {"froude", info.froude},
                  {"revolutions", series.revolutions.empty() ? 0.0 : series.revolutions.back()},
