@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -78,6 +79,28 @@ DrumGeometry long_drum(double length) {
     DrumGeometry g;
     g.length = length;
     return g;
+}
+
+// The default (halves) is the fill of tumble before the arrangements, grain
+// for grain: the left half's large grains from the seed's first stream, then
+// the right half's small ones from its second, around the wall and the left
+// grains (so existing runs give the same bytes).
+TEST(DrumArrangement, HalvesIsTheFillOfBefore) {
+    const DrumGeometry g;
+    const DrumSetup d = build_drum_scenario(g, "two-component", 1000, 5);
+    std::mt19937_64 seeds(5);
+    const std::uint64_t left_seed = seeds(), right_seed = seeds();
+    std::vector<ParticleSpec> expected = fill_drum_region(g, -0.06, 0.0, 229, R_large, 0, 0, left_seed, d.wall.particles);
+    std::vector<ParticleSpec> around = d.wall.particles;
+    around.insert(around.end(), expected.begin(), expected.end());
+    const auto right = fill_drum_region(g, 0.0, 0.06, 771, R_small, 1, 1, right_seed, around);
+    expected.insert(expected.end(), right.begin(), right.end());
+    ASSERT_EQ(d.scenario.particles.size(), 1000 + d.wall.particles.size());
+    for (std::size_t i = 0; i < 1000; ++i) {
+        ASSERT_EQ(d.scenario.particles[i].position, expected[i].position) << i;
+        ASSERT_EQ(d.scenario.particles[i].tag, expected[i].tag) << i;
+    }
+    EXPECT_EQ(d.scenario.materials.size(), 3u);
 }
 
 // Three bands of 1/4, 1/2, 1/4 of a 24 cm drum, small grains at the ends:

@@ -521,6 +521,8 @@ std::vector<double> band_edges(const DrumGeometry& g, const DrumFill& f) {
         case Arrangement::mixed: break;
         case Arrangement::bands: {
             const auto k = static_cast<std::size_t>(std::max(f.bands, 1));
+            if (!f.band_widths.empty() && f.band_widths.size() != k)
+                throw Error("drum: band_widths: need one width per band (" + std::to_string(k) + ")");
             double sum = 0.0;  // the widths' sum, 1 to within band_width_tolerance
             for (double w : f.band_widths) sum += w;
             double at = 0.0;
@@ -553,6 +555,7 @@ std::string describe(const DrumFill& f) {
 std::vector<std::size_t> counts_per_band(std::size_t total, const std::vector<double>& widths) {
     double sum = 0.0;
     for (double w : widths) sum += w;
+    if (!(sum > 0.0)) throw Error("counts_per_band: the widths must sum to more than 0");
     std::vector<std::size_t> counts(widths.size());
     std::vector<std::pair<double, std::size_t>> remainders;  // (fraction dropped, band)
     std::size_t given = 0;
