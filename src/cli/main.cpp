@@ -18,6 +18,7 @@
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 #include "tumble/core/mpi.hpp"
+#include "tumble/setup/drum.hpp"
 
 namespace {
 
@@ -203,6 +204,32 @@ int main(int argc, char** argv) {
     bool periodic_axis = false;
     drum_cmd->add_flag("--periodic-axis", periodic_axis,
                        "No end caps: the axis is periodic, the drum's length its period");
+    std::optional<double> cap_friction, small_volume_fraction;
+    std::optional<std::string> arrangement, ends;
+    std::optional<int> bands;
+    std::vector<double> band_widths, boundaries;
+    drum_cmd->add_option("--cap-friction", cap_friction,
+                         "Friction coefficient between the grains and the end caps (default: the wall's, 0.2)")
+        ->check(finite_non_negative);
+    drum_cmd->add_option("--arrangement", arrangement,
+                         "Axial arrangement at the start: halves (default: large left, small right), mixed, bands "
+                         "or boundaries")
+        ->check(CLI::IsMember(tumble::keywords(tumble::arrangements)));
+    drum_cmd->add_option("--bands", bands, "With --arrangement bands: the number of alternating bands (>= 2)");
+    drum_cmd->add_option("--band-widths", band_widths,
+                         "With --arrangement bands: the bands' widths as fractions of the length, summing to 1 "
+                         "(w1,w2,...; default equal)")
+        ->delimiter(',');
+    drum_cmd->add_option("--boundaries", boundaries,
+                         "With --arrangement boundaries: the z (m, from the drum's centre) between bands, "
+                         "increasing (z1,z2,...)")
+        ->delimiter(',');
+    drum_cmd->add_option("--ends", ends,
+                         "Bands, boundaries: the species of the left end band, small (default) or large (odd band "
+                         "counts: both ends)")
+        ->check(CLI::IsMember(tumble::keywords(tumble::species_names)));
+    drum_cmd->add_option("--small-volume-fraction", small_volume_fraction,
+                         "The small grains' share of the grains' volume, 0 < F < 1 (default: equal masses, 0.5)");
     drum_cmd->add_option("--dt", dt, "Time step, s (default: chosen from the materials)");
     drum_cmd->add_option("--shear", shear, "Reading of the friction limit: paper (default), coulomb or spring (docs/MODEL.md)")
         ->check(CLI::IsMember(tumble::keywords(tumble::shear_models)));
@@ -370,6 +397,13 @@ int main(int argc, char** argv) {
             if (diameter) d.geometry.diameter = *diameter;
             if (wall_radius) d.geometry.wall_radius = *wall_radius;
             if (periodic_axis) d.geometry.periodic_axis = true;
+            if (cap_friction) d.fill.cap_friction = *cap_friction;
+            if (arrangement) d.fill.arrangement = tumble::find_keyword(tumble::arrangements, *arrangement)->value;
+            if (bands) d.fill.bands = *bands;
+            if (!band_widths.empty()) d.fill.band_widths = band_widths;
+            if (!boundaries.empty()) d.fill.boundaries = boundaries;
+            if (ends) d.fill.ends = tumble::find_keyword(tumble::species_names, *ends)->value;
+            if (small_volume_fraction) d.fill.small_volume_fraction = *small_volume_fraction;
             if (spin_up_seconds) d.spin_up_time = *spin_up_seconds;
             if (spin_up_revolutions) d.spin_up_time = 2.0 * tumble::pi * *spin_up_revolutions / d.omega();
             if (dt) d.dt = *dt;

@@ -331,6 +331,9 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     info.inner_length = setup.wall.inner_length;
     info.periodic_axis = s.geometry.periodic_axis;
     info.spin_up_time = s.spin_up_time;
+    info.arrangement = keyword_of(arrangements, s.fill.arrangement);
+    info.band_edges = band_edges(s.geometry, s.fill);
+    info.cap_friction = s.fill.cap_friction.value_or(-1.0);
     info.dt = sim.dt();
     info.threads = sim.threads();
     info.isa = isa_description();
@@ -355,10 +358,11 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     const io::RunLock lock = io::prepare_output_directory(s.output, options.force);
     if (!options.quiet) {
         fmt::print("tumble drum: {} mode, {} grains ({} {}, {} {}), {} wall particles, inner radius {:.4g} m, "
-                   "length {:.4g} m; dt = {:.3g} s; instruction set {}\n",
+                   "length {:.4g} m{}; dt = {:.3g} s; instruction set {}\n",
                    s.mode, sim.particles().free_count(), info.components[0].grains, info.components[0].name,
                    info.components[1].grains, info.components[1].name, info.wall_particles, info.inner_radius,
-                   info.inner_length, sim.dt(), info.isa);
+                   info.inner_length, s.geometry.periodic_axis ? " (periodic axis)" : "", sim.dt(), info.isa);
+        fmt::print("start: {}\n", describe(s.fill));
         fmt::print("settling (rms grain speed below {} m/s, at most {} s)\n", s.settle_speed, s.settle_max_time);
     }
     DrumLoop loop(sim, std::move(plan), s.output, options.checkpoints, false, options.on_sample);

@@ -11,10 +11,10 @@
 
 namespace tumble::experiments {
 
-// The drum of the settings: build_drum_scenario() with the settings' step
-// (0: automatic), shear model and friction normal.
+// The drum of the settings: build_drum_scenario() with the settings' fill,
+// step (0: automatic), shear model and friction normal.
 inline DrumSetup build_drum(const io::DrumSettings& s, bool allow_unsafe_dt = false) {
-    DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed);
+    DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed, s.fill);
     if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
     setup.scenario.model.shear = s.shear;
     setup.scenario.model.friction_normal = s.friction_normal;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "io/drum_config.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "io/toml_reader.hpp"
@@ -30,9 +31,10 @@ std::size_t DrumSettings::grain_count() const {
     const auto volume = [](double r) { return 4.0 / 3.0 * pi * r * r * r; };
     const Material m1 = paper::material_1(), m2 = paper::material_2();
     if (mode == "self") return static_cast<std::size_t>(std::llround(solid / volume(m1.radius)));
-    // Equal masses (same density): half the volume in each material.
-    return static_cast<std::size_t>(std::llround(0.5 * solid / volume(m1.radius)) +
-                                    std::llround(0.5 * solid / volume(m2.radius)));
+    // Equal masses (same density) are half the volume in each material.
+    const double small = fill.small_volume_fraction.value_or(0.5);
+    return static_cast<std::size_t>(std::llround((1.0 - small) * solid / volume(m1.radius)) +
+                                    std::llround(small * solid / volume(m2.radius)));
 }
 
 void check_drum_settings(const DrumSettings& s, const std::string& source) {
@@ -57,6 +59,11 @@ void check_drum_settings(const DrumSettings& s, const std::string& source) {
     for (auto [key, value] : {std::pair{"length", s.geometry.length}, std::pair{"diameter", s.geometry.diameter},
                               std::pair{"wall_radius", s.geometry.wall_radius}})
         if (!(value > 0.0) || !std::isfinite(value)) fail(key, "must be > 0, got " + show(value));
+    if (const auto problem = drum_fill_problem(s.geometry, s.mode, s.fill)) {
+        std::string option = problem->key;
+        std::replace(option.begin(), option.end(), '_', '-');
+        throw ConfigError(source, problem->key, problem->reason + " (tumble drum --" + option + ")");
+    }
 }
 
 DrumSettings load_drum_settings(const std::filesystem::path& file) {
@@ -68,7 +75,8 @@ DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::
     DrumSettings s;
     r.only_keys(root, "", {"drum", "fill", "rotation", "measure", "settle", "time_step", "model", "output"});
     if (const toml::table* t = r.table(root, "drum", false)) {
-        r.only_keys(*t, "drum", {"length", "diameter", "wall_radius", "periodic_axis"});
+        r.only_keys(*t, "drum", {"length", "diameter", "wall_radius", "periodic_axis", "cap_friction"});
+        if (auto mu = r.number(*t, "drum", "cap_friction", Bound::non_negative)) s.fill.cap_friction = *mu;
         if (const toml::node* n = t->get("periodic_axis"))
             s.geometry.periodic_axis = r.boolean(*n, "drum.periodic_axis");
         s.geometry.length = r.number(*t, "drum", "length", Bound::positive, s.geometry.length);
@@ -76,7 +84,15 @@ DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::
         s.geometry.wall_radius = r.number(*t, "drum", "wall_radius", Bound::positive, s.geometry.wall_radius);
     }
     if (const toml::table* t = r.table(root, "fill", false)) {
-        r.only_keys(*t, "fill", {"mode", "grains", "fill_fraction", "seed"});
+        r.only_keys(*t, "fill", {"mode", "grains", "fill_fraction", "seed", "arrangement", "bands", "band_widths",
+                                 "boundaries", "ends", "small_volume_fraction"});
+        if (const toml::node* n = t->get("arrangement"))
+            s.fill.arrangement = r.keyword(*n, "fill.arrangement", arrangements)->value;
+        if (const toml::node* n = t->get("bands")) s.fill.bands = static_cast<int>(r.integer(*n, "fill.bands", 2, 100000));
+        if (const toml::node* n = t->get("band_widths")) s.fill.band_widths = r.numbers(*n, "fill.band_widths");
+        if (const toml::node* n = t->get("boundaries")) s.fill.boundaries = r.numbers(*n, "fill.boundaries");
+        if (const toml::node* n = t->get("ends")) s.fill.ends = r.keyword(*n, "fill.ends", species_names)->value;
+        if (auto f = r.number(*t, "fill", "small_volume_fraction", Bound::positive)) s.fill.small_volume_fraction = *f;
         if (t->get("grains") && t->get("fill_fraction"))
             r.fail("fill", "give either grains or fill_fraction, not both", t);
         if (auto f = r.number(*t, "fill", "fill_fraction", Bound::positive)) {

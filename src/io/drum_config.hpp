@@ -19,6 +19,10 @@ enum class SpeedUnit { rad_per_s, rpm, froude };
 struct DrumSettings {
     DrumGeometry geometry;             // inner length, inner diameter, wall-particle radius (m)
     std::string mode = "two-component";  // or "self"
+    // The axial arrangement at the start, the species' volume shares and the
+    // caps' friction (setup/drum.hpp; [fill] arrangement, bands, band_widths,
+    // boundaries, ends, small_volume_fraction; [drum] cap_friction).
+    DrumFill fill;
     std::size_t grains = 1000;         // total number of grains
     // If > 0, the fill fraction (bed cross-section over drum cross-section)
     // to aim at instead of `grains`: the grain count is chosen so that the
@@ -56,7 +60,8 @@ struct DrumSettings {
 DrumSettings load_drum_settings(const std::filesystem::path& file);
 
 // Checks values that the command line may have set; ConfigError with
-// `source` (e.g. "command line") as the file.
+// `source` (e.g. "command line") as the file, the key and, in the reason,
+// the command-line option.
 void check_drum_settings(const DrumSettings& s, const std::string& source);
 
 }  // namespace tumble::io

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "io/csv_table.hpp"
 #include "io/json.hpp"
@@ -32,6 +33,8 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                                          {"grains", static_cast<std::int64_t>(c.grains)},
                                          {"mass", c.mass},
                                          {"start_side", c.start_side}});
+    toml::array edges;
+    for (double z : info.band_edges) edges.push_back(z);
     const toml::table t{{"mode", info.mode},
                         {"omega", info.omega},
                         {"froude", info.froude},
@@ -55,6 +58,9 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                         {"friction_normal", info.friction_normal},
                         {"periodic_axis", info.periodic_axis},
                         {"spin_up_time", info.spin_up_time},
+                        {"arrangement", info.arrangement},
+                        {"band_edges", edges},
+                        {"cap_friction", info.cap_friction},
                         {"component", components}};
     std::ostringstream text;
     text << "# tumble drum run: what was run (read by `tumble analyze`)\n" << t << '\n';
@@ -97,6 +103,10 @@ DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
     info.friction_normal = t["friction_normal"].value_or(std::string("net"));
     info.periodic_axis = t["periodic_axis"].value_or(false);  // absent before the periodic drum
     info.spin_up_time = t["spin_up_time"].value_or(0.0);       // absent before the spin-up ramp
+    // Absent before the arrangements (2026-11-30): halves, the wall's friction.
+    info.arrangement = t["arrangement"].value_or(std::string("halves"));
+    if (const toml::node* n = t.get("band_edges")) info.band_edges = r.numbers(*n, "band_edges");
+    info.cap_friction = t["cap_friction"].value_or(-1.0);
     const auto entries = r.tables(t, "", "component");
     for (std::size_t i = 0; i < entries.size(); ++i) {
         const std::string p = at("component", i);
@@ -508,6 +518,12 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                         series.revolutions.empty() ? 0.0 : series.revolutions.back());
     text << fmt::format("  shear model {}, friction limited by the {} normal force\n", info.shear_model,
                         info.friction_normal);
+    const std::string edges =
+        info.band_edges.size() > 2 ? fmt::format(", band edges z = {:.4g} m", fmt::join(info.band_edges, " ")) : "";
+    text << fmt::format("  start {}{}; end caps: {}\n", info.arrangement, edges,
+                        info.periodic_axis          ? "none (periodic axis)"
+                        : info.cap_friction >= 0.0 ? fmt::format("friction {:.3g}", info.cap_friction)
+                                                   : std::string("the wall's friction"));
     text << fmt::format("  {} wall particles; inner radius {:.4g} m, bed length L = {:.4g} m\n", info.wall_particles,
                         info.inner_radius, L);
     text << fmt::format("  solid fraction {:.3f} of the drum volume; fill fraction {:.3f} (bed cross-section after "
@@ -628,6 +644,8 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     Json summary{{"mode", info.mode},
                  {"shear_model", info.shear_model},
                  {"friction_normal", info.friction_normal},
+                 {"arrangement", info.arrangement},
+                 {"cap_friction", info.cap_friction},
                  {"omega", info.omega},
                  {"froude", info.froude},
                  {"revolutions", series.revolutions.empty() ? 0.0 : series.revolutions.back()},

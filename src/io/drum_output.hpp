@@ -52,6 +52,9 @@ struct DrumRunInfo {
     std::string friction_normal = "net";  // keyword of the normal force that limits friction
     bool periodic_axis = false;    // no end caps: the axis is periodic with period inner_length
     double spin_up_time = 0.0;     // s: linear ramp from rest to omega (0: none)
+    std::string arrangement = "halves";  // the start's axial arrangement (keyword; setup/drum.hpp)
+    std::vector<double> band_edges;      // z (m) of the start's band edges, -L/2 to L/2 (empty: not recorded)
+    double cap_friction = -1.0;          // mu between grains and caps (< 0: the wall's)
     std::vector<DrumComponent> components;
 };
 

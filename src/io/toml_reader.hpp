@@ -163,6 +163,15 @@ public:
         return *a;
     }
 
+    // An array of numbers of any length.
+    std::vector<double> numbers(const toml::node& n, const std::string& key) const {
+        const auto* a = n.as_array();
+        if (!a) fail(key, "expected an array of numbers [a, b, ...], got " + type_name(n), &n);
+        std::vector<double> v;
+        for (std::size_t k = 0; k < a->size(); ++k) v.push_back(number(*a->get(k), at(key, k)));
+        return v;
+    }
+
     Vec3 vec3(const toml::node& n, const std::string& key) const {
         const toml::array& a = array(n, key, 3, "an array of 3 numbers [x, y, z]");
         Vec3 v;

@@ -55,6 +55,20 @@ void bind_drum(py::module_& m) {
         .def_property_readonly("diameter", [](const io::DrumSettings& s) { return s.geometry.diameter; }, "m")
         .def_property_readonly("wall_radius", [](const io::DrumSettings& s) { return s.geometry.wall_radius; }, "m")
         .def_property_readonly("periodic_axis", [](const io::DrumSettings& s) { return s.geometry.periodic_axis; })
+        .def_property_readonly("cap_friction", [](const io::DrumSettings& s) { return s.fill.cap_friction; },
+                               "mu between grains and end caps; None: the wall's")
+        .def_property_readonly("arrangement",
+                               [](const io::DrumSettings& s) { return keyword_of(arrangements, s.fill.arrangement); })
+        .def_property_readonly("bands", [](const io::DrumSettings& s) { return s.fill.bands; })
+        .def_property_readonly("band_widths", [](const io::DrumSettings& s) { return s.fill.band_widths; })
+        .def_property_readonly("boundaries", [](const io::DrumSettings& s) { return s.fill.boundaries; }, "m")
+        .def_property_readonly("ends", [](const io::DrumSettings& s) { return keyword_of(species_names, s.fill.ends); })
+        .def_property_readonly("small_volume_fraction",
+                               [](const io::DrumSettings& s) { return s.fill.small_volume_fraction; },
+                               "None: equal masses")
+        .def_property_readonly("band_edges",
+                               [](const io::DrumSettings& s) { return band_edges(s.geometry, s.fill); },
+                               "z (m) of the start's band edges, -length/2 to length/2")
         .def_readonly("spin_up_time", &io::DrumSettings::spin_up_time, "s")
         .def_readonly("samples_per_revolution", &io::DrumSettings::samples_per_revolution)
         .def_readonly("profile_bins", &io::DrumSettings::profile_bins)

@@ -53,6 +53,28 @@ def test_settings_are_the_command_lines():
         tumble.drum_settings(speed=3)
 
 
+def test_arrangement_settings_are_the_command_lines():
+    s = tumble.drum_settings(length=0.24, arrangement="bands", bands=3, band_widths=[0.25, 0.5, 0.25], ends="large",
+                             small_volume_fraction=0.4, cap_friction=0.6)
+    assert (s.arrangement, s.bands, s.band_widths, s.ends) == ("bands", 3, [0.25, 0.5, 0.25], "large")
+    assert (s.small_volume_fraction, s.cap_friction) == (0.4, 0.6)
+    assert s.band_edges == pytest.approx([-0.12, -0.06, 0.06, 0.12])
+    b = tumble.drum_settings(arrangement="boundaries", boundaries=(-0.02, 0.03))
+    assert b.boundaries == [-0.02, 0.03] and b.band_edges == pytest.approx([-0.06, -0.02, 0.03, 0.06])
+    default = tumble.drum_settings()
+    assert (default.arrangement, default.small_volume_fraction, default.cap_friction) == ("halves", None, None)
+    with pytest.raises(tumble.Error, match="bands"):
+        tumble.drum_settings(arrangement="bands", bands=1)
+    with pytest.raises(tumble.Error, match="cap_friction"):
+        tumble.drum_settings(periodic_axis=True, cap_friction=0.5)
+    # The drum built from them: three bands, small grains in the middle one.
+    scenario = tumble.drum_scenario(length=0.24, grains=400, arrangement="bands", bands=3, ends="large")
+    sim = tumble.Simulation(scenario)
+    free = sim.motions < 0
+    z, materials = sim.positions[free, 2], sim.materials[free]
+    assert np.all(materials[np.abs(z) < 0.04] == 1) and np.all(materials[np.abs(z) > 0.04] == 0)
+
+
 def test_drum_as_a_scenario_to_step():
     settings = {k: v for k, v in TINY_DRUM.items()}
     sim = tumble.Simulation(tumble.drum_scenario(**settings))

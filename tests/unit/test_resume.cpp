@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "io/checkpoint.hpp"
+#include "io/drum_output.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -94,6 +95,29 @@ TEST_F(Resume, StoppedAtAnyStepAndResumedGivesTheSameBytes) {
         const auto again = tumble_run("resume " + out.string());
         EXPECT_EQ(again.exit_code, 0);
         EXPECT_NE(again.output.find("has finished"), std::string::npos) << again.output;
+    }
+}
+
+// A drum with its own fill (issue 16: bands between given boundaries, a
+// volume fraction, the caps' own friction) resumes to the same bytes: the
+// checkpoint holds the particles and the caps' material, its record the
+// arrangement.
+TEST_F(Resume, ArrangedDrumWithCapFrictionResumesToTheSameBytes) {
+    const std::string drum = " drum -q --grains 20 --length 0.03 --diameter 0.03 --omega 10 --samples 50 --snapshots 20 "
+                             "--no-plot --revolutions 0.1 --arrangement boundaries --boundaries 0.0 --ends large "
+                             "--small-volume-fraction 0.4 --cap-friction 0.6 --out ";
+    const fs::path full = dir_ / "full";
+    ASSERT_EQ(tumble_run(drum + full.string()).exit_code, 0);
+    for (const char* step : {"3000", "6000"}) {  // settling (about 4900 steps), rotating
+        const fs::path out = dir_ / (std::string("stop-") + step);
+        ASSERT_EQ(tumble_run(drum + out.string() + " --stop-at-step " + step).exit_code, 4);
+        const auto resumed = tumble_run("resume -q " + out.string());
+        ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+        expect_same_output(full, out);
+        const tumble::io::DrumRunInfo info = tumble::io::read_drum_run_info(out / "drum_run.toml");
+        EXPECT_EQ(info.arrangement, "boundaries");
+        EXPECT_EQ(info.band_edges, (std::vector<double>{-0.015, 0.0, 0.015}));
+        EXPECT_EQ(info.cap_friction, 0.6);
     }
 }
 

@@ -419,22 +419,177 @@ std::size_t equal_mass_count(std::size_t total, double m1, double m2) {
     return imbalance(low + 1) < imbalance(low) ? low + 1 : low;
 }
 
-DrumSetup build_drum_scenario(const DrumGeometry& g, const std::string& mode, std::size_t grains, std::uint64_t seed) {
+namespace {
+
+// The species of band i (left to right) of a banded fill.
+Species band_species(const DrumFill& fill, std::size_t i) {
+    if (fill.arrangement == Arrangement::halves) return i == 0 ? Species::large : Species::small;
+    const Species other = fill.ends == Species::small ? Species::large : Species::small;
+    return i % 2 == 0 ? fill.ends : other;
+}
+
+std::string numbers_text(const std::vector<double>& v) {
+    std::string out;
+    char buffer[32];
+    for (double x : v) {
+        std::snprintf(buffer, sizeof buffer, "%.6g", x);
+        if (!out.empty()) out += ' ';
+        out += buffer;
+    }
+    return out;
+}
+
+// A grain's diameter with the clearance fill_drum_region() keeps from the wall.
+double fill_width(double radius) { return 2.0 * radius * (1.0 + fill_wall_clearance); }
+
+}  // namespace
+
+std::optional<DrumFillProblem> drum_fill_problem(const DrumGeometry& g, const std::string& mode, const DrumFill& f) {
+    const bool banded = f.arrangement == Arrangement::bands || f.arrangement == Arrangement::boundaries;
+    const std::string arrangement(keyword_of(arrangements, f.arrangement));
+    if (banded && mode != "two-component")
+        return DrumFillProblem{"arrangement", "\"" + arrangement + "\" needs two species (mode \"two-component\"); "
+                                              "a self-diffusion drum takes \"halves\" or \"mixed\""};
+    if (f.small_volume_fraction && mode != "two-component")
+        return DrumFillProblem{"small_volume_fraction", "needs two species (mode \"two-component\")"};
+    if (f.small_volume_fraction && !(*f.small_volume_fraction > 0.0 && *f.small_volume_fraction < 1.0))
+        return DrumFillProblem{"small_volume_fraction",
+                               "must lie strictly between 0 and 1, got " + numbers_text({*f.small_volume_fraction})};
+    if (f.cap_friction && g.periodic_axis)
+        return DrumFillProblem{"cap_friction", "a drum with a periodic axis has no end caps"};
+    if (f.cap_friction && !(*f.cap_friction >= 0.0 && std::isfinite(*f.cap_friction)))
+        return DrumFillProblem{"cap_friction", "must be a finite number >= 0, got " + numbers_text({*f.cap_friction})};
+    if (f.arrangement != Arrangement::bands && (f.bands != 0 || !f.band_widths.empty()))
+        return DrumFillProblem{f.bands != 0 ? "bands" : "band_widths",
+                               "given, but the arrangement is \"" + arrangement + "\" (it needs \"bands\")"};
+    if (f.arrangement != Arrangement::boundaries && !f.boundaries.empty())
+        return DrumFillProblem{"boundaries", "given, but the arrangement is \"" + arrangement +
+                                                 "\" (it needs \"boundaries\")"};
+    if (f.arrangement == Arrangement::bands) {
+        if (f.bands < 2) return DrumFillProblem{"bands", "need at least 2 bands, got " + std::to_string(f.bands)};
+        if (!f.band_widths.empty()) {
+            if (f.band_widths.size() != static_cast<std::size_t>(f.bands))
+                return DrumFillProblem{"band_widths", "need one width per band (" + std::to_string(f.bands) +
+                                                          "), got " + std::to_string(f.band_widths.size())};
+            double sum = 0.0;
+            for (double w : f.band_widths) {
+                if (!(w > 0.0) || !std::isfinite(w))
+                    return DrumFillProblem{"band_widths", "every width must be > 0, got " + numbers_text(f.band_widths)};
+                sum += w;
+            }
+            if (std::abs(sum - 1.0) > band_width_tolerance)
+                return DrumFillProblem{"band_widths", "the widths (fractions of the length) must sum to 1, got " +
+                                                          numbers_text({sum})};
+        }
+    }
+    if (f.arrangement == Arrangement::boundaries) {
+        if (f.boundaries.empty()) return DrumFillProblem{"boundaries", "give at least one boundary z (m)"};
+        for (std::size_t i = 0; i < f.boundaries.size(); ++i) {
+            const double z = f.boundaries[i];
+            if (!(std::abs(z) < 0.5 * g.length))
+                return DrumFillProblem{"boundaries", "every boundary must lie inside the drum, -length/2 < z < "
+                                                     "length/2 = " + numbers_text({0.5 * g.length}) + " m, got " +
+                                                     numbers_text({z})};
+            if (i > 0 && !(z > f.boundaries[i - 1]))
+                return DrumFillProblem{"boundaries", "must be strictly increasing, got " + numbers_text(f.boundaries)};
+        }
+    }
+    if (banded) {
+        const std::vector<double> edges = band_edges(g, f);
+        for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+            const Species species = band_species(f, i);
+            const double need = fill_width(species == Species::small ? paper::material_2().radius
+                                                                     : paper::material_1().radius);
+            if (edges[i + 1] - edges[i] < need)
+                return DrumFillProblem{f.arrangement == Arrangement::boundaries ? "boundaries"
+                                       : f.band_widths.empty()                  ? "bands"
+                                                                                : "band_widths",
+                                       "band " + std::to_string(i + 1) + " (z from " + numbers_text({edges[i]}) +
+                                           " to " + numbers_text({edges[i + 1]}) + " m) is narrower than a " +
+                                           std::string(keyword_of(species_names, species)) + " grain (" +
+                                           numbers_text({need}) + " m)"};
+        }
+    }
+    return std::nullopt;
+}
+
+std::vector<double> band_edges(const DrumGeometry& g, const DrumFill& f) {
+    const double half = 0.5 * g.length;
+    std::vector<double> edges{-half};
+    switch (f.arrangement) {
+        case Arrangement::halves: edges.push_back(0.0); break;
+        case Arrangement::mixed: break;
+        case Arrangement::bands: {
+            const auto k = static_cast<std::size_t>(std::max(f.bands, 1));
+            if (!f.band_widths.empty() && f.band_widths.size() != k)
+                throw Error("drum: band_widths: need one width per band (" + std::to_string(k) + ")");
+            double sum = 0.0;  // the widths' sum, 1 to within band_width_tolerance
+            for (double w : f.band_widths) sum += w;
+            double at = 0.0;
+            for (std::size_t i = 0; i + 1 < k; ++i) {
+                at += f.band_widths.empty() ? 1.0 / static_cast<double>(k) : f.band_widths[i] / sum;
+                edges.push_back(-half + at * g.length);
+            }
+            break;
+        }
+        case Arrangement::boundaries: edges.insert(edges.end(), f.boundaries.begin(), f.boundaries.end()); break;
+    }
+    edges.push_back(half);
+    return edges;
+}
+
+std::string describe(const DrumFill& f) {
+    std::string text(keyword_of(arrangements, f.arrangement));
+    const std::string ends = std::string(keyword_of(species_names, f.ends));
+    if (f.arrangement == Arrangement::bands)
+        text += " " + std::to_string(f.bands) + " (widths " +
+                (f.band_widths.empty() ? std::string("equal") : numbers_text(f.band_widths)) + ", " + ends +
+                " at the left end)";
+    if (f.arrangement == Arrangement::boundaries)
+        text += " at z = " + numbers_text(f.boundaries) + " m (" + ends + " at the left end)";
+    if (f.small_volume_fraction) text += ", small volume fraction " + numbers_text({*f.small_volume_fraction});
+    if (f.cap_friction) text += ", cap friction " + numbers_text({*f.cap_friction});
+    return text;
+}
+
+std::vector<std::size_t> counts_per_band(std::size_t total, const std::vector<double>& widths) {
+    double sum = 0.0;
+    for (double w : widths) sum += w;
+    if (!(sum > 0.0)) throw Error("counts_per_band: the widths must sum to more than 0");
+    std::vector<std::size_t> counts(widths.size());
+    std::vector<std::pair<double, std::size_t>> remainders;  // (fraction dropped, band)
+    std::size_t given = 0;
+    for (std::size_t i = 0; i < widths.size(); ++i) {
+        const double exact = static_cast<double>(total) * widths[i] / sum;
+        counts[i] = std::min(total - given, static_cast<std::size_t>(std::floor(exact)));
+        given += counts[i];
+        remainders.push_back({exact - static_cast<double>(counts[i]), i});
+    }
+    // The largest remainders first; equal ones from the left.
+    std::stable_sort(remainders.begin(), remainders.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (std::size_t k = 0; given < total; k = (k + 1) % remainders.size(), ++given) ++counts[remainders[k].second];
+    return counts;
+}
+
+DrumSetup build_drum_scenario(const DrumGeometry& g, const std::string& mode, std::size_t grains, std::uint64_t seed,
+                              const DrumFill& fill) {
     const bool two_component = mode == "two-component";
     if (!two_component && mode != "self")
         throw Error("drum: unknown mode '" + mode + "' (expected \"two-component\" or \"self\")");
     if (grains < 2) throw Error("drum: need at least 2 grains (one in each half)");
+    if (const auto problem = drum_fill_problem(g, mode, fill)) throw Error("drum: " + problem->key + ": " + problem->reason);
 
     DrumSetup setup;
     Scenario& s = setup.scenario;
     s.materials = paper::materials();
     s.pair_properties = paper::pair_properties();
-    const std::int32_t left_material = 0, right_material = two_component ? 1 : 0, wall_material = 2;
-    const double R_left = s.materials[left_material].radius, R_right = s.materials[right_material].radius;
+    const std::int32_t large = 0, small = two_component ? 1 : 0, wall_material = 2;
     auto mass = [&](std::int32_t m) {
         const double R = s.materials[m].radius;
         return 4.0 / 3.0 * pi * s.materials[m].rho * R * R * R;
     };
+    auto volume = [&](std::int32_t m) { return mass(m) / s.materials[m].rho; };
 
     s.gravity = {0.0, -9.81, 0.0};
     RigidMotion rotation;  // about +z through the origin, at rest while the bed settles
@@ -443,26 +598,90 @@ DrumSetup build_drum_scenario(const DrumGeometry& g, const std::string& mode, st
     rotation.angular_velocity = 0.0;
     s.motions = {rotation};
 
-    setup.wall = build_drum_wall(g, wall_material, 0, std::min(R_left, R_right));
-    const DrumWall& wall = setup.wall;
+    setup.wall = build_drum_wall(g, wall_material, 0, std::min(s.materials[large].radius, s.materials[small].radius));
+    DrumWall& wall = setup.wall;
+    if (fill.cap_friction) {
+        // The caps' own material: the wall's, with its own mu against the grains.
+        const auto cap_material = static_cast<std::int32_t>(s.materials.size());
+        Material cap = s.materials[wall_material];
+        cap.name = "cap";
+        s.materials.push_back(cap);
+        for (auto& row : s.pair_properties) row.push_back(row[wall_material]);
+        s.pair_properties.push_back(s.pair_properties[wall_material]);
+        for (const std::int32_t grain : {large, small})
+            s.pair_properties[grain][cap_material].mu = s.pair_properties[cap_material][grain].mu = *fill.cap_friction;
+        // The cap planes' spheres: the discs and the mantle's end rings, the
+        // next rings lying a whole axial step inside.
+        const double cap_plane = 0.5 * g.length + g.wall_radius;
+        for (ParticleSpec& p : wall.particles)
+            if (std::abs(p.position.z) > cap_plane - 0.25 * wall.axial_step) p.material = cap_material;
+    }
 
-    setup.grains_left = two_component ? equal_mass_count(grains, mass(left_material), mass(right_material))
-                                      : grains / 2;
-    setup.grains_right = grains - setup.grains_left;
-    if (setup.grains_left == 0 || setup.grains_right == 0)
-        throw Error("drum: too few grains to put some in each half");
-    // Independent streams for the two halves, both fixed by the seed.
-    std::mt19937_64 seeds(seed);
-    const std::uint64_t seed_left = seeds(), seed_right = seeds();
+    // Where each kind of grain goes: regions (z range, count, material, tag),
+    // filled in this order, each after the ones before.
+    struct Region {
+        double z_lo, z_hi;
+        std::size_t count;
+        std::int32_t material, tag;
+    };
     const double half = 0.5 * g.length;
-    auto left = fill_drum_region(g, -half, 0.0, setup.grains_left, R_left, left_material, 0, seed_left, wall.particles);
+    const std::size_t n_large =
+        !two_component ? grains / 2
+        : fill.small_volume_fraction
+            // n_L v_L F = n_S v_S (1 - F) makes the small grains' volume share F.
+            ? equal_mass_count(grains, volume(large) * *fill.small_volume_fraction,
+                               volume(small) * (1.0 - *fill.small_volume_fraction))
+            : equal_mass_count(grains, mass(large), mass(small));
+    const std::size_t n_small = grains - n_large;
+    std::vector<Region> regions;
+    if (!two_component) {
+        if (fill.arrangement == Arrangement::mixed)
+            regions = {{-half, half, grains, large, 0}};
+        else
+            regions = {{-half, 0.0, n_large, large, 0}, {0.0, half, n_small, large, 1}};
+    } else if (fill.arrangement == Arrangement::mixed) {
+        regions = {{-half, half, n_large, large, 0}, {-half, half, n_small, small, 1}};
+    } else {
+        // Bands (halves too: large, then small): each species' grains shared
+        // among its bands by width.
+        const std::vector<double> edges = band_edges(g, fill);
+        const std::size_t k = edges.size() - 1;
+        std::vector<double> large_widths(k, 0.0), small_widths(k, 0.0);
+        for (std::size_t i = 0; i < k; ++i)
+            (band_species(fill, i) == Species::large ? large_widths : small_widths)[i] = edges[i + 1] - edges[i];
+        const std::vector<std::size_t> large_counts = counts_per_band(n_large, large_widths),
+                                       small_counts = counts_per_band(n_small, small_widths);
+        for (std::size_t i = 0; i < k; ++i)
+            regions.push_back(large_widths[i] > 0.0 ? Region{edges[i], edges[i + 1], large_counts[i], large, 0}
+                                                    : Region{edges[i], edges[i + 1], small_counts[i], small, 1});
+    }
+    const char* place = fill.arrangement == Arrangement::halves  ? "half"
+                        : fill.arrangement == Arrangement::mixed ? "species"
+                                                                 : "band";
+    for (const Region& r : regions)
+        if (r.count == 0)
+            throw Error("drum: too few grains (" + std::to_string(grains) + ") to put some in each " + place +
+                        ": ask for more grains");
+
+    // Independent streams for the regions, all fixed by the seed.
+    std::mt19937_64 seeds(seed);
+    std::vector<std::uint64_t> region_seeds;
+    for (std::size_t i = 0; i < regions.size(); ++i) region_seeds.push_back(seeds());
     std::vector<ParticleSpec> placed = wall.particles;
-    placed.insert(placed.end(), left.begin(), left.end());
-    auto right = fill_drum_region(g, 0.0, half, setup.grains_right, R_right, right_material, 1, seed_right, placed);
-    s.particles = std::move(left);
-    s.particles.insert(s.particles.end(), right.begin(), right.end());
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+        const Region& r = regions[i];
+        auto grains_here = fill_drum_region(g, r.z_lo, r.z_hi, r.count, s.materials[r.material].radius, r.material,
+                                            r.tag, region_seeds[i], placed);
+        placed.insert(placed.end(), grains_here.begin(), grains_here.end());
+        s.particles.insert(s.particles.end(), grains_here.begin(), grains_here.end());
+    }
+    if (!two_component && fill.arrangement == Arrangement::mixed)
+        for (ParticleSpec& p : s.particles) p.tag = p.position.z < 0.0 ? 0 : 1;  // by starting half
     double grain_volume = 0.0;
-    for (const ParticleSpec& p : s.particles) grain_volume += 4.0 / 3.0 * pi * p.radius * p.radius * p.radius;
+    for (const ParticleSpec& p : s.particles) {
+        grain_volume += 4.0 / 3.0 * pi * p.radius * p.radius * p.radius;
+        ++(p.tag == 0 ? setup.grains_left : setup.grains_right);
+    }
     setup.solid_fraction = grain_volume / (pi * wall.inner_radius * wall.inner_radius * wall.inner_length);
     s.particles.insert(s.particles.end(), wall.particles.begin(), wall.particles.end());
 

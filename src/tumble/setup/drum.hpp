@@ -9,11 +9,14 @@
 // z > 0.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "tumble/core/keyword.hpp"
 #include "tumble/sim/scenario.hpp"
 
 namespace tumble {
@@ -117,11 +120,81 @@ double drum_angular_velocity(double omega, double ramp, double t);
 // nothing is to be set.
 double spin_up_setting(double omega, double ramp, double dt, std::int64_t k);
 
+// The grains' axial arrangement at the start, before they settle (z along
+// the axis, the drum's centre at 0; "small" is material-2, "large"
+// material-1):
+//   halves      large grains in z < 0, small in z > 0 (self mode: all of
+//               material-1, tagged by half);
+//   mixed       both species anywhere along the whole length (self mode:
+//               tagged by the half they start in);
+//   bands       K alternating single-species bands of given widths;
+//   boundaries  alternating single-species bands between given z.
+enum class Arrangement { halves, mixed, bands, boundaries };
+inline constexpr std::array<Keyword<Arrangement>, 4> arrangements{{
+    {"halves", Arrangement::halves, "large grains in the left half, small in the right (the default)"},
+    {"mixed", Arrangement::mixed, "both species at random along the whole length"},
+    {"bands", Arrangement::bands, "K alternating bands of given widths (--bands, --band-widths, --ends)"},
+    {"boundaries", Arrangement::boundaries, "alternating bands between given z (--boundaries, --ends)"},
+}};
+
+enum class Species { small, large };  // material-2, material-1
+inline constexpr std::array<Keyword<Species>, 2> species_names{{
+    {"small", Species::small, "material-2, 2.4 mm"},
+    {"large", Species::large, "material-1, 3.6 mm"},
+}};
+
+// How the drum is filled, beyond the grain count and the seed, and the
+// friction of its end caps. The defaults are the paper's drum.
+struct DrumFill {
+    Arrangement arrangement = Arrangement::halves;
+    // bands: the number of bands K >= 2 and their widths as fractions of the
+    // length, summing to 1 (empty: K equal widths).
+    int bands = 0;
+    std::vector<double> band_widths;
+    // boundaries: the z (m) between bands, strictly increasing inside
+    // (-length/2, length/2); n boundaries make n + 1 bands.
+    std::vector<double> boundaries;
+    // bands, boundaries: the species of the leftmost band; the species
+    // alternate from there (so with an odd number of bands both end bands
+    // are of this species, with an even number the right end is the other).
+    Species ends = Species::small;
+    // Two-component: the small grains' share of the grains' volume, in
+    // (0, 1); none: equal masses (equal_mass_count()).
+    std::optional<double> small_volume_fraction;
+    // Friction coefficient between the grains and the end caps' spheres;
+    // none: the wall's (then the caps are wall material). Needs end caps.
+    std::optional<double> cap_friction;
+};
+
+// How far from 1 the band widths may sum (they are then scaled to 1).
+inline constexpr double band_width_tolerance = 1e-6;
+
+// What is wrong with a fill for this geometry and mode, if anything: the
+// key (as DrumFill's field, which is the TOML key) and the reason.
+struct DrumFillProblem {
+    std::string key;
+    std::string reason;
+};
+std::optional<DrumFillProblem> drum_fill_problem(const DrumGeometry& g, const std::string& mode, const DrumFill& fill);
+
+// The bands of an arrangement along z, left to right, as boundaries z_0 =
+// -length/2 < z_1 < ... < z_K = length/2 (halves: 2 bands; mixed: 1).
+std::vector<double> band_edges(const DrumGeometry& g, const DrumFill& fill);
+
+// A one-line description of the fill for reports and drum_run.toml, e.g.
+// "bands 3 (widths 0.25 0.5 0.25, small at the ends), small volume fraction 0.5".
+std::string describe(const DrumFill& fill);
+
+// `total` grains split into counts per band in proportion to the bands'
+// widths (edges as band_edges()), the largest remainders rounded up, so the
+// counts sum to `total` exactly.
+std::vector<std::size_t> counts_per_band(std::size_t total, const std::vector<double>& widths);
+
 struct DrumSetup {
     Scenario scenario;
     DrumWall wall;
-    std::size_t grains_left = 0;   // tag 0
-    std::size_t grains_right = 0;  // tag 1
+    std::size_t grains_left = 0;   // tag 0 (two-component: the large grains)
+    std::size_t grains_right = 0;  // tag 1 (two-component: the small grains)
     double solid_fraction = 0.0;   // grain volume / inner drum volume
 };
 
@@ -133,16 +206,25 @@ struct DrumSetup {
 //    rotation later with Simulation::set_motion(0, ...));
 //  - an open domain bounding the drum with a margin;
 //  - particles: the grains first (left half, then right half), then the wall.
-// mode "two-component": equal masses of material-1 (tag 0) in the left half
-//   and material-2 (tag 1) in the right half, `grains` in all (so N2/N1 ~
-//   3.375, see equal_mass_count()).
-// mode "self": `grains` of material-1, half in each half, tagged 0 (left)
-//   and 1 (right). (For the same fill level as a two-component drum of
-//   `grains`, pass 2 x equal_mass_count(grains, m1, m2).)
-// Grains start at random, at rest, anywhere in their half; they fall when
-// the simulation begins. Throws tumble::Error for an unknown mode, no grains,
-// or a drum that cannot hold them.
+// mode "two-component": material-1 (large, tag 0) and material-2 (small,
+//   tag 1), `grains` in all: equal masses (so N2/N1 ~ 3.375, see
+//   equal_mass_count()) or the fill's small_volume_fraction; placed as the
+//   fill's arrangement says (halves: large in the left half, small in the
+//   right).
+// mode "self": `grains` of material-1 tagged 0 if they start at z < 0, 1
+//   otherwise; halves: half in each half; mixed: anywhere. (For the same
+//   fill level as a two-component drum of `grains`, pass 2 x
+//   equal_mass_count(grains, m1, m2).)
+// Bands: each species' grains are shared among its bands in proportion to
+// their widths (counts_per_band()); each band is filled by
+// fill_drum_region() with its own seed from `seed`, so every grain lies
+// whole inside its band. With cap_friction, a fourth material "cap" (the
+// wall's, with that mu against the grains) is given to every wall sphere in
+// the cap planes (the cap discs and the mantle's end rings).
+// Grains start at random, at rest; they fall when the simulation begins.
+// Throws tumble::Error for an unknown mode, no grains, a fill that
+// drum_fill_problem() refuses, or a drum that cannot hold them.
 DrumSetup build_drum_scenario(const DrumGeometry& g = {}, const std::string& mode = "two-component",
-                              std::size_t grains = 1000, std::uint64_t seed = 1);
+                              std::size_t grains = 1000, std::uint64_t seed = 1, const DrumFill& fill = {});
 
 }  // namespace tumble
