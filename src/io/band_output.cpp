@@ -42,7 +42,7 @@ void BandProfileWriter::write(double revolutions, const analysis::BandSample& s)
                                          : name == "small_grains" ? s.small_grains
                                          : name == "core_fraction" ? s.core_fraction
                                                                    : s.wall_fraction;
-        out_ << revolutions << ',' << name;
+        out_ << fmt::format("{},{}", revolutions, name);
         // Four digits: the noise of a bin of tens of grains is in the second.
         for (double v : row) out_ << fmt::format(",{:.4g}", v);
         out_ << '\n';
@@ -247,7 +247,10 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
         if (p.bands.empty())
             return fmt::format("no bands (contrast, mean |phi - phi0|, {:.3f})", p.contrast);
         std::string s = fmt::format("{} bands (", p.bands.size());
-        for (std::size_t i = 0; i < p.bands.size(); ++i) s += (i ? " " : "") + std::string(p.bands[i].rich ? "S" : "L");
+        for (std::size_t i = 0; i < p.bands.size(); ++i) {
+            if (i) s += ' ';
+            s += p.bands[i].rich ? 'S' : 'L';
+        }
         return s + fmt::format("; S: rich in {}), band contrast {:.3f}, ends {} {:.2f} / {} {:.2f}", small,
                                p.band_contrast, p.bands.front().rich ? small : large, p.bands.front().small_fraction,
                                p.bands.back().rich ? small : large, p.bands.back().small_fraction);
