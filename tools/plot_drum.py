@@ -723,12 +723,27 @@ def fig_bands(run, w):
     count.set_ylim(bottom=0)
     count.yaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
     count.set_title("bands against log N (0: none above the threshold)", fontsize=9)
-    wave.plot(t["revolutions"], t["dominant_wavelength"] * 1e3, "o", ms=3, color="0.2")
+    spectrum_path = run.path("band_spectrum.csv")
+    if os.path.isfile(spectrum_path):
+        sp = read_csv(spectrum_path)
+        modes = sorted(int(k[len("wavelength_"):]) for k in sp if k.startswith("wavelength_"))
+        if modes and len(sp["revolutions"]):
+            power = np.column_stack([sp[f"wavelength_{m}"] for m in modes])
+            peak = power.max(axis=1, keepdims=True)
+            power = np.divide(power, peak, out=np.zeros_like(power), where=peak > 0)
+            factor = 1.0 if info.get("spectrum", {}).get("transform") == "fourier" else 2.0
+            k_edges = np.arange(len(modes) + 1) + 0.5
+            n_sp = sp["revolutions"]
+            n_edges = np.concatenate([n_sp, [n_sp[-1] + (n_sp[-1] - n_sp[-2] if len(n_sp) > 1 else 1.0)]])
+            wave.pcolormesh(n_edges, factor * run.length / k_edges * 1e3, power.T, cmap="Greys", shading="flat")
+            wave.set_yscale("log")
+    wave.plot(t["revolutions"], t["dominant_wavelength"] * 1e3, "o", ms=3, color=COLOURS[1 % len(COLOURS)],
+              label="dominant")
     wave.axhline(2.0 * run.config.get("inner_radius", math.nan) * 1e3, color="0.6", lw=0.8, ls="--",
                  label="drum diameter")
     wave.set_xlabel("revolutions N")
-    wave.set_ylabel("dominant wavelength (mm)")
-    wave.set_title("dominant wavelength of C(z) - mean (cosine transform)", fontsize=9)
+    wave.set_ylabel("wavelength (mm)")
+    wave.set_title("spectrum of C(z) - mean (grey: power / largest)", fontsize=9)
     wave.legend(fontsize=7)
     contrast.plot(t["revolutions"], t["contrast"], "-", color="0.2", label="mean |phi - mean|")
     contrast.plot(t["revolutions"], t["band_contrast"], "o", ms=3, color=COLOURS[1 % len(COLOURS)],

@@ -147,6 +147,11 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
               "core_fraction,wall_fraction,core_excess,left_end_rich,left_end_fraction,right_end_rich,"
               "right_end_fraction\n";
     positions << "revolutions,band,rich,lo,hi,centre,small_fraction,grains\n";
+    std::ofstream spectrum = open_for_writing(dir / "band_spectrum.csv");
+    spectrum << "revolutions";
+    const std::size_t modes = samples ? h.samples.front().power.size() : 0;
+    for (std::size_t m = 1; m <= modes; ++m) spectrum << ",wavelength_" << m;
+    spectrum << '\n';
     std::vector<double> core(samples), wall(samples);
     for (std::size_t k = 0; k < samples; ++k) {
         const analysis::BandProfile& p = h.samples[k];
@@ -164,6 +169,9 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
                               p.mean, p.contrast, p.band_contrast, p.dominant_wavelength, p.dominant_share, core[k],
                               wall[k], core[k] - wall[k], end(false).first, end(false).second, end(true).first,
                               end(true).second);
+        spectrum << fmt::format("{}", p.revolutions);
+        for (double power : p.power) spectrum << fmt::format(",{:.4g}", power);
+        spectrum << '\n';
         for (std::size_t i = 0; i < p.bands.size(); ++i) {
             const analysis::Band& b = p.bands[i];
             positions << fmt::format("{},{},{},{},{},{},{},{}\n", p.revolutions, i, b.rich ? 1 : 0, b.lo, b.hi,
@@ -172,6 +180,7 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
     }
     check_written(series, dir / "bands.csv");
     check_written(positions, dir / "band_positions.csv");
+    check_written(spectrum, dir / "band_spectrum.csv");
 
     double mean = 0.0, total = 0.0;
     for (std::size_t k = 0; k < samples; ++k)
@@ -206,6 +215,14 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
                                    {"min_contrast", options.min_contrast},
                                    {"min_contrast_leave", options.min_contrast_leave},
                                    {"min_width_bins", options.min_width}}},
+               {"spectrum", Json{{"transform", info.periodic_axis ? "fourier" : "cosine"},
+                                 {"wavelengths", [&] {
+                                      Json w = Json::array();
+                                      for (std::size_t m = 1; m <= modes; ++m)
+                                          w.push_back((info.periodic_axis ? 1.0 : 2.0) * info.inner_length /
+                                                      static_cast<double>(m));
+                                      return w;
+                                  }()}}},
                {"max_bands", static_cast<std::int64_t>(most)},
                {"first_banded_revolution", onset},
                {"merges", static_cast<std::int64_t>(merges)},

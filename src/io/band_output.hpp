@@ -8,6 +8,9 @@
 //   bands.csv           per band sample: the band count, contrast,
 //                       dominant wavelength, radial core, end bands
 //   band_positions.csv  per band sample, one row per band: species, edges, phi
+//   band_spectrum.csv   per band sample, the power of phi - phi0 per mode
+//                       (column wavelength_k: mode k, of wavelength 2 L / k
+//                       with end caps, L / k on a periodic axis)
 //   bands.json          the thresholds, the final bands, the events (merges),
 //                       also the "bands" section of summary.json
 //   kymograph.png       C(z, N) as an image: z from -L/2 at the left, N from 0

@@ -62,6 +62,7 @@ TEST_F(BandRun, SmallDrumWritesTheKymographAndBandCounts) {
     EXPECT_EQ(kymograph.height(), 6 * 54);  // 54 per sample (at least 320 tall)
 
     // tumble analyze: the same files again.
+    EXPECT_EQ(tumble::io::read_csv_table(out / "band_spectrum.csv").rows.size(), samples);
     const std::string json = read_file(out / "bands.json"), csv = read_file(out / "bands.csv");
     fs::remove(out / "bands.json");
     fs::remove(out / "kymograph.png");
