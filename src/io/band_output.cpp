@@ -192,10 +192,9 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
     // bands.json: the thresholds, the counts, the last sample's bands and the events.
     std::size_t most = 0;
     double onset = std::nan("");
-    for (const analysis::BandProfile& p : h.samples) {
-        most = std::max(most, p.bands.size());
-        if (!p.bands.empty() && !std::isfinite(onset) && p.revolutions > 0.0) onset = p.revolutions;
-    }
+    for (const analysis::BandProfile& p : h.samples) most = std::max(most, p.bands.size());
+    for (const analysis::BandEvent& e : h.events)
+        if (e.kind == "onset" && !std::isfinite(onset)) onset = e.revolutions;
     Json events = Json::array();
     std::size_t merges = 0;
     for (const analysis::BandEvent& e : h.events) {
@@ -224,7 +223,7 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
                                       return w;
                                   }()}}},
                {"max_bands", static_cast<std::int64_t>(most)},
-               {"first_banded_revolution", onset},
+               {"onset_revolution", onset},
                {"merges", static_cast<std::int64_t>(merges)},
                {"events", events}};
     if (samples > 0) {
@@ -281,7 +280,9 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
                             "random mix and {:.3g} in phi)\n",
                             options.z_enter, options.min_contrast);
     else
-        text << fmt::format("    at most {} bands; {} events ({} merges; bands.json)\n", most, h.events.size(), merges);
+        text << fmt::format("    at most {} bands; {} events ({} merges; bands.json){}\n", most, h.events.size(), merges,
+                            std::isfinite(onset) ? fmt::format("; bands appear in the mixed bed at N = {:.3g}", onset)
+                                                 : std::string());
     text << fmt::format("    radial core: phi near the axis {:.3f}, at the wall {:.3f} at N = {:.3g} ({:.3f}, {:.3f} at "
                         "N = {:.3g})\n",
                         core.back(), wall.back(), last.revolutions, core.front(), wall.front(), first.revolutions);
