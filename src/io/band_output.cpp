@@ -161,7 +161,7 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
             static_cast<std::size_t>(std::count_if(p.bands.begin(), p.bands.end(), [](const auto& b) { return b.rich; }));
         const double nan = std::nan("");
         const auto end = [&](bool right) {
-            if (p.bands.empty()) return std::pair{nan, nan};
+            if (p.bands.empty() || field.periodic) return std::pair{nan, nan};  // a ring has no ends
             const analysis::Band& b = right ? p.bands.back() : p.bands.front();
             return std::pair{b.rich ? 1.0 : 0.0, b.small_fraction};
         };
@@ -231,7 +231,7 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
         Json list = Json::array();
         for (const analysis::Band& b : last.bands) list.push_back(band_json(b, small, large));
         Json ends = nullptr;
-        if (!last.bands.empty())
+        if (!last.bands.empty() && !field.periodic)
             ends = Json{{"left", band_json(last.bands.front(), small, large)},
                         {"right", band_json(last.bands.back(), small, large)}};
         bands["final"] = Json{{"revolutions", last.revolutions},
@@ -267,9 +267,11 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
             if (i) s += ' ';
             s += p.bands[i].rich ? 'S' : 'L';
         }
-        return s + fmt::format("; S: rich in {}), band contrast {:.3f}, ends {} {:.2f} / {} {:.2f}", small,
-                               p.band_contrast, p.bands.front().rich ? small : large, p.bands.front().small_fraction,
-                               p.bands.back().rich ? small : large, p.bands.back().small_fraction);
+        s += fmt::format("; S: rich in {}), band contrast {:.3f}", small, p.band_contrast);
+        if (field.periodic) return s + " (periodic axis: no end bands)";
+        return s + fmt::format(", ends {} {:.2f} / {} {:.2f}", p.bands.front().rich ? small : large,
+                               p.bands.front().small_fraction, p.bands.back().rich ? small : large,
+                               p.bands.back().small_fraction);
     };
     text << fmt::format("    N = {:.3g}: {}\n    N = {:.3g}: {}; dominant wavelength {:.3g} m ({:.0f} % of the "
                         "power)\n",
