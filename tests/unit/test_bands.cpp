@@ -201,6 +201,7 @@ TEST(Bands, UniformAndEmptyRowsHaveNoBands) {
     EXPECT_TRUE(p.bands.empty());
     EXPECT_DOUBLE_EQ(p.contrast, 0.0);
     EXPECT_TRUE(std::isnan(p.dominant_wavelength));
+    EXPECT_TRUE(std::isnan(p.band_contrast));
     const BandProfile one = analyze_band_field(field_of({std::vector<double>(bins, 1.0)})).samples.at(0);
     EXPECT_TRUE(one.bands.empty());  // one species only
 }

@@ -112,6 +112,7 @@ public:
         const std::size_t bins = phi.size();
         BandProfile out;
         out.revolutions = field_.revolutions[k];
+        out.band_contrast = nan;
         double grains = 0.0, weighted = 0.0, small = 0.0;
         for (std::size_t b = 0; b < bins; ++b)
             if (std::isfinite(phi[b]) && n[b] > 0.0) {
@@ -134,10 +135,12 @@ public:
         std::vector<Run> runs = find_runs(cells);
         for (Run& r : runs) r.significant = significant(cells, r, noise, previous);
         out.bands = join(cells, runs);
-        if (out.bands.size() < 2) out.bands.clear();
         double rich = 0.0, rich_n = 0.0, poor = 0.0, poor_n = 0.0;
-        for (const Band& b : out.bands) (b.rich ? rich : poor) += b.small_fraction * b.grains, (b.rich ? rich_n : poor_n) += b.grains;
-        out.band_contrast = out.bands.empty() ? nan : rich / rich_n - poor / poor_n;
+        for (const Band& b : out.bands) {
+            (b.rich ? rich : poor) += b.small_fraction * b.grains;
+            (b.rich ? rich_n : poor_n) += b.grains;
+        }
+        if (!out.bands.empty()) out.band_contrast = rich / rich_n - poor / poor_n;
         return out;
     }
 
