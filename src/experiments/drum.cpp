@@ -118,8 +118,8 @@ public:
           snapshot_every_(plan_.snapshots_per_revolution > 0
                               ? std::max<std::int64_t>(1, std::llround(period_ / plan_.snapshots_per_revolution / sim.dt()))
                               : 0),
-          band_every_(sample_every_ *
-                      std::max(1, plan_.info.samples_per_revolution / band_samples_per_revolution)),
+          band_every_(sample_every_ * ((plan_.info.samples_per_revolution + band_samples_per_revolution - 1) /
+                                       band_samples_per_revolution)),
           frame_{plan_.info.inner_length, plan_.info.inner_radius, 2, plan_.info.profile_bins, plan_.info.omega},
           band_frame_{plan_.info.inner_length, plan_.info.band_bins, 1},
           checkpoints_(dir_, with_revolutions(policy), drum_limits(sim.scenario())),
