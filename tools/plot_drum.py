@@ -673,10 +673,112 @@ def fig_bed_structure(run, w):
     w.save(fig, name)
 
 
+def _band_rows(path):
+    """band_profile.csv as (N, {quantity: array [sample, bin]})."""
+    t = read_csv(path)
+    bins = sorted((int(k[4:]) for k in t if k.startswith("bin_")))
+    quantity = np.array(t["quantity"])
+    table = np.column_stack([t[f"bin_{b}"] for b in bins]) if bins else np.zeros((len(quantity), 0))
+    rows = {q: table[quantity == q] for q in set(quantity)}
+    return t["revolutions"][quantity == "small_fraction"], rows
+
+
+def fig_bands(run, w):
+    """Axial bands (docs/BANDS.md): the kymograph C(z, N) with the merges, the band
+    count against log N, the dominant wavelength, the contrast, the radial core and
+    the composition of the end bands (band_profile.csv, bands.csv, bands.json)."""
+    name = "fig_bands"
+    profile, series = run.path("band_profile.csv"), run.path("bands.csv")
+    if not (os.path.isfile(profile) and os.path.isfile(series)):
+        w.skip(name, f"no {profile} or {series} (a run from before the band analysis; tumble analyze)")
+        return
+    n_rev, rows = _band_rows(profile)
+    phi = rows["small_fraction"]
+    t = read_csv(series)
+    info = read_json(run.path("bands.json")) if os.path.isfile(run.path("bands.json")) else {}
+    small = info.get("species", run.components[-1])
+    large = info.get("other", run.components[0])
+    fig, axes = plt.subplots(2, 3, figsize=(15, 8.5))
+    kymo, count, wave, contrast, core, ends = axes.ravel()
+    from matplotlib.colors import LinearSegmentedColormap, TwoSlopeNorm
+    cmap = LinearSegmentedColormap.from_list("species", [COLOURS[0], "#ffffff", COLOURS[1 % len(COLOURS)]])
+    mean = float(np.nanmean(t["mean"])) if len(t["mean"]) and np.isfinite(t["mean"]).any() else 0.5
+    mean = min(max(mean, 1e-3), 1.0 - 1e-3)
+    edges_z = np.linspace(-0.5, 0.5, phi.shape[1] + 1) * run.length * 1e3
+    edges_n = np.concatenate([n_rev, [n_rev[-1] + (n_rev[-1] - n_rev[-2] if len(n_rev) > 1 else 1.0)]])
+    mesh = kymo.pcolormesh(edges_z, edges_n, np.ma.masked_invalid(phi), cmap=cmap,
+                           norm=TwoSlopeNorm(vmin=0.0, vcenter=mean, vmax=1.0), shading="flat")
+    fig.colorbar(mesh, ax=kymo, label=f"volume fraction of {small}")
+    for e in info.get("events", []):
+        if e.get("kind") in ("merge", "end", "vanish"):
+            kymo.plot(e["z"] * 1e3, e["revolutions"], "kx", ms=6)
+    kymo.set_xlabel("z (mm)")
+    kymo.set_ylabel("revolutions N")
+    kymo.set_title("kymograph C(z, N) (x: a band vanishes)", fontsize=9)
+    later = t["revolutions"] > 0
+    count.step(t["revolutions"][later], t["bands"][later], where="post", color="0.2")
+    count.set_xscale("log")
+    count.set_xlabel("revolutions N")
+    count.set_ylabel("number of bands")
+    count.set_ylim(bottom=0)
+    count.yaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
+    count.set_title("bands against log N (0: none above the threshold)", fontsize=9)
+    spectrum_path = run.path("band_spectrum.csv")
+    if os.path.isfile(spectrum_path):
+        sp = read_csv(spectrum_path)
+        modes = sorted(int(k[len("wavelength_"):]) for k in sp if k.startswith("wavelength_"))
+        if modes and len(sp["revolutions"]):
+            power = np.column_stack([sp[f"wavelength_{m}"] for m in modes])
+            peak = power.max(axis=1, keepdims=True)
+            power = np.divide(power, peak, out=np.zeros_like(power), where=peak > 0)
+            factor = 1.0 if info.get("spectrum", {}).get("transform") == "fourier" else 2.0
+            k_edges = np.arange(len(modes) + 1) + 0.5
+            n_sp = sp["revolutions"]
+            n_edges = np.concatenate([n_sp, [n_sp[-1] + (n_sp[-1] - n_sp[-2] if len(n_sp) > 1 else 1.0)]])
+            wave.pcolormesh(n_edges, factor * run.length / k_edges * 1e3, power.T, cmap="Greys", shading="flat")
+            wave.set_yscale("log")
+    wave.plot(t["revolutions"], t["dominant_wavelength"] * 1e3, "o", ms=3, color=COLOURS[1 % len(COLOURS)],
+              label="dominant")
+    wave.axhline(2.0 * run.config.get("inner_radius", math.nan) * 1e3, color="0.6", lw=0.8, ls="--",
+                 label="drum diameter")
+    wave.set_xlabel("revolutions N")
+    wave.set_ylabel("wavelength (mm)")
+    wave.set_title("spectrum of C(z) - mean (grey: power / largest)", fontsize=9)
+    wave.legend(fontsize=7)
+    contrast.plot(t["revolutions"], t["contrast"], "-", color="0.2", label="mean |phi - mean|")
+    contrast.plot(t["revolutions"], t["band_contrast"], "o", ms=3, color=COLOURS[1 % len(COLOURS)],
+                  label=f"{small}-rich minus {large}-rich bands")
+    contrast.set_xlabel("revolutions N")
+    contrast.set_ylabel("contrast in volume fraction")
+    contrast.set_title("band contrast", fontsize=9)
+    contrast.legend(fontsize=7)
+    core.plot(t["revolutions"], t["core_fraction"], "-", color=COLOURS[1 % len(COLOURS)],
+              label="inner third (near the axis)")
+    core.plot(t["revolutions"], t["wall_fraction"], "-", color=COLOURS[0], label="outer third (at the wall)")
+    core.set_xlabel("revolutions N")
+    core.set_ylabel(f"volume fraction of {small}")
+    core.set_title("radial core: composition by distance from the axis", fontsize=9)
+    core.legend(fontsize=7)
+    for column, marker, label in (("left_end_fraction", "<", "left end band"),
+                                  ("right_end_fraction", ">", "right end band")):
+        ends.plot(t["revolutions"], t[column], marker, ms=4, ls="none", color="0.3" if marker == "<" else "0.6",
+                  label=label)
+    ends.axhline(mean, color="0.6", lw=0.8, ls="--", label="mean")
+    ends.set_ylim(0, 1)
+    ends.set_xlabel("revolutions N")
+    ends.set_ylabel(f"volume fraction of {small}")
+    ends.set_title("composition of the end bands", fontsize=9)
+    ends.legend(fontsize=7)
+    fig.suptitle(f"Axial bands, {run.mode} mode, {run.label()}", fontsize=10)
+    fig.tight_layout()
+    w.save(fig, name)
+
+
 def do_run(args):
     run = Run(args.dir)
     w = Writer(args.out or os.path.join(args.dir, "figures"))
-    for make in (fig_setup, fig_z, fig_profiles, fig_energy, fig_depth, fig_msd, fig_collapse, fig_bed_structure):
+    for make in (fig_setup, fig_z, fig_profiles, fig_energy, fig_depth, fig_msd, fig_collapse, fig_bed_structure,
+                 fig_bands):
         make(run, w)
     return w
 

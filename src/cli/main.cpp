@@ -173,7 +173,7 @@ int main(int argc, char** argv) {
     std::string drum_config;
     std::optional<double> omega, rpm, froude, revolutions, length, diameter, wall_radius, dt, fill;
     std::optional<std::int64_t> grains, seed;
-    std::optional<int> samples, bins, snapshots;
+    std::optional<int> samples, bins, band_bins, snapshots;
     std::optional<std::string> mode, out, shear, friction_normal;
     CLI::App* drum_cmd = app.add_subcommand(
         "drum", "The paper's rotating-drum diffusion experiment (defaults: the paper's set-up, two components, "
@@ -191,6 +191,7 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("--revolutions", revolutions, "Revolutions after settling");
     drum_cmd->add_option("--samples", samples, "Samples per revolution (default 20)");
     drum_cmd->add_option("--bins", bins, "Axial bins of the concentration profile (default 12)");
+    drum_cmd->add_option("--band-bins", band_bins, "Axial bins of the band profile (default: L / 4 mm; docs/BANDS.md)");
     drum_cmd->add_option("--snapshots", snapshots, "Particle snapshots per revolution (default 8; 0: none)");
     drum_cmd->add_option("--length", length, "Inner length of the drum, m (default 0.12)");
     drum_cmd->add_option("--diameter", diameter, "Inner diameter of the drum, m (default 0.08)");
@@ -392,6 +393,7 @@ int main(int argc, char** argv) {
             if (revolutions) d.revolutions = *revolutions;
             if (samples) d.samples_per_revolution = *samples;
             if (bins) d.profile_bins = *bins;
+            if (band_bins) d.band_bins = *band_bins;
             if (snapshots) d.snapshots_per_revolution = *snapshots;
             if (length) d.geometry.length = *length;
             if (diameter) d.geometry.diameter = *diameter;

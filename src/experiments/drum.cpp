@@ -16,10 +16,12 @@
 #include "experiments/limits.hpp"
 #include "experiments/machine.hpp"
 #include "experiments/progress.hpp"
+#include "io/band_output.hpp"
 #include "io/drum_output.hpp"
 #include "io/output.hpp"
 #include "io/run_lock.hpp"
 #include "io/snapshots.hpp"
+#include "tumble/analysis/bands.hpp"
 #include "tumble/analysis/drum_measure.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/isa.hpp"
@@ -44,6 +46,11 @@ std::vector<io::DrumComponent> components_of(const Simulation& sim, const std::s
     }
     return out;
 }
+
+// Band samples (band_profile.csv) per revolution, at most: 4 keep the file
+// of a 500-revolution drum of 160 bins to about 9 MB (docs/BANDS.md), and
+// resolve bands that live for tens of revolutions.
+constexpr int band_samples_per_revolution = 4;
 
 // What a drum run carries from one process to the next, besides the engine
 // state (kept in its checkpoints).
@@ -111,10 +118,14 @@ public:
           snapshot_every_(plan_.snapshots_per_revolution > 0
                               ? std::max<std::int64_t>(1, std::llround(period_ / plan_.snapshots_per_revolution / sim.dt()))
                               : 0),
+          band_every_(sample_every_ * ((plan_.info.samples_per_revolution + band_samples_per_revolution - 1) /
+                                       band_samples_per_revolution)),
           frame_{plan_.info.inner_length, plan_.info.inner_radius, 2, plan_.info.profile_bins, plan_.info.omega},
+          band_frame_{plan_.info.inner_length, plan_.info.band_bins, 1},
           checkpoints_(dir_, with_revolutions(policy), drum_limits(sim.scenario())),
           series_(dir_ / "time_series.csv", sim.scenario().materials, continuing) {
         if (continuing && plan_.rotating) drum_series_.emplace(dir_, plan_.info, true);
+        if (continuing && plan_.rotating && plan_.info.band_bins > 0) band_profile_.emplace(dir_, plan_.info.band_bins, true);
     }
 
     // snapshot_times: of the snapshots written before a resume.
@@ -187,6 +198,7 @@ private:
         plan_.rotation_start_step = sim_.step_count();
         io::write_drum_run_info(dir_ / "drum_run.toml", info);
         drum_series_.emplace(dir_, info);
+        if (info.band_bins > 0) band_profile_.emplace(dir_, info.band_bins);
         if (snapshot_every_) snapshots_.emplace(dir_);
         if (talk()) {
             fmt::print("rotating at {:.4g} rad/s (Froude {:.3g}) for {} revolutions: {} steps, {} samples per revolution\n",
@@ -252,6 +264,10 @@ private:
         const double revolutions = plan_.info.omega * (sim_.time() - start) / (2.0 * pi);
         const analysis::DrumState state = analysis::measure_drum(sim_.particles(), frame_);
         drum_series_->write(revolutions, sim_.time(), state);
+        // The band profile at every band_every_-th step of the rotation and at its end.
+        const std::int64_t k = sim_.step_count() - plan_.rotation_start_step;
+        if (band_profile_ && (k % band_every_ == 0 || k == steps_))
+            band_profile_->write(revolutions, analysis::measure_bands(sim_.particles(), band_frame_));
         series_.write(sim_.observe());
         if (on_sample_) on_sample_({revolutions, state, sim_});
     }
@@ -284,7 +300,7 @@ private:
         save_policy(c.record, checkpoints_.policy());
         c.record.set("finished", std::int64_t{finished});
         c.record.set("snapshot_times", snapshots_ ? snapshots_->times() : std::vector<double>{});
-        io::record_file_lengths(c.record, dir_, {"time_series.csv", "drum_series.csv", "profiles.csv"});
+        io::record_file_lengths(c.record, dir_, {"time_series.csv", "drum_series.csv", "profiles.csv", "band_profile.csv"});
         checkpoints_.write(sim_, c);
     }
 
@@ -293,11 +309,13 @@ private:
     fs::path dir_;
     DrumSampleHook on_sample_;
     double period_;  // s per revolution
-    std::int64_t steps_, sample_every_, snapshot_every_;
+    std::int64_t steps_, sample_every_, snapshot_every_, band_every_;
     analysis::DrumFrame frame_;
+    analysis::BandFrame band_frame_;
     Checkpointer checkpoints_;
     io::TimeSeriesWriter series_;
     std::optional<io::DrumSeriesWriter> drum_series_;
+    std::optional<io::BandProfileWriter> band_profile_;
     std::optional<io::SnapshotSeries> snapshots_;
 };
 
@@ -341,6 +359,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     info.friction_normal = keyword_of(friction_normals, s.friction_normal);
     info.samples_per_revolution = s.samples_per_revolution;
     info.profile_bins = s.profile_bins;
+    info.band_bins = s.band_bins > 0 ? s.band_bins : analysis::default_band_bins(info.inner_length);
     info.components = components_of(sim, s.mode);
     double grain_volume = 0.0;
     for (std::size_t i = 0; i < sim.particles().size(); ++i)

@@ -51,6 +51,8 @@ void check_drum_settings(const DrumSettings& s, const std::string& source) {
     if (s.grains > 10'000'000) fail("grains", "at most 10^7 grains");
     if (s.samples_per_revolution < 1) fail("samples_per_revolution", "must be >= 1");
     if (s.profile_bins < 2) fail("profile_bins", "must be >= 2");
+    if (s.band_bins != 0 && (s.band_bins < 2 || s.band_bins > 100000))
+        fail("band_bins", "must lie in 2 .. 100000 (0: the default, L / 4 mm), got " + std::to_string(s.band_bins));
     if (s.snapshots_per_revolution < 0) fail("snapshots_per_revolution", "must be >= 0 (0: none)");
     if (!(s.settle_speed > 0.0)) fail("settle_speed", "must be > 0");
     if (!(s.settle_max_time > 0.0)) fail("settle_max_time", "must be > 0");
@@ -120,13 +122,15 @@ DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::
         s.revolutions = r.number(*t, "rotation", "revolutions", Bound::positive, s.revolutions);
     }
     if (const toml::table* t = r.table(root, "measure", false)) {
-        r.only_keys(*t, "measure", {"samples_per_revolution", "profile_bins", "snapshots_per_revolution"});
+        r.only_keys(*t, "measure", {"samples_per_revolution", "profile_bins", "band_bins", "snapshots_per_revolution"});
         if (const toml::node* n = t->get("snapshots_per_revolution"))
             s.snapshots_per_revolution = static_cast<int>(r.integer(*n, "measure.snapshots_per_revolution", 0, 100000));
         if (const toml::node* n = t->get("samples_per_revolution"))
             s.samples_per_revolution = static_cast<int>(r.integer(*n, "measure.samples_per_revolution", 1, 100000));
         if (const toml::node* n = t->get("profile_bins"))
             s.profile_bins = static_cast<int>(r.integer(*n, "measure.profile_bins", 2, 10000));
+        if (const toml::node* n = t->get("band_bins"))
+            s.band_bins = static_cast<int>(r.integer(*n, "measure.band_bins", 0, 100000));
     }
     if (const toml::table* t = r.table(root, "settle", false)) {
         r.only_keys(*t, "settle", {"speed", "max_time"});

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "io/band_output.hpp"
 #include "io/csv_table.hpp"
 #include "io/json.hpp"
 #include "io/output.hpp"
@@ -48,6 +49,7 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                         {"dt", info.dt},
                         {"samples_per_revolution", info.samples_per_revolution},
                         {"profile_bins", info.profile_bins},
+                        {"band_bins", info.band_bins},
                         {"settle_time", info.settle_time},
                         {"settled", info.settled},
                         {"wall_seconds", info.wall_seconds},
@@ -91,6 +93,8 @@ DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
     info.dt = num("dt");
     info.samples_per_revolution = static_cast<int>(num("samples_per_revolution"));
     info.profile_bins = static_cast<int>(r.integer(r.required(t, "", "profile_bins"), "profile_bins", 1, 1 << 20));
+    info.band_bins = t["band_bins"].value_or(0);  // absent before the band analysis
+    if (info.band_bins < 0 || info.band_bins > 100000) r.fail("band_bins", "must lie in 0 .. 100000");
     info.settle_time = num("settle_time");
     info.settled = r.boolean(r.required(t, "", "settled"), "settled");
     info.wall_seconds = num("wall_seconds");
@@ -835,6 +839,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     }
 
     analyze_bed_structure(dir, frames, info, options, text, summary);
+    analyze_band_run(dir, info, text, summary);
 
     // summary.json last: its presence marks a finished run (tumble sweep).
     // An undefined number (NaN) is null in it (json.hpp).

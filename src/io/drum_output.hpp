@@ -8,6 +8,7 @@
 //   depth_mobility.csv  axial mean squared displacement per revolution by
 //                      depth below the free surface (from the snapshots)
 //   summary.json, summary.txt   the analysis (`tumble analyze DIR`)
+//   band_profile.csv and the band analysis: io/band_output.hpp
 #pragma once
 
 #include <filesystem>
@@ -42,6 +43,7 @@ struct DrumRunInfo {
     double dt = 0.0;               // s
     int samples_per_revolution = 0;
     int profile_bins = 0;
+    int band_bins = 0;             // axial bins of band_profile.csv (0: none, a run from before the band analysis)
     double settle_time = 0.0;      // s of simulated settling
     bool settled = false;          // reached the settling criterion
     double wall_seconds = 0.0;     // of the rotating phase

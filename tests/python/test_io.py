@@ -25,6 +25,20 @@ def test_drum_run_directory(tiny_drum):
     np.testing.assert_array_equal(arrays["positions"], samples[-1].particles["positions"][order])
 
 
+def test_band_files_of_a_run(tiny_drum):
+    directory, _ = tiny_drum
+    run = tumble.io.Run(directory)
+    # A drum 3 cm long: 8 band bins of about 4 mm (docs/BANDS.md).
+    assert run.info["band_bins"] == 8
+    N, phi = run.band_profile()
+    assert phi.shape == (len(N), 8) and N[0] == 0.0 and len(N) >= 2
+    _, grains = run.band_profile("grains")
+    assert np.all(grains.sum(axis=1) == 6)
+    assert len(run.bands) == len(N) and "dominant_wavelength" in run.bands.columns
+    assert run.band_summary["species"] == "right" and run.band_summary["samples"] == len(N)
+    assert run.summary["bands"]["bins"] == 8
+
+
 def test_tracks_hogg_and_msd_of_a_run(tiny_drum):
     directory, _ = tiny_drum
     run = tumble.io.Run(directory)

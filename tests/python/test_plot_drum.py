@@ -111,6 +111,35 @@ class Figures(unittest.TestCase):
             legend = ax.get_legend().get_window_extent(renderer)
             self.assertGreaterEqual(legend.x0, ax.get_window_extent(renderer).x1)
 
+    def test_kymograph_in_the_species_colours_with_the_merges(self):
+        run = tiny_run(self.dir, [(2.0e-7, 1.0e-7), (2.5e-7, 1.2e-7)])
+        bins, header = 4, "revolutions,quantity,bin_0,bin_1,bin_2,bin_3"
+        rows = [header]
+        for n, phi in ((0.0, "1,0,1,0"), (0.25, "1,1,1,0")):
+            rows += [f"{n},small_fraction,{phi}", f"{n},grains,5,5,5,5", f"{n},small_grains,5,0,5,0",
+                     f"{n},core_fraction,{phi}", f"{n},wall_fraction,{phi}"]
+        write(os.path.join(self.dir, "band_profile.csv"), "\n".join(rows) + "\n")
+        write(os.path.join(self.dir, "bands.csv"),
+              "revolutions,bands,rich_bands,mean,contrast,band_contrast,dominant_wavelength,dominant_share,"
+              "core_fraction,wall_fraction,core_excess,left_end_rich,left_end_fraction,right_end_rich,"
+              "right_end_fraction\n"
+              "0,4,2,0.5,0.5,1,0.06,0.9,0.5,0.5,0,1,1,0,0\n"
+              "0.25,2,1,0.75,0.37,1,0.12,0.8,0.75,0.75,0,1,1,0,0\n")
+        write(os.path.join(self.dir, "bands.json"),
+              '{"species": "material-2", "other": "material-1", "events": '
+              '[{"revolutions": 0.25, "kind": "merge", "z": -0.015}]}')
+        w = Capture()
+        plot_drum.fig_bands(run, w)
+        kymo = w.figures["fig_bands"].axes[0]
+        mesh = kymo.collections[0]
+        self.assertEqual(mesh.get_array().size, 2 * bins)
+        colour = plot_drum.matplotlib.colors.to_hex
+        self.assertEqual(colour(mesh.cmap(1.0)), plot_drum.COLOURS[1])
+        self.assertEqual(colour(mesh.cmap(0.0)), plot_drum.COLOURS[0])
+        merges = [line for line in kymo.get_lines() if line.get_marker() == "x"]
+        self.assertEqual(len(merges), 1)
+        self.assertEqual(w.figures["fig_bands"].axes[1].get_xscale(), "log")
+
     def test_sweep_draws_undetermined_d_apart(self):
         table = os.path.join(self.dir, "sweep.csv")
         write(table, "mode,omega,froude,seed,D_left,D_stderr_left,determined_left,"

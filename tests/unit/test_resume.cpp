@@ -33,8 +33,8 @@ tumble::test_support::CommandResult tumble_run(const std::string& arguments) {
 
 // The files whose bytes an interruption must not change (drum_run.toml and
 // the summary hold the wall-clock time, which does).
-const char* const drum_files[] = {"time_series.csv", "drum_series.csv", "profiles.csv", "particles.pvd",
-                                  "contacts.pvd"};
+const char* const drum_files[] = {"time_series.csv", "drum_series.csv", "profiles.csv",
+                                  "band_profile.csv", "particles.pvd",    "contacts.pvd"};
 
 class Resume : public tumble::test_support::ScratchTest {
 protected:

@@ -66,6 +66,7 @@ DRUM_OPTIONS = {
     "spin_up": ("rotation", "spin_up_time"),
     "samples": ("measure", "samples_per_revolution"),
     "bins": ("measure", "profile_bins"),
+    "band_bins": ("measure", "band_bins"),
     "snapshots": ("measure", "snapshots_per_revolution"),
     "settle_speed": ("settle", "speed"),
     "settle_max_time": ("settle", "max_time"),

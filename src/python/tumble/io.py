@@ -92,6 +92,33 @@ class Run:
         """profiles.csv: C(z, N) per sample, component and bin."""
         return self.table("profiles.csv")
 
+    def band_profile(self, quantity="small_fraction"):
+        """(N, values[sample, bin]) of band_profile.csv, numpy arrays: the
+        quantity small_fraction (phi, the kymograph C(z, N)), grains,
+        small_grains, core_fraction or wall_fraction per axial bin
+        (docs/BANDS.md); bin b is centred at z = -L/2 + (b + 1/2) L / bins."""
+        frame = self.table("band_profile.csv")
+        rows = frame[frame["quantity"] == quantity]
+        if rows.empty:
+            raise KeyError(f"band_profile.csv has no quantity {quantity!r}")
+        columns = [c for c in frame.columns if c.startswith("bin_")]
+        return rows["revolutions"].to_numpy(), rows[columns].to_numpy(dtype=float)
+
+    @property
+    def bands(self):
+        """bands.csv: per band sample the band count, contrast, dominant wavelength, radial core, end bands."""
+        return self.table("bands.csv")
+
+    @property
+    def band_positions(self):
+        """band_positions.csv: per band sample, one row per band (species, edges, composition)."""
+        return self.table("band_positions.csv")
+
+    @property
+    def band_summary(self):
+        """bands.json: the thresholds, the final bands, the events (merges)."""
+        return json.loads((self.directory / "bands.json").read_text())
+
     @property
     def axial_msd_table(self):
         """axial_msd.csv: the grains' axial MSD against lag, per component."""

@@ -1,0 +1,293 @@
+// SPDX-License-Identifier: MIT
+#include "io/band_output.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "io/csv_table.hpp"
+#include "io/output.hpp"
+#include "io/png.hpp"
+#include "io/render/scene.hpp"
+#include "tumble/core/error.hpp"
+
+namespace tumble::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The rows of one band sample, in this order.
+constexpr std::array<const char*, 5> quantities{"small_fraction", "grains", "small_grains", "core_fraction",
+                                                "wall_fraction"};
+
+}  // namespace
+
+BandProfileWriter::BandProfileWriter(const fs::path& directory, int bins, bool continuing)
+    : path_(directory / "band_profile.csv"), out_(continuing ? open_for_appending(path_) : open_for_writing(path_)) {
+    if (continuing) return;
+    out_ << "revolutions,quantity";
+    for (int b = 0; b < bins; ++b) out_ << ",bin_" << b;
+    out_ << '\n';
+    check_written(out_, path_);
+}
+
+void BandProfileWriter::write(double revolutions, const analysis::BandSample& s) {
+    for (const char* q : quantities) {
+        const std::string name = q;
+        const std::vector<double>& row = name == "small_fraction" ? s.small_fraction
+                                         : name == "grains"       ? s.grains
+                                         : name == "small_grains" ? s.small_grains
+                                         : name == "core_fraction" ? s.core_fraction
+                                                                   : s.wall_fraction;
+        out_ << fmt::format("{},{}", revolutions, name);
+        // Four digits: the noise of a bin of tens of grains is in the second.
+        for (double v : row) out_ << fmt::format(",{:.4g}", v);
+        out_ << '\n';
+    }
+    check_written(out_, path_);
+}
+
+BandRecord read_band_profile(const fs::path& file, const DrumRunInfo& info) {
+    const CsvTable csv = read_csv_table(file);
+    const auto bins = static_cast<std::size_t>(info.band_bins);
+    if (csv.header.size() != bins + 2)
+        throw Error(file.string() + ": " + std::to_string(csv.header.size() - 2) + " bins, drum_run.toml says " +
+                    std::to_string(bins));
+    const std::vector<double> N = csv.numbers("revolutions");
+    std::vector<std::vector<double>> columns;
+    for (std::size_t b = 0; b < bins; ++b) columns.push_back(csv.numbers("bin_" + std::to_string(b)));
+    const std::size_t quantity = csv.column("quantity");
+    BandRecord r;
+    r.field.inner_length = info.inner_length;
+    r.field.periodic = info.periodic_axis;
+    if (N.size() % quantities.size() != 0)
+        throw Error(file.string() + ": " + std::to_string(N.size()) + " rows, not a multiple of " +
+                    std::to_string(quantities.size()) + " (one per quantity and sample)");
+    for (std::size_t row = 0; row < N.size(); ++row) {
+        const std::size_t q = row % quantities.size();
+        if (csv.rows[row][quantity] != quantities[q])
+            throw Error(fmt::format("{}: row {}: quantity {} expected, found {}", file.string(), row + 2, quantities[q],
+                                    csv.rows[row][quantity]));
+        std::vector<double> values(bins);
+        for (std::size_t b = 0; b < bins; ++b) values[b] = columns[b][row];
+        if (q == 0) r.field.revolutions.push_back(N[row]);
+        auto& target = q == 0 ? r.field.small_fraction
+                       : q == 1 ? r.field.grains
+                       : q == 2 ? r.field.small_grains
+                       : q == 3 ? r.core_fraction
+                                : r.wall_fraction;
+        target.push_back(std::move(values));
+    }
+    return r;
+}
+
+namespace {
+
+// Grain-weighted mean over the bins of a row (NaN where none).
+double pooled(const std::vector<double>& value, const std::vector<double>& grains) {
+    double sum = 0.0, n = 0.0;
+    for (std::size_t b = 0; b < value.size(); ++b)
+        if (std::isfinite(value[b])) sum += grains[b] * value[b], n += grains[b];
+    return n > 0.0 ? sum / n : std::nan("");
+}
+
+// C(z, N) as an image: z from -L/2 at the left, N growing downward; white
+// at `mean`, toward the colour of the species in excess (the palette's
+// species 1 above, 0 below) in proportion to the excess, full at phi = 1 or
+// 0; grey for an empty bin.
+void write_kymograph(const fs::path& file, const analysis::BandField& f, double mean) {
+    const int bins = static_cast<int>(f.bins()), samples = static_cast<int>(f.revolutions.size());
+    // Wide and tall enough to read: at least 480 by 320 pixels.
+    const int sx = std::max(1, (480 + bins - 1) / bins), sy = std::max(1, (320 + samples - 1) / samples);
+    render::Image image(bins * sx, samples * sy, {128, 128, 128});
+    const render::Rgb rich = render::grain_colour(1), poor = render::grain_colour(0);
+    const auto blend = [](render::Rgb c, double t) {
+        const auto mix = [t](std::uint8_t v) { return static_cast<std::uint8_t>(std::lround(255.0 + t * (v - 255.0))); };
+        return render::Rgb{mix(c.r), mix(c.g), mix(c.b)};
+    };
+    for (int k = 0; k < samples; ++k)
+        for (int b = 0; b < bins; ++b) {
+            const double phi = f.small_fraction[k][b];
+            if (!std::isfinite(phi)) continue;
+            const render::Rgb c = phi >= mean ? blend(rich, mean < 1.0 ? (phi - mean) / (1.0 - mean) : 0.0)
+                                              : blend(poor, mean > 0.0 ? (mean - phi) / mean : 0.0);
+            for (int y = k * sy; y < (k + 1) * sy; ++y)
+                for (int x = b * sx; x < (b + 1) * sx; ++x) image.set(x, y, c);
+        }
+    write_png(file, image);
+}
+
+Json band_json(const analysis::Band& b, const std::string& rich, const std::string& poor) {
+    return Json{{"species", b.rich ? rich : poor}, {"rich", b.rich},       {"lo", b.lo},
+                {"hi", b.hi},                      {"centre", b.centre},   {"small_fraction", b.small_fraction}};
+}
+
+}  // namespace
+
+void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostringstream& text, Json& summary,
+                      const analysis::BandOptions& options) {
+    if (info.band_bins <= 0 || !fs::exists(dir / "band_profile.csv")) {
+        text << "  bands: not measured (no band_profile.csv: a run of tumble before the band analysis)\n";
+        return;
+    }
+    const BandRecord record = read_band_profile(dir / "band_profile.csv", info);
+    const analysis::BandField& field = record.field;
+    const analysis::BandHistory h = analysis::analyze_band_field(field, options);
+    const std::string small = info.components.size() > 1 ? info.components[1].name : "species 1";
+    const std::string large = info.components.front().name;
+    const std::size_t samples = h.samples.size();
+
+    // bands.csv and band_positions.csv.
+    std::ofstream series = open_for_writing(dir / "bands.csv");
+    std::ofstream positions = open_for_writing(dir / "band_positions.csv");
+    series << "revolutions,bands,rich_bands,mean,contrast,band_contrast,dominant_wavelength,dominant_share,"
+              "core_fraction,wall_fraction,core_excess,left_end_rich,left_end_fraction,right_end_rich,"
+              "right_end_fraction\n";
+    positions << "revolutions,band,rich,lo,hi,centre,small_fraction,grains\n";
+    std::ofstream spectrum = open_for_writing(dir / "band_spectrum.csv");
+    spectrum << "revolutions";
+    const std::size_t modes = samples ? h.samples.front().power.size() : 0;
+    for (std::size_t m = 1; m <= modes; ++m) spectrum << ",wavelength_" << m;
+    spectrum << '\n';
+    std::vector<double> core(samples), wall(samples);
+    for (std::size_t k = 0; k < samples; ++k) {
+        const analysis::BandProfile& p = h.samples[k];
+        core[k] = pooled(record.core_fraction[k], field.grains[k]);
+        wall[k] = pooled(record.wall_fraction[k], field.grains[k]);
+        const std::size_t rich =
+            static_cast<std::size_t>(std::count_if(p.bands.begin(), p.bands.end(), [](const auto& b) { return b.rich; }));
+        const double nan = std::nan("");
+        const auto end = [&](bool right) {
+            if (p.bands.empty() || field.periodic) return std::pair{nan, nan};  // a ring has no ends
+            const analysis::Band& b = right ? p.bands.back() : p.bands.front();
+            return std::pair{b.rich ? 1.0 : 0.0, b.small_fraction};
+        };
+        series << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", p.revolutions, p.bands.size(), rich,
+                              p.mean, p.contrast, p.band_contrast, p.dominant_wavelength, p.dominant_share, core[k],
+                              wall[k], core[k] - wall[k], end(false).first, end(false).second, end(true).first,
+                              end(true).second);
+        spectrum << fmt::format("{}", p.revolutions);
+        for (double power : p.power) spectrum << fmt::format(",{:.4g}", power);
+        spectrum << '\n';
+        for (std::size_t i = 0; i < p.bands.size(); ++i) {
+            const analysis::Band& b = p.bands[i];
+            positions << fmt::format("{},{},{},{},{},{},{},{}\n", p.revolutions, i, b.rich ? 1 : 0, b.lo, b.hi,
+                                     b.centre, b.small_fraction, b.grains);
+        }
+    }
+    check_written(series, dir / "bands.csv");
+    check_written(positions, dir / "band_positions.csv");
+    check_written(spectrum, dir / "band_spectrum.csv");
+
+    double mean = 0.0, total = 0.0;
+    for (std::size_t k = 0; k < samples; ++k)
+        for (std::size_t b = 0; b < field.bins(); ++b)
+            if (std::isfinite(field.small_fraction[k][b]))
+                mean += field.grains[k][b] * field.small_fraction[k][b], total += field.grains[k][b];
+    if (samples > 0) write_kymograph(dir / "kymograph.png", field, total > 0.0 ? mean / total : 0.5);
+
+    // bands.json: the thresholds, the counts, the last sample's bands and the events.
+    std::size_t most = 0;
+    double onset = std::nan("");
+    for (const analysis::BandProfile& p : h.samples) most = std::max(most, p.bands.size());
+    for (const analysis::BandEvent& e : h.events)
+        if (e.kind == "onset" && !std::isfinite(onset)) onset = e.revolutions;
+    Json events = Json::array();
+    std::size_t merges = 0;
+    for (const analysis::BandEvent& e : h.events) {
+        merges += e.kind == "merge";
+        events.push_back(Json{{"revolutions", e.revolutions}, {"kind", e.kind}, {"species", e.rich ? small : large},
+                              {"z", e.z}, {"before", static_cast<std::int64_t>(e.before)},
+                              {"after", static_cast<std::int64_t>(e.after)}});
+    }
+    Json bands{{"species", small},
+               {"other", large},
+               {"bins", info.band_bins},
+               {"bin_width", info.inner_length / info.band_bins},
+               {"samples", static_cast<std::int64_t>(samples)},
+               {"thresholds", Json{{"smoothing_bins", options.smoothing},
+                                   {"z_enter", options.z_enter},
+                                   {"z_leave", options.z_leave},
+                                   {"min_contrast", options.min_contrast},
+                                   {"min_contrast_leave", options.min_contrast_leave},
+                                   {"min_width_bins", options.min_width}}},
+               {"spectrum", Json{{"transform", info.periodic_axis ? "fourier" : "cosine"},
+                                 {"wavelengths", [&] {
+                                      Json w = Json::array();
+                                      for (std::size_t m = 1; m <= modes; ++m)
+                                          w.push_back((info.periodic_axis ? 1.0 : 2.0) * info.inner_length /
+                                                      static_cast<double>(m));
+                                      return w;
+                                  }()}}},
+               {"max_bands", static_cast<std::int64_t>(most)},
+               {"onset_revolution", onset},
+               {"merges", static_cast<std::int64_t>(merges)},
+               {"events", events}};
+    if (samples > 0) {
+        const analysis::BandProfile& last = h.samples.back();
+        Json list = Json::array();
+        for (const analysis::Band& b : last.bands) list.push_back(band_json(b, small, large));
+        Json ends = nullptr;
+        if (!last.bands.empty() && !field.periodic)
+            ends = Json{{"left", band_json(last.bands.front(), small, large)},
+                        {"right", band_json(last.bands.back(), small, large)}};
+        bands["final"] = Json{{"revolutions", last.revolutions},
+                              {"bands", static_cast<std::int64_t>(last.bands.size())},
+                              {"contrast", last.contrast},
+                              {"band_contrast", last.band_contrast},
+                              {"dominant_wavelength", last.dominant_wavelength},
+                              {"dominant_share", last.dominant_share},
+                              {"core_fraction", core.back()},
+                              {"wall_fraction", wall.back()},
+                              {"list", list},
+                              {"ends", ends}};
+        bands["initial"] = Json{{"revolutions", h.samples.front().revolutions},
+                                {"bands", static_cast<std::int64_t>(h.samples.front().bands.size())},
+                                {"contrast", h.samples.front().contrast},
+                                {"core_fraction", core.front()},
+                                {"wall_fraction", wall.front()}};
+    }
+    write_json_file(dir / "bands.json", bands);
+    summary["bands"] = bands;
+
+    text << fmt::format("  bands of {} (fraction phi by volume in {} bins of {:.3g} mm, {} samples; band_profile.csv, "
+                        "bands.csv, bands.json, kymograph.png):\n",
+                        small, info.band_bins, 1e3 * info.inner_length / info.band_bins, samples);
+    if (samples == 0) return;
+    const analysis::BandProfile& first = h.samples.front();
+    const analysis::BandProfile& last = h.samples.back();
+    const auto describe = [&](const analysis::BandProfile& p) {
+        if (p.bands.empty())
+            return fmt::format("no bands (contrast, mean |phi - phi0|, {:.3f})", p.contrast);
+        std::string s = fmt::format("{} bands (", p.bands.size());
+        for (std::size_t i = 0; i < p.bands.size(); ++i) {
+            if (i) s += ' ';
+            s += p.bands[i].rich ? 'S' : 'L';
+        }
+        s += fmt::format("; S: rich in {}), band contrast {:.3f}", small, p.band_contrast);
+        if (field.periodic) return s + " (periodic axis: no end bands)";
+        return s + fmt::format(", ends {} {:.2f} / {} {:.2f}", p.bands.front().rich ? small : large,
+                               p.bands.front().small_fraction, p.bands.back().rich ? small : large,
+                               p.bands.back().small_fraction);
+    };
+    text << fmt::format("    N = {:.3g}: {}\n    N = {:.3g}: {}; dominant wavelength {:.3g} m ({:.0f} % of the "
+                        "power)\n",
+                        first.revolutions, describe(first), last.revolutions, describe(last),
+                        last.dominant_wavelength, 100.0 * last.dominant_share);
+    if (most == 0)
+        text << fmt::format("    no bands at any sample (a band needs a mean deviation of {:.3g} standard errors of a "
+                            "random mix and {:.3g} in phi)\n",
+                            options.z_enter, options.min_contrast);
+    else
+        text << fmt::format("    at most {} bands; {} events ({} merges; bands.json){}\n", most, h.events.size(), merges,
+                            std::isfinite(onset) ? fmt::format("; bands appear in the mixed bed at N = {:.3g}", onset)
+                                                 : std::string());
+    text << fmt::format("    radial core: phi near the axis {:.3f}, at the wall {:.3f} at N = {:.3g} ({:.3f}, {:.3f} at "
+                        "N = {:.3g})\n",
+                        core.back(), wall.back(), last.revolutions, core.front(), wall.front(), first.revolutions);
+}
+
+}  // namespace tumble::io

@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: MIT
+// The band files of a drum run directory (docs/BANDS.md):
+//   band_profile.csv    written during the rotation: per band sample (4 per
+//                       revolution and the last), five rows, one per
+//                       quantity, each with one column per axial bin
+//                       (bin_0 at z = -L/2): small_fraction (phi), grains,
+//                       small_grains, core_fraction, wall_fraction
+//   bands.csv           per band sample: the band count, contrast,
+//                       dominant wavelength, radial core, end bands
+//   band_positions.csv  per band sample, one row per band: species, edges, phi
+//   band_spectrum.csv   per band sample, the power of phi - phi0 per mode
+//                       (column wavelength_k: mode k, of wavelength 2 L / k
+//                       with end caps, L / k on a periodic axis)
+//   bands.json          the thresholds, the final bands, the events (merges),
+//                       also the "bands" section of summary.json
+//   kymograph.png       C(z, N) as an image: z from -L/2 at the left, N from 0
+//                       at the top, white at the run's mean phi, the colour
+//                       of the species in excess elsewhere
+// "small" is the species counted: component 1 (material-2, the small grains
+// of the two-component mode; the right half's grains in the self mode).
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "io/drum_output.hpp"
+#include "io/json.hpp"
+#include "tumble/analysis/bands.hpp"
+
+namespace tumble::io {
+
+class BandProfileWriter {
+public:
+    // continuing: append to the file as it stands (a resumed run), no header.
+    BandProfileWriter(const std::filesystem::path& directory, int bins, bool continuing = false);
+    void write(double revolutions, const analysis::BandSample& sample);
+
+private:
+    std::filesystem::path path_;
+    std::ofstream out_;
+};
+
+// band_profile.csv read back: the field C(z, N) with its grain counts, and
+// the core and wall fractions [sample][bin].
+struct BandRecord {
+    analysis::BandField field;
+    std::vector<std::vector<double>> core_fraction, wall_fraction;
+};
+BandRecord read_band_profile(const std::filesystem::path& file, const DrumRunInfo& info);
+
+// The band analysis of a run directory: writes bands.csv,
+// band_positions.csv, bands.json and kymograph.png, adds its lines to
+// `text` and its section to `summary`. A run without band_profile.csv
+// (one from before it, info.band_bins == 0) gets a line saying so.
+void analyze_band_run(const std::filesystem::path& directory, const DrumRunInfo& info, std::ostringstream& text,
+                      Json& summary, const analysis::BandOptions& options = {});
+
+}  // namespace tumble::io

@@ -1,0 +1,373 @@
+// SPDX-License-Identifier: MIT
+#include "tumble/analysis/bands.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "tumble/core/constants.hpp"
+#include "tumble/core/error.hpp"
+
+namespace tumble::analysis {
+
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+}  // namespace
+
+int default_band_bins(double inner_length) { return std::max(2, static_cast<int>(std::lround(inner_length / 0.004))); }
+
+BandSample measure_bands(const ParticleStore& p, const BandFrame& frame) {
+    if (frame.bins < 1 || !(frame.inner_length > 0.0))
+        throw Error("band measurement: need at least one bin and a positive length");
+    const auto bins = static_cast<std::size_t>(frame.bins);
+    std::vector<std::vector<std::size_t>> members(bins);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        if (p.is_kinematic(i)) continue;
+        const double relative = (p.position[i].z + 0.5 * frame.inner_length) / frame.inner_length;
+        members[static_cast<std::size_t>(std::clamp(relative * static_cast<double>(bins), 0.0, bins - 1.0))].push_back(i);
+    }
+    BandSample s;
+    for (auto* v : {&s.small_fraction, &s.grains, &s.small_grains, &s.core_fraction, &s.wall_fraction}) v->resize(bins);
+    const auto volume = [&](std::size_t i) { return 4.0 / 3.0 * pi * p.radius[i] * p.radius[i] * p.radius[i]; };
+    const auto counted = [&](std::size_t i) { return p.tag[i] == frame.species_tag; };
+    for (std::size_t b = 0; b < bins; ++b) {
+        std::vector<std::size_t>& m = members[b];
+        // Outward from the axis; ties by id, so the order does not depend on the array order.
+        std::sort(m.begin(), m.end(), [&](std::size_t i, std::size_t j) {
+            const double ri = std::hypot(p.position[i].x, p.position[i].y), rj = std::hypot(p.position[j].x, p.position[j].y);
+            return ri != rj ? ri < rj : p.id[i] < p.id[j];
+        });
+        double total = 0.0, species = 0.0, small = 0.0;
+        for (std::size_t i : m) {
+            total += volume(i);
+            if (counted(i)) species += volume(i), small += 1.0;
+        }
+        s.grains[b] = static_cast<double>(m.size());
+        s.small_grains[b] = small;
+        s.small_fraction[b] = total > 0.0 ? species / total : nan;
+        // A grain belongs to the core (the wall) when the middle of its
+        // volume lies in the inner (outer) third of the bin's volume.
+        double before = 0.0, core = 0.0, core_species = 0.0, wall = 0.0, wall_species = 0.0;
+        for (std::size_t i : m) {
+            const double v = volume(i), middle = before + 0.5 * v;
+            if (middle < total / 3.0) core += v, core_species += counted(i) ? v : 0.0;
+            if (middle > 2.0 * total / 3.0) wall += v, wall_species += counted(i) ? v : 0.0;
+            before += v;
+        }
+        s.core_fraction[b] = core > 0.0 ? core_species / core : nan;
+        s.wall_fraction[b] = wall > 0.0 ? wall_species / wall : nan;
+    }
+    return s;
+}
+
+double BandField::bin_centre(std::size_t b) const {
+    return -0.5 * inner_length + (static_cast<double>(b) + 0.5) * inner_length / static_cast<double>(bins());
+}
+
+namespace {
+
+// A bin in the order the segmentation walks it: z unwrapped (on a periodic
+// axis the walk starts at a sign change and z grows past L / 2).
+struct Cell {
+    std::size_t bin;
+    double z, phi, deviation, smoothed, grains;
+};
+
+// A maximal stretch of cells of one sign of the smoothed deviation.
+struct Run {
+    std::size_t first, last;  // cells
+    double lo, hi;            // unwrapped z
+    bool rich, significant = false;
+};
+
+// [lo, hi] on the axis as up to two pieces within [-L/2, L/2].
+std::vector<std::pair<double, double>> pieces(const Band& b, double L) {
+    if (b.lo <= b.hi) return {{b.lo, b.hi}};
+    return {{b.lo, 0.5 * L}, {-0.5 * L, b.hi}};
+}
+
+bool overlap(const Band& a, const Band& b, double L) {
+    for (auto [alo, ahi] : pieces(a, L))
+        for (auto [blo, bhi] : pieces(b, L))
+            if (std::min(ahi, bhi) > std::max(alo, blo)) return true;
+    return false;
+}
+
+// z wrapped into [-L/2, L/2) on a periodic axis.
+double wrapped(double z, double L, bool periodic) {
+    if (!periodic) return z;
+    return z - L * std::floor((z + 0.5 * L) / L);
+}
+
+class RowSegmenter {
+public:
+    RowSegmenter(const BandField& f, const BandOptions& o) : field_(f), options_(o) {}
+
+    BandProfile segment(std::size_t k, const BandProfile* previous) const {
+        const std::vector<double>& phi = field_.small_fraction[k];
+        const std::vector<double>& n = field_.grains[k];
+        const std::size_t bins = phi.size();
+        BandProfile out;
+        out.revolutions = field_.revolutions[k];
+        out.band_contrast = nan;
+        double grains = 0.0, weighted = 0.0, small = 0.0;
+        for (std::size_t b = 0; b < bins; ++b)
+            if (std::isfinite(phi[b]) && n[b] > 0.0) {
+                grains += n[b];
+                weighted += n[b] * phi[b];
+                if (!field_.small_grains.empty()) small += field_.small_grains[k][b];
+            }
+        out.mean = grains > 0.0 ? weighted / grains : nan;
+        spectrum(phi, out);
+        if (!(grains > 0.0)) return out;
+        for (std::size_t b = 0; b < bins; ++b)
+            if (std::isfinite(phi[b]) && n[b] > 0.0) out.contrast += n[b] * std::abs(phi[b] - out.mean) / grains;
+        // The variance of phi in a bin of one grain of a random mix (see the header).
+        const double x0 = field_.small_grains.empty() ? out.mean : small / grains;
+        if (!(x0 > 0.0 && x0 < 1.0)) return out;  // one species only
+        const double noise = out.mean * out.mean * (1.0 - out.mean) * (1.0 - out.mean) / (x0 * (1.0 - x0));
+
+        const std::vector<Cell> cells = walk(phi, n, out.mean);
+        if (cells.empty()) return out;
+        std::vector<Run> runs = find_runs(cells);
+        for (Run& r : runs) r.significant = significant(cells, r, noise, previous);
+        out.bands = join(cells, runs);
+        double rich = 0.0, rich_n = 0.0, poor = 0.0, poor_n = 0.0;
+        for (const Band& b : out.bands) {
+            (b.rich ? rich : poor) += b.small_fraction * b.grains;
+            (b.rich ? rich_n : poor_n) += b.grains;
+        }
+        if (!out.bands.empty()) out.band_contrast = rich / rich_n - poor / poor_n;
+        return out;
+    }
+
+private:
+    double L() const { return field_.inner_length; }
+
+    // The non-empty bins with their smoothed deviation, in walking order.
+    std::vector<Cell> walk(const std::vector<double>& phi, const std::vector<double>& n, double mean) const {
+        const auto bins = static_cast<std::ptrdiff_t>(phi.size());
+        const std::ptrdiff_t half = std::max(0, options_.smoothing / 2);
+        std::vector<Cell> cells;
+        for (std::ptrdiff_t b = 0; b < bins; ++b) {
+            if (!(std::isfinite(phi[b]) && n[b] > 0.0)) continue;
+            double sum = 0.0, count = 0.0;
+            for (std::ptrdiff_t j = b - half; j <= b + half; ++j) {
+                std::ptrdiff_t i = j;
+                if (field_.periodic) i = ((j % bins) + bins) % bins;
+                else if (j < 0 || j >= bins) continue;  // truncated at the caps
+                if (std::isfinite(phi[i]) && n[i] > 0.0) sum += phi[i] - mean, count += 1.0;
+            }
+            cells.push_back({static_cast<std::size_t>(b), field_.bin_centre(static_cast<std::size_t>(b)), phi[b],
+                             phi[b] - mean, sum / count, n[b]});
+        }
+        if (!field_.periodic) return cells;
+        // Start the walk at a sign change, so that no run is cut by the seam.
+        const auto rich = [](const Cell& c) { return c.smoothed > 0.0; };
+        std::size_t start = 0;
+        for (std::size_t c = 0; c < cells.size(); ++c)
+            if (rich(cells[c]) != rich(cells[(c + cells.size() - 1) % cells.size()])) {
+                start = c;
+                break;
+            }
+        std::rotate(cells.begin(), cells.begin() + static_cast<std::ptrdiff_t>(start), cells.end());
+        for (std::size_t c = 1; c < cells.size(); ++c)
+            if (cells[c].z < cells[c - 1].z) cells[c].z += L();
+        return cells;
+    }
+
+    std::vector<Run> find_runs(const std::vector<Cell>& cells) const {
+        const auto rich = [](const Cell& c) { return c.smoothed > 0.0; };
+        // Where the smoothed deviation crosses zero between cells a and b.
+        const auto crossing = [](const Cell& a, const Cell& b) {
+            return a.z + (b.z - a.z) * a.smoothed / (a.smoothed - b.smoothed);
+        };
+        // With caps the runs span the bed from cap to cap; on a ring the walk
+        // starts at a sign change, so the first run starts at the crossing
+        // from the last cell (a period back) and the last run ends there.
+        double start = -0.5 * L();
+        if (field_.periodic) {
+            Cell last = cells.back();
+            last.z -= L();
+            if (rich(last) != rich(cells.front())) start = crossing(last, cells.front());
+        }
+        std::vector<Run> runs;
+        double lo = start;
+        std::size_t first = 0;
+        for (std::size_t c = 1; c <= cells.size(); ++c) {
+            if (c < cells.size() && rich(cells[c]) == rich(cells[first])) continue;
+            const double hi = c < cells.size() ? crossing(cells[c - 1], cells[c])
+                              : field_.periodic ? start + L()
+                                                : 0.5 * L();
+            runs.push_back({first, c - 1, lo, hi, rich(cells[first])});
+            lo = hi;
+            first = c;
+        }
+        return runs;
+    }
+
+    // noise: the variance of phi in a bin of one grain of a random mix.
+    bool significant(const std::vector<Cell>& cells, const Run& r, double noise, const BandProfile* previous) const {
+        double sum = 0.0, grains = 0.0;
+        for (std::size_t c = r.first; c <= r.last; ++c) sum += cells[c].grains * cells[c].deviation, grains += cells[c].grains;
+        const double d = sum / grains, z = std::abs(d) / std::sqrt(noise / grains);
+        if ((d > 0.0) != r.rich || static_cast<int>(r.last - r.first + 1) < options_.min_width) return false;
+        bool known = false;  // a band of this sign was here at the previous sample
+        if (previous) {
+            const Band here{r.rich, wrapped(r.lo, L(), field_.periodic), wrapped(r.hi, L(), field_.periodic)};
+            for (const Band& b : previous->bands) known = known || (b.rich == r.rich && overlap(b, here, L()));
+        }
+        return known ? z >= options_.z_leave && std::abs(d) >= options_.min_contrast_leave
+                     : z >= options_.z_enter && std::abs(d) >= options_.min_contrast;
+    }
+
+    // Significant runs of one sign, with what lies between them, are a band.
+    std::vector<Band> join(const std::vector<Cell>& cells, const std::vector<Run>& runs) const {
+        std::vector<std::pair<const Run*, const Run*>> groups;  // first and last significant run
+        for (const Run& r : runs) {
+            if (!r.significant) continue;
+            if (!groups.empty() && groups.back().second->rich == r.rich) groups.back().second = &r;
+            else groups.push_back({&r, &r});
+        }
+        if (groups.empty()) return {};
+        const bool ring = field_.periodic;
+        if (ring && groups.size() > 1 && groups.front().first->rich == groups.back().first->rich) {
+            groups.front().first = groups.back().first;
+            groups.pop_back();
+        }
+        if (groups.size() < 2) return {};
+        std::vector<Band> bands;
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+            Band b;
+            b.rich = groups[g].first->rich;
+            const auto& before = groups[(g + groups.size() - 1) % groups.size()];
+            const auto& after = groups[(g + 1) % groups.size()];
+            // Edges midway between neighbouring groups (unwrapped: a group's
+            // start may lie a period before its end when it spans the seam).
+            double start = groups[g].first->lo, end = groups[g].second->hi;
+            if (end < start) start -= L();
+            double prev_end = before.second->hi, next_start = after.first->lo;
+            while (prev_end > start) prev_end -= L();
+            while (next_start < end) next_start += L();
+            b.lo = (!ring && g == 0) ? -0.5 * L() : 0.5 * (prev_end + start);
+            b.hi = (!ring && g + 1 == groups.size()) ? 0.5 * L() : 0.5 * (end + next_start);
+            b.centre = wrapped(0.5 * (b.lo + b.hi), L(), ring);
+            b.lo = wrapped(b.lo, L(), ring);
+            b.hi = wrapped(b.hi, L(), ring);
+            bands.push_back(b);
+        }
+        // Each bin to the band holding its centre.
+        std::vector<double> phi_sum(bands.size(), 0.0);
+        for (const Cell& c : cells) {
+            const Band point{false, wrapped(c.z, L(), ring) - 1e-12 * L(), wrapped(c.z, L(), ring) + 1e-12 * L()};
+            for (std::size_t i = 0; i < bands.size(); ++i)
+                if (overlap(bands[i], point, L())) {
+                    bands[i].grains += c.grains;
+                    phi_sum[i] += c.grains * c.phi;
+                    break;
+                }
+        }
+        for (std::size_t i = 0; i < bands.size(); ++i)
+            bands[i].small_fraction = bands[i].grains > 0.0 ? phi_sum[i] / bands[i].grains : nan;
+        if (!ring) return bands;
+        // On a ring, list the bands by their centres along z.
+        std::sort(bands.begin(), bands.end(), [](const Band& a, const Band& b) { return a.centre < b.centre; });
+        return bands;
+    }
+
+    // With end caps the bed mirrors at each cap: the cosine transform
+    // (DCT-II); on a periodic axis the Fourier series.
+    void spectrum(const std::vector<double>& phi, BandProfile& out) const {
+        const std::size_t n = phi.size();
+        std::vector<double> d(n, 0.0);
+        for (std::size_t b = 0; b < n; ++b)
+            if (std::isfinite(phi[b]) && std::isfinite(out.mean)) d[b] = phi[b] - out.mean;
+        const std::size_t modes = field_.periodic ? n / 2 : n - 1;
+        out.power.assign(modes, 0.0);
+        for (std::size_t k = 1; k <= modes; ++k) {
+            double re = 0.0, im = 0.0;
+            for (std::size_t b = 0; b < n; ++b) {
+                const double x = static_cast<double>(k) * (static_cast<double>(b) + (field_.periodic ? 0.0 : 0.5)) /
+                                 static_cast<double>(n);
+                if (field_.periodic) re += d[b] * std::cos(2.0 * pi * x), im -= d[b] * std::sin(2.0 * pi * x);
+                else re += d[b] * std::cos(pi * x);
+            }
+            out.power[k - 1] = re * re + im * im;
+        }
+        const double total = std::accumulate(out.power.begin(), out.power.end(), 0.0);
+        if (!(total > 1e-30)) {
+            out.dominant_wavelength = out.dominant_share = nan;
+            return;
+        }
+        const auto best = static_cast<std::size_t>(std::max_element(out.power.begin(), out.power.end()) - out.power.begin());
+        const double k = static_cast<double>(best + 1);
+        out.dominant_wavelength = (field_.periodic ? 1.0 : 2.0) * L() / k;
+        out.dominant_share = out.power[best] / total;
+    }
+
+    const BandField& field_;
+    BandOptions options_;
+};
+
+// The changes between the bands of two samples (see BandEvent).
+void add_events(const BandProfile& before, const BandProfile& after, double L, bool periodic,
+                std::vector<BandEvent>& events) {
+    const std::size_t nb = before.bands.size(), na = after.bands.size();
+    const auto event = [&](std::string kind, bool rich, double z) {
+        events.push_back({after.revolutions, std::move(kind), rich, z, nb, na});
+    };
+    if (nb == 0 && na == 0) return;
+    if (nb == 0 || na == 0) {
+        event(nb == 0 ? "onset" : "dissolve", false, 0.0);
+        return;
+    }
+    const auto followed = [&](const Band& a, const std::vector<Band>& in) {
+        return std::any_of(in.begin(), in.end(), [&](const Band& b) { return b.rich == a.rich && overlap(a, b, L); });
+    };
+    for (std::size_t i = 0; i < nb; ++i) {
+        const Band& a = before.bands[i];
+        if (followed(a, after.bands)) continue;
+        const bool end = !periodic && (i == 0 || i + 1 == nb);
+        bool merged = false;
+        if (!end) {
+            const Band& left = before.bands[(i + nb - 1) % nb];
+            const Band& right = before.bands[(i + 1) % nb];
+            for (const Band& b : after.bands)
+                merged = merged || (b.rich == left.rich && overlap(b, left, L) && overlap(b, right, L));
+        }
+        event(end ? "end" : merged ? "merge" : "vanish", a.rich, a.centre);
+    }
+    for (const Band& b : after.bands)
+        if (!followed(b, before.bands)) event("appear", b.rich, b.centre);
+}
+
+}  // namespace
+
+BandHistory analyze_band_field(const BandField& field, const BandOptions& options) {
+    const std::size_t samples = field.revolutions.size();
+    if (field.small_fraction.size() != samples || field.grains.size() != samples ||
+        (!field.small_grains.empty() && field.small_grains.size() != samples))
+        throw Error("band analysis: as many rows of phi, grains and small grains as samples expected");
+    for (std::size_t k = 0; k < samples; ++k)
+        if (field.small_fraction[k].size() != field.bins() || field.grains[k].size() != field.bins() ||
+            (!field.small_grains.empty() && field.small_grains[k].size() != field.bins()))
+            throw Error("band analysis: sample " + std::to_string(k) + " has not " + std::to_string(field.bins()) +
+                        " bins");
+    if (samples > 0 && (field.bins() < 2 || !(field.inner_length > 0.0)))
+        throw Error("band analysis: need at least 2 bins and a positive length");
+    if (options.smoothing < 1 || options.min_width < 1 || !(options.z_leave <= options.z_enter) ||
+        !(options.min_contrast_leave <= options.min_contrast))
+        throw Error("band analysis: smoothing and min_width >= 1, and the thresholds to stay at most those to enter");
+    BandHistory h;
+    const RowSegmenter segmenter(field, options);
+    for (std::size_t k = 0; k < samples; ++k) {
+        h.samples.push_back(segmenter.segment(k, k ? &h.samples[k - 1] : nullptr));
+        if (k) add_events(h.samples[k - 1], h.samples[k], field.inner_length, field.periodic, h.events);
+    }
+    return h;
+}
+
+}  // namespace tumble::analysis

@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: MIT
+// Axial bands of a two-species drum (issue 16; docs/BANDS.md): the
+// composition along the axis sampled over the rotation, C(z, N) (the
+// "kymograph" of band studies), and what is read from it: the bands, their
+// number, edges, contrast and the species at the ends, the dominant
+// wavelength, and the merging of bands over N. Frame as in drum_measure.hpp:
+// drum axis = z, centre at the origin; the species counted is the grains of
+// one tag (tag 1: material 2, the small grains, in the two-component mode).
+//
+// Segmentation of one sample (analyze_band_field, in this order):
+//  1. phi0, the row's mean: phi per bin weighted by the bin's grain count.
+//  2. A running mean of phi - phi0 over `smoothing` bins (truncated at end
+//     caps, wrapped on a periodic axis; empty bins left out) decides only the
+//     sign of each bin: runs are maximal stretches of one sign, their ends the
+//     zero crossings of the smoothed deviation, interpolated between bin
+//     centres (the first and last run reach the caps).
+//  3. A run is significant when, from the raw phi of its bins, its mean
+//     deviation d (grain-weighted) is large against the noise of a uniform
+//     bed, |d| >= z * se, and |d| >= min_contrast, and it spans at least
+//     min_width bins. Noise: a bed mixed at random puts each grain of the
+//     bin in the counted species with the row's number fraction x0, so phi
+//     has the variance c / n with c = phi0^2 (1 - phi0)^2 / (x0 (1 - x0))
+//     (the binomial variance carried to the volume fraction; x0 = phi0 for
+//     equal sizes), and a run of n grains se = sqrt(c / n).
+//  4. Hysteresis in time: a run that overlaps a band of its sign in the
+//     previous sample needs only z_leave and min_contrast_leave to stay; a
+//     new one needs z_enter and min_contrast. A band whose amplitude hovers about
+//     the entry threshold does not flicker.
+//  5. Bands: consecutive significant runs of one sign join into one band;
+//     insignificant runs between them belong to it; an edge between bands of
+//     opposite sign lies midway between the end of the one's last significant
+//     run and the start of the other's first. The end bands reach the caps.
+//     On a periodic axis the first and last band join if of one sign.
+//     Fewer than two bands is no banding: the count is 0.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "tumble/particles/particle_store.hpp"
+
+namespace tumble::analysis {
+
+// Where and how a drum run samples the bands.
+struct BandFrame {
+    double inner_length = 0.12;  // m, the bed length L
+    int bins = 30;               // axial bins (default_band_bins)
+    int species_tag = 1;         // the species whose fraction phi is (tag 1: material 2, the small grains)
+};
+
+// The default axial bins of the band profile: about one large grain
+// diameter (3.6 mm) each, L / 4 mm, at least 2.
+int default_band_bins(double inner_length);
+
+// One sample of the composition along the axis, per bin (NaN where a bin,
+// or its core or wall, holds no grains).
+struct BandSample {
+    std::vector<double> small_fraction;  // phi = V_species / V_all in the bin
+    std::vector<double> grains;          // grains in the bin
+    std::vector<double> small_grains;    // grains of the species in the bin
+    // The radial core: in each bin the grains are ranked by their distance
+    // from the drum axis; the inner third of the bin's grain volume is the
+    // core, the outer third lies at the wall; phi of each.
+    std::vector<double> core_fraction, wall_fraction;
+};
+
+BandSample measure_bands(const ParticleStore& p, const BandFrame& frame);
+
+// C(z, N): the samples of a run, in time order.
+struct BandField {
+    double inner_length = 0.0;  // m
+    bool periodic = false;      // periodic axis (no end caps)
+    std::vector<double> revolutions;                 // N per sample
+    std::vector<std::vector<double>> small_fraction; // [sample][bin], NaN: empty
+    std::vector<std::vector<double>> grains;         // [sample][bin]
+    std::vector<std::vector<double>> small_grains;   // [sample][bin]; empty: equal grain sizes (x0 = phi0)
+    std::size_t bins() const { return small_fraction.empty() ? 0 : small_fraction.front().size(); }
+    double bin_centre(std::size_t b) const;          // z, m
+};
+
+struct BandOptions {
+    // A running mean over 3 bins (about 3 large grain diameters) decides the
+    // sign of the deviation: one stray grain does not split a band.
+    int smoothing = 3;
+    // Significance of a new band: a run's mean deviation at least 4 standard
+    // errors of a random mix (a two-sided normal tail of 6e-5 per run); no
+    // band in 4000 samples of a random mix of 30 or 160 bins
+    // (tests/unit/test_bands.cpp), where z_enter = 3 gives 7 % at 160 bins.
+    // 2 to stay.
+    double z_enter = 4.0, z_leave = 2.0;
+    // And at least 0.05 in volume fraction (0.025 to stay): in a long bed of
+    // many grains a weak but certain modulation is not a band.
+    double min_contrast = 0.05, min_contrast_leave = 0.025;
+    int min_width = 2;  // bins: a band is at least about two grain diameters wide
+};
+
+struct Band {
+    bool rich = false;          // rich in the species counted (phi above phi0)
+    double lo = 0.0, hi = 0.0;  // edges, m (lo > hi: the band wraps around a periodic axis)
+    double centre = 0.0;        // m
+    double small_fraction = 0.0;  // grain-weighted mean phi of its bins
+    double grains = 0.0;        // grains in its bins
+};
+
+struct BandProfile {
+    double revolutions = 0.0;
+    double mean = 0.0;            // phi0
+    std::vector<Band> bands;      // along z; empty: no banding (fewer than two bands)
+    // Contrast: the grain-weighted mean |phi - phi0| over the bins (defined
+    // without bands too), and between bands the mean phi of the rich bands
+    // minus that of the poor ones (NaN without bands).
+    double contrast = 0.0;
+    double band_contrast = 0.0;
+    // Spectrum of phi - phi0 (empty bins: 0): with end caps a cosine
+    // transform (DCT-II, the mirror image of the bed at each cap: mode k has
+    // wavelength 2 L / k), on a periodic axis the Fourier series (L / k);
+    // the dominant mode and its share of the power (NaN for a flat row).
+    std::vector<double> power;  // by mode k = 1, 2, ...
+    double dominant_wavelength = 0.0;  // m
+    double dominant_share = 0.0;
+};
+
+// Changes of the bands between two samples.
+struct BandEvent {
+    double revolutions = 0.0;  // N of the later sample
+    // "merge": an inner band vanished and its two neighbours joined;
+    // "end": an end band vanished, its neighbour reaching the cap;
+    // "vanish": any other band gone; "appear": a band with no forerunner;
+    // "onset": banding begins (from no bands); "dissolve": it ends.
+    std::string kind;
+    bool rich = false;  // of the band that vanished or appeared
+    double z = 0.0;     // its centre, m (onset, dissolve: 0)
+    std::size_t before = 0, after = 0;  // band counts
+};
+
+struct BandHistory {
+    std::vector<BandProfile> samples;
+    std::vector<BandEvent> events;
+};
+
+BandHistory analyze_band_field(const BandField& field, const BandOptions& options = {});
+
+}  // namespace tumble::analysis

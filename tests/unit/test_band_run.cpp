@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: MIT
+// The band analysis end to end (docs/BANDS.md): a small two-component drum
+// writes band_profile.csv during the rotation, and its analysis the band
+// counts (bands.csv, bands.json, summary.json) and the kymograph;
+// `tumble analyze` recomputes them byte for byte; a bad --band-bins is
+// refused before any work.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "io/band_output.hpp"
+#include "io/csv_table.hpp"
+#include "io/json.hpp"
+#include "io/png.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tumble::test_support::read_file;
+
+tumble::test_support::CommandResult tumble_run(const std::string& arguments) {
+    return tumble::test_support::run_command(std::string(TUMBLE_BINARY) + " " + arguments);
+}
+
+class BandRun : public tumble::test_support::ScratchTest {};
+
+TEST_F(BandRun, SmallDrumWritesTheKymographAndBandCounts) {
+    // 300 grains in a drum 6 cm long (15 band bins of 4 mm), 1 revolution at
+    // 8 rad/s, 8 samples per revolution: band samples at N = 0, 0.25, ...,
+    // the last of them a few steps short of 1 (the samples fall on whole
+    // steps), and at the end, N = 1.
+    const fs::path out = dir_ / "drum";
+    const auto r = tumble_run("drum -q --grains 300 --length 0.06 --omega 8 --revolutions 1 --samples 8 "
+                              "--snapshots 0 --no-plot --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const tumble::io::DrumRunInfo info = tumble::io::read_drum_run_info(out / "drum_run.toml");
+    EXPECT_EQ(info.band_bins, 15);
+    const tumble::io::BandRecord record = tumble::io::read_band_profile(out / "band_profile.csv", info);
+    const std::size_t samples = record.field.revolutions.size();
+    ASSERT_EQ(samples, 6u);
+    EXPECT_DOUBLE_EQ(record.field.revolutions.front(), 0.0);
+    EXPECT_NEAR(record.field.revolutions.back(), 1.0, 1e-4);  // the run's whole steps: a step is 1e-5 revolutions
+    double grains = 0.0;
+    for (double n : record.field.grains.back()) grains += n;
+    EXPECT_DOUBLE_EQ(grains, 300.0);
+
+    // The halves start as two bands: material-1 (large) left, material-2 right.
+    const tumble::io::CsvTable bands = tumble::io::read_csv_table(out / "bands.csv");
+    ASSERT_EQ(bands.rows.size(), samples);
+    EXPECT_EQ(bands.numbers("bands").front(), 2.0);
+    EXPECT_EQ(bands.numbers("left_end_rich").front(), 0.0);
+    EXPECT_EQ(bands.numbers("right_end_rich").front(), 1.0);
+    const tumble::io::Json summary = tumble::io::parse_json(read_file(out / "summary.json"));
+    ASSERT_TRUE(summary.contains("bands"));
+    EXPECT_EQ(summary["bands"]["samples"], 6);
+    EXPECT_EQ(summary["bands"]["species"], "material-2");
+    EXPECT_EQ(summary["bands"]["initial"]["bands"], 2);
+    EXPECT_NE(read_file(out / "summary.txt").find("bands of material-2"), std::string::npos);
+    const tumble::io::render::Image kymograph = tumble::io::read_png(out / "kymograph.png");
+    EXPECT_EQ(kymograph.width(), 15 * 32);  // 32 pixels per bin (at least 480 wide)
+    EXPECT_EQ(kymograph.height(), 6 * 54);  // 54 per sample (at least 320 tall)
+
+    // tumble analyze: the same files again.
+    EXPECT_EQ(tumble::io::read_csv_table(out / "band_spectrum.csv").rows.size(), samples);
+    const std::string json = read_file(out / "bands.json"), csv = read_file(out / "bands.csv");
+    fs::remove(out / "bands.json");
+    fs::remove(out / "kymograph.png");
+    const auto again = tumble_run("analyze " + out.string());
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    EXPECT_EQ(read_file(out / "bands.json"), json);
+    EXPECT_EQ(read_file(out / "bands.csv"), csv);
+    EXPECT_TRUE(fs::exists(out / "kymograph.png"));
+}
+
+TEST_F(BandRun, BadBandBinsIsRefusedBeforeAnyWork) {
+    const auto r = tumble_run("drum -q --band-bins 1 --out " + (dir_ / "never").string());
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.output.find("band_bins"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "never"));
+}
+
+}  // namespace
