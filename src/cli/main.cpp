@@ -297,8 +297,13 @@ int main(int argc, char** argv) {
     CLI::App* analyze_cmd = app.add_subcommand("analyze", "Analyse a drum run directory again (summary.json, summary.txt)");
     analyze_cmd->add_option("directory", analyze_dir, "Run directory of tumble drum")->required();
     double first_revolution = 1.0;
-    analyze_cmd->add_option("--first-revolution", first_revolution,
-                            "Leave the start-up out of the fits: use revolutions N >= this (default 1)");
+    auto* first_revolution_opt = analyze_cmd->add_option(
+        "--first-revolution", first_revolution, "Leave the start-up out of the fits: use revolutions N >= this (default 1)");
+    bool so_far = false;
+    analyze_cmd->add_flag("--so-far", so_far,
+                          "The bands of the revolutions written so far, of a run stopped or unfinished, into DIR/so_far/ "
+                          "(docs/BANDS.md); the run's own files untouched")
+        ->excludes(first_revolution_opt);
 
     std::vector<std::string> plot_inputs;
     std::string plot_out;
@@ -364,7 +369,7 @@ int main(int argc, char** argv) {
                     throw tumble::Error("bench: " + option->get_name() + " does not apply to --case " + bench.bench_case);
             return bench_command(bench);
         }
-        if (analyze_cmd->parsed()) return analyze_command(analyze_dir, first_revolution);
+        if (analyze_cmd->parsed()) return analyze_command(analyze_dir, first_revolution, so_far);
         if (plot_cmd->parsed()) return plot_command(plot_compare ? "compare" : "run", plot_inputs, plot_out);
         if (sweep_cmd->parsed()) return sweep_command(sweep);
         if (render_cmd->parsed()) return render_command(render);
@@ -404,7 +409,13 @@ int main(int argc, char** argv) {
             if (bands) d.fill.bands = *bands;
             if (!band_widths.empty()) d.fill.band_widths = band_widths;
             if (!boundaries.empty()) d.fill.boundaries = boundaries;
-            if (ends) d.fill.ends = tumble::find_keyword(tumble::species_names, *ends)->value;
+            if (ends) {
+                using tumble::Arrangement;
+                if (d.fill.arrangement != Arrangement::bands && d.fill.arrangement != Arrangement::boundaries)
+                    throw tumble::Error("command line: --ends applies to --arrangement bands or boundaries, not " +
+                                        std::string(tumble::keyword_of(tumble::arrangements, d.fill.arrangement)));
+                d.fill.ends = tumble::find_keyword(tumble::species_names, *ends)->value;
+            }
             if (small_volume_fraction) d.fill.small_volume_fraction = *small_volume_fraction;
             if (spin_up_seconds) d.spin_up_time = *spin_up_seconds;
             if (spin_up_revolutions) d.spin_up_time = 2.0 * tumble::pi * *spin_up_revolutions / d.omega();

@@ -422,4 +422,9 @@ std::string analyze_drum(const std::string& directory, double first_revolution) 
     return io::analyze_drum_run(directory, {first_revolution});
 }
 
+std::string analyze_bands_so_far(const std::string& directory) {
+    const io::RunLock lock(directory);  // not while the run goes on
+    return io::analyze_bands_so_far(directory);
+}
+
 }  // namespace tumble::experiments

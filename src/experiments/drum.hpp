@@ -67,4 +67,8 @@ DrumOutcome resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& 
 // of the fits. Refuses a run in use or unfinished.
 std::string analyze_drum(const std::string& directory, double first_revolution = 1.0);
 
+// The bands of a run so far (io::analyze_bands_so_far), finished or not:
+// into DIR/so_far/. Refuses a run in use.
+std::string analyze_bands_so_far(const std::string& directory);
+
 }  // namespace tumble::experiments

@@ -127,8 +127,8 @@ Json band_json(const analysis::Band& b, const std::string& rich, const std::stri
 
 }  // namespace
 
-void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostringstream& text, Json& summary,
-                      const analysis::BandOptions& options) {
+void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInfo& info, std::ostringstream& text,
+                      Json& summary, const analysis::BandOptions& options) {
     if (info.band_bins <= 0 || !fs::exists(dir / "band_profile.csv")) {
         text << "  bands: not measured (no band_profile.csv: a run of tumble before the band analysis)\n";
         return;
@@ -141,13 +141,13 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
     const std::size_t samples = h.samples.size();
 
     // bands.csv and band_positions.csv.
-    std::ofstream series = open_for_writing(dir / "bands.csv");
-    std::ofstream positions = open_for_writing(dir / "band_positions.csv");
+    std::ofstream series = open_for_writing(out / "bands.csv");
+    std::ofstream positions = open_for_writing(out / "band_positions.csv");
     series << "revolutions,bands,rich_bands,mean,contrast,band_contrast,dominant_wavelength,dominant_share,"
               "core_fraction,wall_fraction,core_excess,left_end_rich,left_end_fraction,right_end_rich,"
               "right_end_fraction\n";
     positions << "revolutions,band,rich,lo,hi,centre,small_fraction,grains\n";
-    std::ofstream spectrum = open_for_writing(dir / "band_spectrum.csv");
+    std::ofstream spectrum = open_for_writing(out / "band_spectrum.csv");
     spectrum << "revolutions";
     const std::size_t modes = samples ? h.samples.front().power.size() : 0;
     for (std::size_t m = 1; m <= modes; ++m) spectrum << ",wavelength_" << m;
@@ -178,16 +178,16 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
                                      b.centre, b.small_fraction, b.grains);
         }
     }
-    check_written(series, dir / "bands.csv");
-    check_written(positions, dir / "band_positions.csv");
-    check_written(spectrum, dir / "band_spectrum.csv");
+    check_written(series, out / "bands.csv");
+    check_written(positions, out / "band_positions.csv");
+    check_written(spectrum, out / "band_spectrum.csv");
 
     double mean = 0.0, total = 0.0;
     for (std::size_t k = 0; k < samples; ++k)
         for (std::size_t b = 0; b < field.bins(); ++b)
             if (std::isfinite(field.small_fraction[k][b]))
                 mean += field.grains[k][b] * field.small_fraction[k][b], total += field.grains[k][b];
-    if (samples > 0) write_kymograph(dir / "kymograph.png", field, total > 0.0 ? mean / total : 0.5);
+    if (samples > 0) write_kymograph(out / "kymograph.png", field, total > 0.0 ? mean / total : 0.5);
 
     // bands.json: the thresholds, the counts, the last sample's bands and the events.
     std::size_t most = 0;
@@ -250,7 +250,7 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
                                 {"core_fraction", core.front()},
                                 {"wall_fraction", wall.front()}};
     }
-    write_json_file(dir / "bands.json", bands);
+    write_json_file(out / "bands.json", bands);
     summary["bands"] = bands;
 
     text << fmt::format("  bands of {} (fraction phi by volume in {} bins of {:.3g} mm, {} samples; band_profile.csv, "
@@ -288,6 +288,22 @@ void analyze_band_run(const fs::path& dir, const DrumRunInfo& info, std::ostring
     text << fmt::format("    radial core: phi near the axis {:.3f}, at the wall {:.3f} at N = {:.3g} ({:.3f}, {:.3f} at "
                         "N = {:.3g})\n",
                         core.back(), wall.back(), last.revolutions, core.front(), wall.front(), first.revolutions);
+}
+
+
+std::string analyze_bands_so_far(const fs::path& dir) {
+    const DrumRunInfo info = read_drum_run_info(dir / "drum_run.toml");
+    const fs::path out = dir / "so_far";
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (ec) throw Error(out.string() + ": cannot create the folder: " + ec.message());
+    std::ostringstream text;
+    text << "tumble analyze --so-far " << dir.string() << ": the bands of the revolutions written so far, into "
+         << out.string() << "\n";
+    Json summary = Json::object();
+    analyze_band_run(dir, out, info, text, summary);
+    write_file_atomically(out / "summary.txt", text.str());
+    return text.str();
 }
 
 }  // namespace tumble::io

@@ -49,11 +49,21 @@ struct BandRecord {
 };
 BandRecord read_band_profile(const std::filesystem::path& file, const DrumRunInfo& info);
 
-// The band analysis of a run directory: writes bands.csv,
-// band_positions.csv, bands.json and kymograph.png, adds its lines to
-// `text` and its section to `summary`. A run without band_profile.csv
-// (one from before it, info.band_bins == 0) gets a line saying so.
-void analyze_band_run(const std::filesystem::path& directory, const DrumRunInfo& info, std::ostringstream& text,
-                      Json& summary, const analysis::BandOptions& options = {});
+// The band analysis of a run directory: reads its band_profile.csv, writes
+// bands.csv, band_positions.csv, band_spectrum.csv, bands.json and
+// kymograph.png into `out` (the run directory itself, or its so_far/), adds
+// its lines to `text` and its section to `summary`. A run without
+// band_profile.csv (one from before it, info.band_bins == 0) gets a line
+// saying so.
+void analyze_band_run(const std::filesystem::path& directory, const std::filesystem::path& out,
+                      const DrumRunInfo& info, std::ostringstream& text, Json& summary,
+                      const analysis::BandOptions& options = {});
+
+// The band analysis of the revolutions written so far, of a run stopped or
+// still unfinished (a long band study looked at between sittings): the
+// files of analyze_band_run and summary.txt in DIR/so_far/, the run's own
+// files untouched (no summary.json: a sweep does not take the run for
+// finished). Returns the text.
+std::string analyze_bands_so_far(const std::filesystem::path& directory);
 
 }  // namespace tumble::io

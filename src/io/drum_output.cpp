@@ -367,14 +367,24 @@ void write_axial_msd(const fs::path& file, const std::vector<analysis::GrainFram
     check_written(out, file);
 }
 
-// A Hogg fit, or an undetermined one with the reason: no samples, or a
-// periodic axis (the mean of a wrapped coordinate follows no Hogg law).
+// Why the Hogg solution does not describe <z> of this run, or "" if it
+// does: it needs the halves start between end caps (the mean of a wrapped
+// coordinate follows no Hogg law; a mixed or banded start has no step to
+// relax).
+std::string hogg_not_applicable(const DrumRunInfo& info) {
+    if (info.periodic_axis) return "not applicable on a periodic axis";
+    if (info.arrangement != "halves") return "not applicable to a start other than halves (" + info.arrangement + ")";
+    return "";
+}
+
+// A Hogg fit, or an undetermined one with the reason: no samples, or not
+// applicable (hogg_not_applicable).
 analysis::HoggFit fit_hogg_or_note(const std::vector<double>& N, const std::vector<double>& z, double L,
-                                   const analysis::HoggFitOptions& o, bool periodic_axis) {
-    if (N.empty() || periodic_axis) {
+                                   const analysis::HoggFitOptions& o, const std::string& not_applicable) {
+    if (N.empty() || !not_applicable.empty()) {
         analysis::HoggFit none;
         none.D = none.D_stderr = none.amplitude = std::nan("");
-        none.note = periodic_axis ? "not applicable on a periodic axis" : "no samples";
+        none.note = N.empty() ? "no samples" : not_applicable;
         return none;
     }
     return analysis::fit_hogg(N, z, L, o);
@@ -574,7 +584,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
 
         // Hogg with the amplitude free and the start-up left out.
         const analysis::HoggFit hogg =
-            fit_hogg_or_note(N, z, L, {options.first_revolution, false, -1.0}, info.periodic_axis);
+            fit_hogg_or_note(N, z, L, {options.first_revolution, false, -1.0}, hogg_not_applicable(info));
         text << "    Hogg, amplitude free, N >= " << fmt::format("{:.3g}", options.first_revolution) << ": "
              << describe_hogg(hogg) << "\n";
 
@@ -582,8 +592,8 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         // motion of <z> is a drift of the component's centre.
         analysis::HoggFit drift;
         std::string verdict = "undetermined";
-        if (m.determined && !info.periodic_axis) {
-            drift = fit_hogg_or_note(N, z, L, {options.first_revolution, true, m.D}, false);
+        if (m.determined && hogg_not_applicable(info).empty()) {
+            drift = fit_hogg_or_note(N, z, L, {options.first_revolution, true, m.D}, "");
             // In the mirrored frame <z> starts at L/4 and mixing lowers it: a
             // drift v > 0 carries the component back toward its own end
             // (segregation), v < 0 mixes it faster than its grains' diffusion
@@ -605,7 +615,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         const analysis::DiffusionFit fit = analysis::fit_diffusion(N.empty() ? std::vector<double>{0.0} : N,
                                                                    z.empty() ? std::vector<double>{0.0} : z, L);
         fits.push_back(fit);
-        if (fit.determined && !info.periodic_axis)
+        if (fit.determined && hogg_not_applicable(info).empty())
             text << fmt::format("    old estimator, Hogg pinned at L/4 from N = 0: D = {:.3e} +- {:.1e} m^2/rev; "
                                 "one-term: {:.3e} +- {:.1e}\n",
                                 fit.D, fit.D_stderr, fit.one_term_D, fit.one_term_D_stderr);
@@ -695,7 +705,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     std::size_t right = 0;
     for (std::size_t c = 0; c < n_components; ++c)
         if (info.components[c].start_side > 0) right = c;
-    if (!profiles.revolutions.empty() && !info.periodic_axis) {
+    if (!profiles.revolutions.empty() && hogg_not_applicable(info).empty()) {
         const bool from_msd = msd[right].determined;
         const double D_profile = from_msd ? msd[right].D : fits[right].D;
         const std::string D_name = from_msd ? "the grains' MSD D" : "the pinned Hogg D";
@@ -760,7 +770,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
             }
         if (info.mode == "self") {
             const analysis::HoggFit both = fit_hogg_or_note(N, half_difference, L, {options.first_revolution, false, -1.0},
-                                                            info.periodic_axis);
+                                                            hogg_not_applicable(info));
             text << "  both halves, (<z>_right - <z>_left)/2, Hogg amplitude free: " << describe_hogg(both) << "\n";
             summary["self_combined_hogg"] = hogg_json(both, options.first_revolution);
             // The grains are identical: the grains' D and the halves' mixing
@@ -839,7 +849,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     }
 
     analyze_bed_structure(dir, frames, info, options, text, summary);
-    analyze_band_run(dir, info, text, summary);
+    analyze_band_run(dir, dir, info, text, summary);
 
     // summary.json last: its presence marks a finished run (tumble sweep).
     // An undefined number (NaN) is null in it (json.hpp).

@@ -73,6 +73,30 @@ TEST_F(BandRun, SmallDrumWritesTheKymographAndBandCounts) {
     EXPECT_TRUE(fs::exists(out / "kymograph.png"));
 }
 
+// A run stopped part way (a long band study between sittings): tumble
+// analyze refuses it, --so-far analyses its bands so far into DIR/so_far/
+// and leaves the run's files alone, and the run then resumes.
+TEST_F(BandRun, SoFarAnalysesAStoppedRunWithoutFinishingIt) {
+    const fs::path out = dir_ / "stopped";
+    const auto r = tumble_run("drum -q --grains 300 --length 0.06 --omega 8 --revolutions 1 --samples 8 --snapshots 0 "
+                              "--arrangement bands --bands 3 --ends small --no-plot --stop-at-step 16000 --out " +
+                              out.string());
+    ASSERT_EQ(r.exit_code, 4) << r.output;  // stopped with a checkpoint
+    EXPECT_NE(tumble_run("analyze " + out.string()).exit_code, 0);
+    const auto so_far = tumble_run("analyze --so-far " + out.string());
+    ASSERT_EQ(so_far.exit_code, 0) << so_far.output;
+    EXPECT_FALSE(fs::exists(out / "summary.json"));
+    EXPECT_FALSE(fs::exists(out / "bands.json"));
+    const tumble::io::Json bands = tumble::io::parse_json(read_file(out / "so_far" / "bands.json"));
+    ASSERT_GE(bands["samples"].get<int>(), 1) << so_far.output;  // at least the start of the rotation
+    EXPECT_EQ(bands["initial"]["bands"], 3);  // small, large, small
+    EXPECT_TRUE(fs::exists(out / "so_far" / "kymograph.png"));
+    EXPECT_NE(read_file(out / "so_far" / "summary.txt").find("bands of material-2"), std::string::npos);
+    const auto resumed = tumble_run("resume -q " + out.string());
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+    EXPECT_TRUE(fs::exists(out / "summary.json"));
+}
+
 TEST_F(BandRun, BadBandBinsIsRefusedBeforeAnyWork) {
     const auto r = tumble_run("drum -q --band-bins 1 --out " + (dir_ / "never").string());
     EXPECT_NE(r.exit_code, 0);
