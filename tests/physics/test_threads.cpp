@@ -56,6 +56,7 @@ void expect_identical(const tumble::Simulation& a, const tumble::Simulation& b) 
     for (std::size_t k = 0; k < ha.size(); ++k) {
         EXPECT_EQ(ha[k].slip, hb[k].slip);
         EXPECT_EQ(ha[k].angular_slip, hb[k].angular_slip);
+        EXPECT_EQ(ha[k].viscous_force, hb[k].viscous_force);
     }
 }
 
@@ -174,6 +175,7 @@ TEST(Threads, ShortDrumNeighbourBuildDoesNotDependOnTheThreadCount) {
         EXPECT_TRUE(lists[k].pairs().image == lists[0].pairs().image);
         EXPECT_TRUE(lists[k].pairs().slip == lists[0].pairs().slip);
         EXPECT_TRUE(lists[k].pairs().angular_slip == lists[0].pairs().angular_slip);
+        EXPECT_TRUE(lists[k].pairs().viscous_force == lists[0].pairs().viscous_force);
     }
 }
 

@@ -8,13 +8,14 @@
 //  - Hertz collision time at the reference impact speed v (no damping):
 //      h_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5),  t_c = 2.943275 h_max / v;
 //  - viscous time m*/c with c = 2 B* sqrt(R* h_max), the Kuwabara-Kono
-//    damping at the deepest overlap; with the velocity predicted for
-//    t + dt (integrate/velocity_verlet.hpp) the damping is stable only for
-//    dt < m*/c;
+//    damping at the deepest overlap (the dashpot's time treatment,
+//    integrate/dashpot.hpp, keeps a single contact stable at any step; its
+//    errors grow with dt / (m*/c));
 // and for every material of free particles the Rayleigh time
 //      t_R = pi R sqrt(rho/G) / (0.1631 nu + 0.8766).
-// Recommended step: min(t_c/50, 0.2 m*/c, 0.2 t_R).
-// Largest step accepted: min(t_c/10, 0.5 m*/c, 0.5 t_R).
+// Recommended step: min(t_c/20, 1.1 m*/c, 0.2 t_R).
+// Largest step accepted: min(t_c/10, 2 m*/c, 0.5 t_R).
+// (The fractions and why: docs/MODEL.md, "Time step".)
 #pragma once
 
 #include <cstddef>
