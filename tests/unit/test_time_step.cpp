@@ -2,7 +2,7 @@
 // The time-step check against the hand formulas of time_step.hpp for the
 // paper's material 1 (R = 3.6 mm) at a reference speed of 1 m/s:
 //   h_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5), t_c = 2.943275 h_max / v,
-//   viscous time m* / (2 B* sqrt(R* h_max)),
+//   viscous time m* / (2 B* sqrt(R* h_max)), creep time B*/E* (over-damped),
 //   Rayleigh time pi R sqrt(rho/G) / (0.1631 nu + 0.8766).
 #include <gtest/gtest.h>
 
@@ -38,7 +38,7 @@ Scenario material_one(double dt) {
 }
 
 struct Hand {
-    double collision, viscous, rayleigh;
+    double collision, viscous, rayleigh, creep;
 };
 
 Hand hand_times() {
@@ -52,7 +52,7 @@ Hand hand_times() {
     // Energy balance 1/2 m* v^2 = 8/15 E* sqrt(R*) h_max^(5/2).
     const double h_max = std::pow(0.5 * m_star * v * v / (8.0 / 15.0 * E_star * std::sqrt(R_star)), 0.4);
     return {2.943275 * h_max / v, m_star / (2.0 * B_star * std::sqrt(R_star * h_max)),
-            pi * R * std::sqrt(rho / G) / (0.1631 * nu + 0.8766)};
+            pi * R * std::sqrt(rho / G) / (0.1631 * nu + 0.8766), B_star / E_star};
 }
 
 TEST(TimeStep, MaterialOneAtOneMetrePerSecondMatchesHandFormulas) {
@@ -68,15 +68,20 @@ TEST(TimeStep, MaterialOneAtOneMetrePerSecondMatchesHandFormulas) {
     EXPECT_NEAR(r.collision_time, hand.collision, hand.collision * round_off);
     EXPECT_NEAR(r.viscous_time, hand.viscous, hand.viscous * round_off);
     EXPECT_NEAR(r.rayleigh_time, hand.rayleigh, hand.rayleigh * round_off);
-    const double recommended = std::min({hand.collision / 20.0, 1.1 * hand.viscous, 0.2 * hand.rayleigh});
+    // Over-damped: c^2 / (4 m* k) = tau / (4 m*/c) = 1.07 ms / 0.385 ms > 1.
+    EXPECT_NEAR(r.creep_time, hand.creep, hand.creep * round_off);
+    EXPECT_NEAR(hand.creep, 1.0714e-3, 1e-7);
+    const double recommended =
+        std::min({hand.collision / 20.0, 1.1 * hand.viscous, hand.creep / 25.0, 0.2 * hand.rayleigh});
     const double maximum = std::min({hand.collision / 10.0, 2.0 * hand.viscous, 0.5 * hand.rayleigh});
     EXPECT_NEAR(r.recommended, recommended, recommended * round_off);
     EXPECT_NEAR(r.maximum, maximum, maximum * round_off);
-    // At 1 m/s the collision time sets the step (64.7 us < 1.1 m*/c = 106 us)
-    // and the maximum (t_c/10 = 129 us < 2 m*/c = 192 us).
-    EXPECT_NEAR(r.recommended, hand.collision / 20.0, recommended * round_off);
+    // At 1 m/s the creep sets the step (tau/25 = 42.9 us < t_c/20 = 64.7 us
+    // < 1.1 m*/c = 106 us) and the collision time the maximum (t_c/10 =
+    // 129 us < 2 m*/c = 192 us).
+    EXPECT_NEAR(r.recommended, hand.creep / 25.0, recommended * round_off);
     EXPECT_NEAR(r.maximum, hand.collision / 10.0, maximum * round_off);
-    EXPECT_NE(r.recommended_by.find("collision"), std::string::npos) << r.recommended_by;
+    EXPECT_NE(r.recommended_by.find("creep"), std::string::npos) << r.recommended_by;
     EXPECT_NE(r.limiting.find("collision"), std::string::npos) << r.limiting;
 }
 

@@ -44,7 +44,7 @@ namespace tumble {
 inline double dashpot_normal_velocity(double v_n_predicted, double c, double inverse_mass_sum, double dt,
                                       double previous_force) {
     const double lambda = c * inverse_mass_sum * dt;
-    const double psi = (1.0 + lambda / 6.0) / (1.0 + lambda * (2.0 / 3.0 + lambda / 6.0));
+    const double psi = (6.0 + lambda) / (6.0 + lambda * (4.0 + lambda));  // psi above, one division
     return (v_n_predicted - 0.5 * dt * inverse_mass_sum * previous_force) * psi;
 }
 
