@@ -51,8 +51,9 @@ void print_table(const analysis::ContactReport& report) {
                        ? fmt::format("{} {} {:.4g} ms (dt = {:.3g} {})", name, symbol, value * 1e3, t.dt / value, symbol)
                        : fmt::format("{} off", name);
         };
-        fmt::print("  at {:.3g} m/s: {}, {}\n", report.reference_speed, time("Hertz collision time", "t_c", r.times.collision),
-                   time("viscous time", "m*/c", r.times.viscous));
+        fmt::print("  at {:.3g} m/s: {}, {}, {}\n", report.reference_speed,
+                   time("Hertz collision time", "t_c", r.times.collision), time("viscous time", "m*/c", r.times.viscous),
+                   std::isfinite(r.times.creep) ? time("creep time", "tau", r.times.creep) : "not over-damped");
         fmt::print("  equilibrium overlap {:.4g} um ({:.3g} % of R*), pull-off force {:.4g} mN\n",
                    r.equilibrium_overlap * 1e6, 100.0 * r.equilibrium_overlap / law.R_star, r.pull_off_force * 1e3);
         if (law.attraction <= 0.0)
@@ -93,6 +94,7 @@ void print_json(const analysis::ContactReport& report) {
                              {"attraction", law.attraction},
                              {"hertz_collision_time", r.times.collision},
                              {"viscous_time", r.times.viscous},
+                             {"creep_time", r.times.creep},  // null where not over-damped
                              {"equilibrium_overlap", r.equilibrium_overlap},
                              {"pull_off_force", r.pull_off_force},
                              {"sticking_speed", r.sticking_speed},

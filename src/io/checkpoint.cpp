@@ -24,7 +24,7 @@ namespace {
 
 // Stored as they lie in memory (binary.hpp): no padding inside.
 static_assert(sizeof(Vec3) == 3 * sizeof(double));
-static_assert(sizeof(ContactHistory) == sizeof(double) + sizeof(Vec3));
+static_assert(sizeof(ContactHistory) == 2 * sizeof(double) + sizeof(Vec3));
 static_assert(sizeof(PairProperties) == 2 * sizeof(double));
 static_assert(sizeof(RigidMotion) == 3 * sizeof(Vec3) + sizeof(double));
 static_assert(sizeof(MotionClock) == sizeof(RigidMotion) + sizeof(double));
@@ -172,7 +172,21 @@ void put_state(ByteWriter& w, const SimulationState& s) {
     w.put(s.step);
 }
 
-SimulationState get_state(ByteReader& r) {
+// The contact histories of a file of format `version`. Format 2 kept no
+// viscous force: its contacts resume with 0, so the dashpot's first step
+// (integrate/dashpot.hpp) sees the whole predicted velocity.
+std::vector<ContactHistory> get_histories(ByteReader& r, std::uint32_t version, const char* field) {
+    if (version != 2) return r.get_array<ContactHistory>(field);
+    struct Version2 {
+        Vec3 slip;
+        double angular_slip;
+    };
+    std::vector<ContactHistory> histories;
+    for (const Version2& h : r.get_array<Version2>(field)) histories.push_back({h.slip, h.angular_slip, 0.0});
+    return histories;
+}
+
+SimulationState get_state(ByteReader& r, std::uint32_t version) {
     SimulationState s;
     ParticleStore& p = s.particles;
     p.id = r.get_array<std::int64_t>("particle ids");
@@ -185,10 +199,10 @@ SimulationState get_state(ByteReader& r) {
     s.neighbors.pairs.first = r.get_array<std::uint32_t>("neighbour pairs");
     s.neighbors.pairs.second = r.get_array<std::uint32_t>("neighbour pairs");
     s.neighbors.pairs.image = r.get_array<std::uint8_t>("neighbour pair images");
-    s.neighbors.pairs.set_histories(r.get_array<ContactHistory>("contact history"));
+    s.neighbors.pairs.set_histories(get_histories(r, version, "contact history"));
     s.neighbors.position_at_build = r.get_array<Vec3>("positions at the last neighbour build");
     s.neighbors.builds = r.get<std::int64_t>("neighbour builds");
-    s.wall_history = r.get_array<ContactHistory>("wall contact history");
+    s.wall_history = get_histories(r, version, "wall contact history");
     s.motions = r.get_array<MotionClock>("motions");
     s.dt = r.get<double>("dt");
     s.time = r.get<double>("time");
@@ -237,25 +251,29 @@ std::string encode_checkpoint(const Checkpoint& c) {
 
 namespace {
 // Checks the header (the first header_size bytes of `head`) against the
-// size of the whole file; returns the payload length.
-std::uint64_t check_header(std::string_view head, std::uint64_t file_size, const std::string& name) {
+// size of the whole file; returns the format version and the payload length.
+struct Header {
+    std::uint32_t version = 0;
+    std::uint64_t length = 0;
+};
+Header check_header(std::string_view head, std::uint64_t file_size, const std::string& name) {
     ByteReader header(head, name);
     if (head.substr(0, magic.size()) != magic) header.fail("not a tumble checkpoint (no TUMBLECK at the start)");
     for (std::size_t k = 0; k < magic.size(); ++k) header.get<char>("magic");
     const auto version = header.get<std::uint32_t>("format version");
-    if (version != checkpoint_format_version)
-        header.fail(fmt::format("checkpoint format version {}, this tumble reads version {}", version,
+    if (version != checkpoint_format_version && version != 2)
+        header.fail(fmt::format("checkpoint format version {}, this tumble reads versions 2 and {}", version,
                                 checkpoint_format_version));
     const auto length = header.get<std::uint64_t>("payload length");
     if (length != file_size - std::min<std::uint64_t>(file_size, header_size + sizeof(std::uint32_t)))
         header.fail(fmt::format("{} bytes, the header announces {} (truncated or damaged)", file_size,
                                 header_size + length + sizeof(std::uint32_t)));
-    return length;
+    return {version, length};
 }
 }  // namespace
 
 Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
-    const std::uint64_t length = check_header(bytes, bytes.size(), name);
+    const auto [version, length] = check_header(bytes, bytes.size(), name);
     ByteReader header(bytes, name);
     const std::string_view covered = bytes.substr(0, header_size + length);
     ByteReader trailer(bytes.substr(covered.size()), name);
@@ -266,7 +284,7 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
     c.record = get_record(r);
     c.record.source = name;
     c.scenario = get_scenario(r);
-    c.state = get_state(r);
+    c.state = get_state(r, version);
     if (!r.at_end()) r.fail("bytes left over after the state (damaged)");
     return c;
 }

@@ -30,7 +30,7 @@
 
 namespace tumble::io {
 
-inline constexpr std::uint32_t checkpoint_format_version = 2;  // 2: slip vector history, friction normal
+inline constexpr std::uint32_t checkpoint_format_version = 3;  // 2: slip vector history, friction normal; 3: viscous force history
 
 // Named values; reading a missing key, or one of another kind, throws
 // tumble::Error naming the source (the checkpoint file) and the key.

@@ -188,6 +188,7 @@ void write_run_json(const fs::path& file, const Simulation& sim, const RunSummar
                                {"dt_maximum", t.maximum},
                                {"collision_time", t.collision_time},
                                {"viscous_time", t.viscous_time},
+                               {"creep_time", t.creep_time},
                                {"rayleigh_time", t.rayleigh_time},
                                {"neighbor_skin", sim.neighbors().skin()},
                                {"neighbor_builds", sim.neighbors().builds()},

@@ -49,7 +49,8 @@ TEST(Determinism, TwoRunsOfOneScenarioAreBitwiseIdentical) {
     ASSERT_EQ(ha.size(), hb.size());
     long differing = 0;
     for (std::size_t k = 0; k < ha.size(); ++k)
-        if (ha[k].angular_slip != hb[k].angular_slip || !(ha[k].slip == hb[k].slip))
+        if (ha[k].angular_slip != hb[k].angular_slip || !(ha[k].slip == hb[k].slip) ||
+            ha[k].viscous_force != hb[k].viscous_force)
             ++differing;
     EXPECT_EQ(differing, 0);
 }

@@ -88,6 +88,7 @@ void expect_vector_law_matches_scalar_law() {
     EXPECT_TRUE(vector.torque == scalar.torque);
     EXPECT_TRUE(vector.pairs.angular_slip == scalar.pairs.angular_slip);
     EXPECT_TRUE(vector.pairs.slip == scalar.pairs.slip);
+    EXPECT_TRUE(vector.pairs.viscous_force == scalar.pairs.viscous_force);
     // And the pass did something: forces on every particle of the dense box.
     std::size_t pushed = 0;
     for (const Vec3& f : vector.force) pushed += tumble::norm(f) > 0.0;

@@ -420,8 +420,10 @@ TEST(ContactTerms, SwappedHistoryFlipsOnlyTheSlipVector) {
     ContactHistory h;
     h.angular_slip = 3e-3;
     h.slip = {1e-7, -2e-7, 3e-7};
+    h.viscous_force = -2e-3;
     const ContactHistory s = h.swapped();
     EXPECT_EQ(s.angular_slip, h.angular_slip);
+    EXPECT_EQ(s.viscous_force, h.viscous_force);  // along n on the first particle: the same seen from either
     EXPECT_EQ(s.slip, (Vec3{-1e-7, 2e-7, -3e-7}));
     EXPECT_TRUE(ContactHistory{}.is_zero());
     EXPECT_FALSE(h.is_zero());

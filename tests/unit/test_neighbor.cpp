@@ -237,12 +237,14 @@ ContactHistory history_of(std::int64_t lo, std::int64_t hi) {
     ContactHistory h;
     h.angular_slip = 1e-6 * static_cast<double>(hi * 4096 + lo + 1);
     h.slip = 1e-9 * Vec3{static_cast<double>(lo + 1), static_cast<double>(hi + 1), 0.5};
+    h.viscous_force = 1e-3 * static_cast<double>(lo * 4096 + hi + 1);
     return h;
 }
 
 void expect_history_equal(const ContactHistory& a, const ContactHistory& b) {
     EXPECT_EQ(a.angular_slip, b.angular_slip);
     EXPECT_EQ(a.slip, b.slip);
+    EXPECT_EQ(a.viscous_force, b.viscous_force);
 }
 
 // Give every pair of the list its distinctive history (oriented from the

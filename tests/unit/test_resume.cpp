@@ -23,7 +23,7 @@ using tumble::test_support::read_file;
 
 // A drum small enough to settle and turn in a fraction of a second: 20
 // grains in a drum 3 cm long and across (173 wall spheres), 0.2 revolutions.
-// Settling ends at step 2355; the rotation has 1884 steps.
+// Settling ends at step 3657; the rotation has 2932 steps (dt = tau/25).
 const std::string small_drum =
     " drum -q --mode self --grains 20 --length 0.03 --diameter 0.03 --omega 10 --samples 50 --snapshots 20 --no-plot";
 
@@ -84,7 +84,7 @@ TEST_F(Resume, StoppedAtAnyStepAndResumedGivesTheSameBytes) {
     const fs::path full = reference();
     // While settling, at the settling boundary, inside rotation between
     // neighbour-list builds, and one step before the end.
-    for (const char* step : {"1000", "2355", "2761", "3400", "4238"}) {
+    for (const char* step : {"1000", "3657", "4063", "4702", "6588"}) {
         const fs::path out = dir_ / (std::string("stop-") + step);
         const auto stopped = tumble_run(small_drum + " --revolutions 0.2 --out " + out.string() + " --stop-at-step " + step);
         ASSERT_EQ(stopped.exit_code, 4) << stopped.output;
@@ -125,7 +125,7 @@ TEST_F(Resume, ADamagedNewestCheckpointFallsBackToThePreviousOne) {
     const fs::path full = reference();
     const fs::path out = dir_ / "damaged";
     const auto stopped = tumble_run(small_drum + " --revolutions 0.2 --checkpoint-every-revolutions 0.02 --out " +
-                                    out.string() + " --stop-at-step 3400");
+                                    out.string() + " --stop-at-step 4702");
     ASSERT_EQ(stopped.exit_code, 4) << stopped.output;
     const std::vector<fs::path> files = tumble::io::checkpoint_files(out);
     ASSERT_EQ(files.size(), 2u);

@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 namespace io = tumble::io;
 using tumble::test_support::read_file;
 
-// The small drum of test_resume.cpp: settles at step 2355, turns 1884
+// The small drum of test_resume.cpp: settles at step 3657, turns 2932
 // steps per 0.2 revolutions.
 std::string drum(const std::string& revolutions) {
     return " drum -q --mode self --grains 20 --length 0.03 --diameter 0.03 --omega 10 --samples 50 --snapshots 20 "
@@ -321,7 +321,7 @@ TEST_F(Safety, ForceKeepsAUsersOwnFoldersAndRemovesTheOldResultsFirst) {
 
 TEST_F(Safety, AnalyzeRefusesAnUnfinishedRun) {
     const fs::path out = dir_ / "run";
-    ASSERT_EQ(tumble(small_drum + " --out " + out.string() + " --stop-at-step 2761").exit_code, 4);
+    ASSERT_EQ(tumble(small_drum + " --out " + out.string() + " --stop-at-step 4063").exit_code, 4);
     const auto r = tumble("analyze " + out.string());
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(contains(r.output, "the run is unfinished")) << r.output;

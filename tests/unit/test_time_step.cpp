@@ -2,7 +2,7 @@
 // The time-step check against the hand formulas of time_step.hpp for the
 // paper's material 1 (R = 3.6 mm) at a reference speed of 1 m/s:
 //   h_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5), t_c = 2.943275 h_max / v,
-//   viscous time m* / (2 B* sqrt(R* h_max)),
+//   viscous time m* / (2 B* sqrt(R* h_max)), creep time B*/E* (over-damped),
 //   Rayleigh time pi R sqrt(rho/G) / (0.1631 nu + 0.8766).
 #include <gtest/gtest.h>
 
@@ -38,7 +38,7 @@ Scenario material_one(double dt) {
 }
 
 struct Hand {
-    double collision, viscous, rayleigh;
+    double collision, viscous, rayleigh, creep;
 };
 
 Hand hand_times() {
@@ -52,7 +52,7 @@ Hand hand_times() {
     // Energy balance 1/2 m* v^2 = 8/15 E* sqrt(R*) h_max^(5/2).
     const double h_max = std::pow(0.5 * m_star * v * v / (8.0 / 15.0 * E_star * std::sqrt(R_star)), 0.4);
     return {2.943275 * h_max / v, m_star / (2.0 * B_star * std::sqrt(R_star * h_max)),
-            pi * R * std::sqrt(rho / G) / (0.1631 * nu + 0.8766)};
+            pi * R * std::sqrt(rho / G) / (0.1631 * nu + 0.8766), B_star / E_star};
 }
 
 TEST(TimeStep, MaterialOneAtOneMetrePerSecondMatchesHandFormulas) {
@@ -68,16 +68,21 @@ TEST(TimeStep, MaterialOneAtOneMetrePerSecondMatchesHandFormulas) {
     EXPECT_NEAR(r.collision_time, hand.collision, hand.collision * round_off);
     EXPECT_NEAR(r.viscous_time, hand.viscous, hand.viscous * round_off);
     EXPECT_NEAR(r.rayleigh_time, hand.rayleigh, hand.rayleigh * round_off);
-    const double recommended = std::min({hand.collision / 20.0, 0.7 * hand.viscous, 0.2 * hand.rayleigh});
-    // The predicted damping is stable below m*/c; 0.9 of it is the maximum.
-    const double maximum = std::min({hand.collision / 10.0, 0.9 * hand.viscous, 0.5 * hand.rayleigh});
+    // Over-damped: c^2 / (4 m* k) = tau / (4 m*/c) = 1.07 ms / 0.385 ms > 1.
+    EXPECT_NEAR(r.creep_time, hand.creep, hand.creep * round_off);
+    EXPECT_NEAR(hand.creep, 1.0714e-3, 1e-7);
+    const double recommended =
+        std::min({hand.collision / 20.0, 1.1 * hand.viscous, hand.creep / 25.0, 0.2 * hand.rayleigh});
+    const double maximum = std::min({hand.collision / 10.0, 2.0 * hand.viscous, 0.5 * hand.rayleigh});
     EXPECT_NEAR(r.recommended, recommended, recommended * round_off);
     EXPECT_NEAR(r.maximum, maximum, maximum * round_off);
-    // At 1 m/s the collision time sets the step (64.7 us < 0.7 m*/c = 67.3 us),
-    // the damping the maximum (0.9 m*/c = 86.5 us < t_c/10 = 129 us).
-    EXPECT_NEAR(r.recommended, hand.collision / 20.0, recommended * round_off);
-    EXPECT_NE(r.recommended_by.find("collision"), std::string::npos) << r.recommended_by;
-    EXPECT_NE(r.limiting.find("viscous"), std::string::npos) << r.limiting;
+    // At 1 m/s the creep sets the step (tau/25 = 42.9 us < t_c/20 = 64.7 us
+    // < 1.1 m*/c = 106 us) and the collision time the maximum (t_c/10 =
+    // 129 us < 2 m*/c = 192 us).
+    EXPECT_NEAR(r.recommended, hand.creep / 25.0, recommended * round_off);
+    EXPECT_NEAR(r.maximum, hand.collision / 10.0, maximum * round_off);
+    EXPECT_NE(r.recommended_by.find("creep"), std::string::npos) << r.recommended_by;
+    EXPECT_NE(r.limiting.find("collision"), std::string::npos) << r.limiting;
 }
 
 TEST(TimeStep, AutomaticStepIsTheRecommendedOne) {
@@ -88,20 +93,11 @@ TEST(TimeStep, AutomaticStepIsTheRecommendedOne) {
 }
 
 TEST(TimeStep, GivenStepAboveTheMaximumIsRefusedNamingTheCriterion) {
-    const double maximum = 0.9 * hand_times().viscous;  // 86.5 us for material 1
+    // The Hertz collision time limits material 1 at 1 m/s:
+    // t_c / 10 = 129 us < 2 m*/c = 192 us < t_R / 2 = 356 us.
+    const double maximum = hand_times().collision / 10.0;
     try {
         assess_time_step(material_one(1.1 * maximum));
-        FAIL() << "a step 10 % above the maximum was accepted";
-    } catch (const Error& e) {
-        const std::string message = e.what();
-        EXPECT_NE(message.find("viscous"), std::string::npos) << message;
-    }
-    // Without viscosity the Hertz collision time limits instead:
-    // t_c / 10 = 129 us < t_R / 2 = 356 us.
-    Scenario dry = material_one(1.1 * hand_times().collision / 10.0);
-    dry.model.viscous = false;
-    try {
-        assess_time_step(dry);
         FAIL() << "a step 10 % above t_c/10 was accepted";
     } catch (const Error& e) {
         const std::string message = e.what();
@@ -109,6 +105,19 @@ TEST(TimeStep, GivenStepAboveTheMaximumIsRefusedNamingTheCriterion) {
     }
     // Just below the maximum is fine (1 % is far above round-off).
     EXPECT_NO_THROW(assess_time_step(material_one(0.99 * maximum)));
+    // Four times as viscous, the damping limits: m*/c is a quarter of
+    // 96.1 us, so 2 m*/c = 48 us < t_c / 10.
+    const double viscous_maximum = 2.0 * hand_times().viscous / 4.0;
+    Scenario viscous = material_one(1.1 * viscous_maximum);
+    viscous.materials[0].xi *= 4.0;
+    viscous.materials[0].eta *= 4.0;
+    try {
+        assess_time_step(viscous);
+        FAIL() << "a step 10 % above 2 m*/c was accepted";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("viscous"), std::string::npos) << message;
+    }
 }
 
 TEST(TimeStep, AllowUnsafeLetsAnOversizedStepThrough) {
@@ -129,7 +138,7 @@ TEST(TimeStep, NonPositiveStepIsRefused) {
 }
 
 TEST(TimeStep, PaperBenchmarkStepIsAcceptedForMaterialOne) {
-    // SPEC-NOTES "Speed": dt = 1e-5 s, below the 96 us maximum.
+    // SPEC-NOTES "Speed": dt = 1e-5 s, below the 129 us maximum.
     TimeStepReport r;
     ASSERT_NO_THROW(r = assess_time_step(material_one(1e-5)));
     EXPECT_EQ(r.dt, 1e-5);

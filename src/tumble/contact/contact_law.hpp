@@ -109,6 +109,8 @@ inline ContactForces contact_law(const PairCoefficients& c, const ContactGeometr
                                                       history.angular_slip)
                                     : 0.0;
 
+    history.viscous_force = F_viscous;  // for the dashpot's next step (integrate/dashpot.hpp)
+
     // Torques: F_t acts on i at -lever_i n from its centre, -F_t on j at
     // +lever_j n; elements 1-3 act along n and exert none.
     const Vec3 n_cross_Ft = cross(g.n, F_t);

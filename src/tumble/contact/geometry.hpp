@@ -13,7 +13,9 @@
 // internal friction needs the normal velocity at t + dt itself: it is
 // predicted as v(t + dt/2) + dt/2 a(t), which makes the damping second order
 // in dt (a half-step velocity there makes restitution 1.4 to 4 % low at the
-// automatic step; docs/MODEL.md, "Time step").
+// automatic step; docs/MODEL.md, "Time step"), and the engine then hands
+// the law the dashpot's velocity over the step instead
+// (integrate/dashpot.hpp).
 #pragma once
 
 #include <cmath>
@@ -29,7 +31,7 @@ struct ContactGeometry {
     double contact_radius = 0.0;  // a = sqrt(R* h), m; every term of the model is a power of a and h
     double lever_i = 0.0;  // distance from centre of i to the contact point, R_i - h/2, m
     double lever_j = 0.0;  // distance from centre of j to the contact point, R_j - h/2, m
-    double v_n = 0.0;      // v . n at t + dt (predicted), m/s (negative while approaching)
+    double v_n = 0.0;      // v . n at t + dt (predicted; integrate/dashpot.hpp), m/s (negative while approaching)
     Vec3 v_t;              // v - (v . n) n at the half step, m/s
     double w_n = 0.0;      // (omega_i - omega_j) . n at the half step, rad/s
 };

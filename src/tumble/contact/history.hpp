@@ -14,11 +14,15 @@ struct ContactHistory {
                                // integrated since the contact began, kept in the contact plane, m
     double angular_slip = 0.0; // delta alpha of eq. 9: the relative rotation of i about +n
                                // integrated since the contact began, rad
+    double viscous_force = 0.0; // element 2 (eq. 4) of the last step, on i along +n, N: the
+                                // dashpot's time treatment takes its share out of the predicted
+                                // velocity (integrate/dashpot.hpp)
 
-    bool is_zero() const { return slip == Vec3{} && angular_slip == 0.0; }
+    bool is_zero() const { return slip == Vec3{} && angular_slip == 0.0 && viscous_force == 0.0; }
     // The record seen from the other particle of the pair: both slips are
     // those of the first particle relative to the second, and n flips with
-    // the pair, so the slip vector flips and the rotation about n does not.
+    // the pair, so the slip vector flips and the rotation about n does not;
+    // the viscous force along n on the first particle does not either.
     ContactHistory swapped() const {
         ContactHistory h = *this;
         h.slip = -slip;

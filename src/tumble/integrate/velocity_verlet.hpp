@@ -4,10 +4,11 @@
 // evaluated while the velocities are at the half step v(t + dt/2); the
 // slips of the shear and twisting terms integrate those (midpoint rule), and
 // the internal friction, which needs v(t + dt), sees it predicted as
-// v(t + dt/2) + dt/2 a(t) (ParticleStore::half_kick): second order too. The
-// prediction halves the stability bound of the explicit damping, to
-// dt < m*/c (sim/time_step.hpp). With the velocity-dependent terms off
-// the scheme is symplectic. Spheres need no orientation.
+// v(t + dt/2) + dt/2 a(t) (ParticleStore::half_kick): second order too.
+// Explicit, that damping would be stable only for dt < m*/c; each contact
+// therefore solves its own dashpot over the step (dashpot.hpp). With the
+// velocity-dependent terms off the scheme is symplectic. Spheres need no
+// orientation.
 // Each particle is updated on its own: the functions take a range of the
 // particles, and the threads that share the particles give the same numbers
 // as one.

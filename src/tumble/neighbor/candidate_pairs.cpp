@@ -287,6 +287,7 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
         out.image.resize(total);
         out.slip.resize(total);
         out.angular_slip.resize(total);
+        out.viscous_force.resize(total);
     });
     team.each([&](int c) {
         std::size_t at = 0;
@@ -297,6 +298,7 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
         std::copy(part.image.begin(), part.image.end(), out.image.begin() + static_cast<std::ptrdiff_t>(at));
         std::fill_n(out.slip.begin() + static_cast<std::ptrdiff_t>(at), part.first.size(), Vec3{});
         std::fill_n(out.angular_slip.begin() + static_cast<std::ptrdiff_t>(at), part.first.size(), 0.0);
+        std::fill_n(out.viscous_force.begin() + static_cast<std::ptrdiff_t>(at), part.first.size(), 0.0);
     });
 }
 

@@ -19,6 +19,7 @@ struct PairList {
     // several contacts per instruction.
     std::vector<Vec3> slip;
     std::vector<double> angular_slip;
+    std::vector<double> viscous_force;
 
     std::size_t size() const { return first.size(); }
     void clear() {
@@ -26,6 +27,7 @@ struct PairList {
         image.clear();
         slip.clear();
         angular_slip.clear();
+        viscous_force.clear();
     }
     void add(std::uint32_t i, std::uint32_t j, std::uint8_t code) {
         first.push_back(i);
@@ -33,17 +35,20 @@ struct PairList {
         image.push_back(code);
         slip.emplace_back();
         angular_slip.push_back(0.0);
+        viscous_force.push_back(0.0);
     }
 
     ContactHistory history(std::size_t k) const {
         ContactHistory h;
         h.slip = slip[k];
         h.angular_slip = angular_slip[k];
+        h.viscous_force = viscous_force[k];
         return h;
     }
     void set_history(std::size_t k, const ContactHistory& h) {
         slip[k] = h.slip;
         angular_slip[k] = h.angular_slip;
+        viscous_force[k] = h.viscous_force;
     }
     // Every pair's history in list order (checkpoints, tests), and back.
     std::vector<ContactHistory> histories() const {
@@ -54,6 +59,7 @@ struct PairList {
     void set_histories(const std::vector<ContactHistory>& all) {
         slip.resize(all.size());
         angular_slip.resize(all.size());
+        viscous_force.resize(all.size());
         for (std::size_t k = 0; k < all.size(); ++k) set_history(k, all[k]);
     }
 };

@@ -23,6 +23,7 @@
 
 #include "tumble/contact/contact_law.hpp"
 #include "tumble/core/parallel.hpp"
+#include "tumble/integrate/dashpot.hpp"
 #include "tumble/materials/pair_table.hpp"
 #include "tumble/neighbor/pair_list.hpp"
 #include "tumble/neighbor/periodic_images.hpp"
@@ -34,7 +35,7 @@ namespace tumble {
 // For a contact with a flat wall, id_j is wall_id(face).
 struct ContactRecord {
     std::int64_t id_i = 0, id_j = 0;
-    ContactGeometry geometry;
+    ContactGeometry geometry;  // v_n as predicted (the dashpot's force is history.viscous_force)
     ContactForces forces;
     ContactHistory history;  // after the step
 };
@@ -57,12 +58,12 @@ struct ContactBlock {
     alignas(64) std::uint32_t pair_type[capacity];  // PairTable::index() of the two materials
     // Inputs: X_i - X_j (periodic image applied), its square, v_i - v_j and
     // its predicted change (contact/geometry.hpp), the two spheres' radii
-    // and angular velocities.
+    // and angular velocities, 1/m_i + 1/m_j (the dashpot's 1/m*).
     Vec3s d, v_ij, kick_ij, omega_i, omega_j;
-    alignas(64) double distance2[capacity], R_i[capacity], R_j[capacity];
+    alignas(64) double distance2[capacity], R_i[capacity], R_j[capacity], inverse_mass_sum[capacity];
     // In and out: the contact history (ContactHistory).
     Vec3s slip;
-    alignas(64) double angular_slip[capacity];
+    alignas(64) double angular_slip[capacity], viscous_force[capacity];
     // Outputs of the law.
     Vec3s force_i, torque_i, torque_j;
     alignas(64) double normal_force[capacity], twisting_couple[capacity];
@@ -75,10 +76,12 @@ struct ContactBlock {
     void load_history(std::size_t l, const PairList& pairs, std::size_t k) {
         slip.set(l, pairs.slip[k]);
         angular_slip[l] = pairs.angular_slip[k];
+        viscous_force[l] = pairs.viscous_force[k];
     }
     void store_history(std::size_t l, PairList& pairs, std::size_t k) const {
         pairs.slip[k] = slip[l];
         pairs.angular_slip[k] = angular_slip[l];
+        pairs.viscous_force[k] = viscous_force[l];
     }
 };
 
@@ -102,6 +105,7 @@ inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std:
         b.distance2[l] = distance2;
         b.R_i[l] = p.radius[i];
         b.R_j[l] = p.radius[j];
+        b.inverse_mass_sum[l] = p.inv_mass[i] + p.inv_mass[j];
         b.pair_type[l] = table.index(p.material[i], p.material[j]);
         b.v_ij.set(l, p.velocity[i] - p.velocity[j]);
         b.kick_ij.set(l, p.half_kick[i] - p.half_kick[j]);
@@ -124,15 +128,19 @@ template <class Model>
                                               double dt) {
 #pragma GCC ivdep
     for (std::size_t l = 0; l < b.count; ++l) {
-        const ContactGeometry g = b.geometry(l);
+        const PairCoefficients c = coefficients.at(b.pair_type[l]);
         // The history, field by field (a copy of the whole record does not
         // vectorise).
         ContactHistory history;
         history.slip = b.slip[l];
         history.angular_slip = b.angular_slip[l];
-        const ContactForces f = contact_law(coefficients.at(b.pair_type[l]), g, model, dt, history);
+        history.viscous_force = b.viscous_force[l];
+        ContactGeometry g = b.geometry(l);
+        treat_dashpot(g, c, b.inverse_mass_sum[l], dt, history);
+        const ContactForces f = contact_law(c, g, model, dt, history);
         b.slip.set(l, history.slip);
         b.angular_slip[l] = history.angular_slip;
+        b.viscous_force[l] = history.viscous_force;
         b.force_i.set(l, f.force_i);
         b.torque_i.set(l, f.torque_i);
         b.torque_j.set(l, f.torque_j);

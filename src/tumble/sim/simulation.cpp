@@ -229,9 +229,11 @@ void Simulation::add_wall_forces(IndexRange r) {
                 }
                 Vec3 n;
                 n[axis] = side == 0 ? 1.0 : -1.0;  // from the wall into the box
-                const ContactGeometry g = make_wall_geometry(n, distance, p.radius[i], p.velocity[i], p.half_kick[i],
-                                                             p.angular_velocity[i]);
-                const ContactForces f = contact_law(pair_table_(p.material[i], box.wall_material), g, scenario_.model, dt_, history);
+                ContactGeometry g = make_wall_geometry(n, distance, p.radius[i], p.velocity[i], p.half_kick[i],
+                                                       p.angular_velocity[i]);
+                const PairCoefficients& c = pair_table_(p.material[i], box.wall_material);
+                treat_dashpot(g, c, p.inv_mass[i], dt_, history);
+                const ContactForces f = contact_law(c, g, scenario_.model, dt_, history);
                 p.force[i] += f.force_i;
                 p.torque[i] += f.torque_i;
                 if (recording_) records_.push_back({p.id[i], wall_id(face), g, f, history});
@@ -319,7 +321,7 @@ std::string state_problem(const SimulationState& s, const ParticleStore& fresh) 
     const PairList& pairs = s.neighbors.pairs;
     const std::size_t n_pairs = pairs.size();
     if (pairs.second.size() != n_pairs || pairs.image.size() != n_pairs ||
-        pairs.slip.size() != n_pairs || pairs.angular_slip.size() != n_pairs)
+        pairs.slip.size() != n_pairs || pairs.angular_slip.size() != n_pairs || pairs.viscous_force.size() != n_pairs)
         return "the neighbour pairs have fields of unequal length";
     for (std::size_t k = 0; k < pairs.size(); ++k)
         if (pairs.first[k] >= n || pairs.second[k] >= n || pairs.image[k] >= 27)

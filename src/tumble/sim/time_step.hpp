@@ -8,13 +8,19 @@
 //  - Hertz collision time at the reference impact speed v (no damping):
 //      h_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5),  t_c = 2.943275 h_max / v;
 //  - viscous time m*/c with c = 2 B* sqrt(R* h_max), the Kuwabara-Kono
-//    damping at the deepest overlap; with the velocity predicted for
-//    t + dt (integrate/velocity_verlet.hpp) the damping is stable only for
-//    dt < m*/c;
+//    damping at the deepest overlap (the dashpot's time treatment,
+//    integrate/dashpot.hpp, keeps a single contact stable at any step; its
+//    errors grow with dt / (m*/c));
+//  - creep time tau = B*/E* of an over-damped contact (c^2 > 4 m* k with
+//    k = 2 E* sqrt(R* h_max) the Hertz stiffness there, i.e. tau > 4 m*/c):
+//    after the impact the spheres creep apart as exp(-t/tau) (eq. 4's
+//    dashpot against eq. 1's stiffness), and the restitution, set as they
+//    part, errs by about (20 dt/tau)^2 %;
 // and for every material of free particles the Rayleigh time
 //      t_R = pi R sqrt(rho/G) / (0.1631 nu + 0.8766).
-// Recommended step: min(t_c/50, 0.2 m*/c, 0.2 t_R).
-// Largest step accepted: min(t_c/10, 0.5 m*/c, 0.5 t_R).
+// Recommended step: min(t_c/20, 1.1 m*/c, tau/25, 0.2 t_R).
+// Largest step accepted: min(t_c/10, 2 m*/c, 0.5 t_R).
+// (The fractions and why: docs/MODEL.md, "Time step".)
 #pragma once
 
 #include <cstddef>
@@ -57,13 +63,15 @@ std::vector<ContactPair> contact_pairs(const Scenario& scenario);
 double hertz_max_overlap(double m_star, double E_star, double R_star, double v);
 double hertz_collision_time(double m_star, double E_star, double R_star, double v);
 
-// The two times of one kind of contact at impact speed v, s (infinite
-// where the term is off: no limit): the undamped Hertz collision time t_c
-// and the viscous time m*/c at its deepest overlap (formulas at the top of
-// this file).
+// The times of one kind of contact at impact speed v, s (infinite where
+// the term is off, or for the creep time where the contact is not
+// over-damped: no limit): the undamped Hertz collision time t_c, the
+// viscous time m*/c at its deepest overlap and the creep time B*/E*
+// (formulas at the top of this file).
 struct PairTimes {
     double collision = std::numeric_limits<double>::infinity();
     double viscous = std::numeric_limits<double>::infinity();
+    double creep = std::numeric_limits<double>::infinity();
 };
 struct ContactModel;
 PairTimes pair_times(const ContactPair& pair, const ContactModel& model, double v);
@@ -71,6 +79,7 @@ PairTimes pair_times(const ContactPair& pair, const ContactModel& model, double 
 struct TimeStepReport {
     double collision_time = 0.0;  // s, shortest over pairs (0 if elasticity is off)
     double viscous_time = 0.0;    // s, shortest m*/c over pairs (0 if viscosity is off)
+    double creep_time = 0.0;      // s, shortest B*/E* over over-damped pairs (0 if none)
     double rayleigh_time = 0.0;   // s, shortest over materials
     double recommended = 0.0;     // s
     double maximum = 0.0;         // s
