@@ -49,8 +49,9 @@ struct BandFrame {
     int species_tag = 1;         // the species whose fraction phi is (tag 1: material 2, the small grains)
 };
 
-// The default axial bins of the band profile: about one large grain
-// diameter (3.6 mm) each, L / 4 mm, at least 2.
+// The default axial bins of the band profile: L / 4 mm, at least 2 (4 mm:
+// about half the large grains' diameter, 7.2 mm, and most of the small
+// grains', 4.8 mm; the paper's radii are 3.6 and 2.4 mm).
 int default_band_bins(double inner_length);
 
 // One sample of the composition along the axis, per bin (NaN where a bin,
@@ -80,8 +81,9 @@ struct BandField {
 };
 
 struct BandOptions {
-    // A running mean over 3 bins (about 3 large grain diameters) decides the
-    // sign of the deviation: one stray grain does not split a band.
+    // A running mean over 3 bins (12 mm at the default bins, about 1.7 large
+    // grain diameters) decides the sign of the deviation: one stray grain
+    // does not split a band.
     int smoothing = 3;
     // Significance of a new band: a run's mean deviation at least 4 standard
     // errors of a random mix (a two-sided normal tail of 6e-5 per run); no
@@ -92,7 +94,7 @@ struct BandOptions {
     // And at least 0.05 in volume fraction (0.025 to stay): in a long bed of
     // many grains a weak but certain modulation is not a band.
     double min_contrast = 0.05, min_contrast_leave = 0.025;
-    int min_width = 2;  // bins: a band is at least about two grain diameters wide
+    int min_width = 2;  // bins: a band is at least about one large grain diameter wide (8 mm at the default bins)
 };
 
 struct Band {
