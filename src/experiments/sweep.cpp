@@ -35,11 +35,13 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 // (each point's run holds its own lock) and given a copy of the sweep file.
 std::optional<io::RunLock> prepare_directory(const fs::path& dir, const std::string& sweep_file) {
     std::error_code ec;
-    fs::create_directories(dir / "points", ec);
-    if (ec) throw Error((dir / "points").string() + ": cannot create the sweep directory: " + ec.message());
-    if (mpi::rank() != 0) return std::nullopt;
+    fs::create_directories(dir, ec);
+    if (ec) throw Error(dir.string() + ": cannot create the sweep directory: " + ec.message());
     std::optional<io::RunLock> lock;
-    lock.emplace(dir);
+    if (mpi::rank() == 0) lock.emplace(dir);  // before anything is written into it
+    fs::create_directories(dir / "points", ec);
+    if (ec) throw Error((dir / "points").string() + ": cannot create the folder: " + ec.message());
+    if (mpi::rank() != 0) return lock;
     std::ofstream copy(dir / "sweep.toml", std::ios::trunc);  // what was asked, for the record
     copy << "# copy of " << sweep_file << " as last run by tumble sweep\n" << io::read_text_file(sweep_file);
     return lock;

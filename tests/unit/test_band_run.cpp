@@ -6,6 +6,7 @@
 // refused before any work.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "io/band_output.hpp"
@@ -38,7 +39,9 @@ TEST_F(BandRun, SmallDrumWritesTheKymographAndBandCounts) {
     EXPECT_EQ(info.band_bins, 15);
     const tumble::io::BandRecord record = tumble::io::read_band_profile(out / "band_profile.csv", info);
     const std::size_t samples = record.field.revolutions.size();
-    ASSERT_EQ(samples, 6u);
+    // N = 0, 0.25, 0.5, 0.75, then the last regular sample and the end,
+    // which fall on the same step or a few steps apart as the step rounds.
+    ASSERT_TRUE(samples == 5u || samples == 6u) << samples;
     EXPECT_DOUBLE_EQ(record.field.revolutions.front(), 0.0);
     EXPECT_NEAR(record.field.revolutions.back(), 1.0, 1e-4);  // the run's whole steps: a step is 1e-5 revolutions
     double grains = 0.0;
@@ -53,13 +56,14 @@ TEST_F(BandRun, SmallDrumWritesTheKymographAndBandCounts) {
     EXPECT_EQ(bands.numbers("right_end_rich").front(), 1.0);
     const tumble::io::Json summary = tumble::io::parse_json(read_file(out / "summary.json"));
     ASSERT_TRUE(summary.contains("bands"));
-    EXPECT_EQ(summary["bands"]["samples"], 6);
+    EXPECT_EQ(summary["bands"]["samples"], samples);
     EXPECT_EQ(summary["bands"]["species"], "material-2");
     EXPECT_EQ(summary["bands"]["initial"]["bands"], 2);
     EXPECT_NE(read_file(out / "summary.txt").find("bands of material-2"), std::string::npos);
     const tumble::io::render::Image kymograph = tumble::io::read_png(out / "kymograph.png");
     EXPECT_EQ(kymograph.width(), 15 * 32);  // 32 pixels per bin (at least 480 wide)
-    EXPECT_EQ(kymograph.height(), 6 * 54);  // 54 per sample (at least 320 tall)
+    const int rows = static_cast<int>(samples);
+    EXPECT_EQ(kymograph.height(), rows * ((320 + rows - 1) / rows));  // whole pixels per sample, at least 320 tall
 
     // tumble analyze: the same files again.
     EXPECT_EQ(tumble::io::read_csv_table(out / "band_spectrum.csv").rows.size(), samples);

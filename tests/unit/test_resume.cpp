@@ -108,7 +108,7 @@ TEST_F(Resume, ArrangedDrumWithCapFrictionResumesToTheSameBytes) {
                              "--small-volume-fraction 0.4 --cap-friction 0.6 --out ";
     const fs::path full = dir_ / "full";
     ASSERT_EQ(tumble_run(drum + full.string()).exit_code, 0);
-    for (const char* step : {"3000", "6000"}) {  // settling (about 4900 steps), rotating
+    for (const char* step : {"2000", "4500"}) {  // settling (to about step 3660 at 4.29e-5 s), rotating (to 5130)
         const fs::path out = dir_ / (std::string("stop-") + step);
         ASSERT_EQ(tumble_run(drum + out.string() + " --stop-at-step " + step).exit_code, 4);
         const auto resumed = tumble_run("resume -q " + out.string());
