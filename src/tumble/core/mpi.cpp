@@ -15,6 +15,8 @@ namespace tumble::mpi {
 namespace {
 int world_rank = 0, world_size = 1, world_node_size = 1;
 
+const char* process_environment(const char* name) { return std::getenv(name); }
+
 // The size of the world the launcher announced, or 0 if it said none.
 int announced_size(const std::function<const char*(const char*)>& getenv) {
     for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
@@ -30,7 +32,7 @@ bool launched_by_mpi(const std::function<const char*(const char*)>& getenv) {
 }
 
 bool launched_by_mpi() {
-    return launched_by_mpi([](const char* name) -> const char* { return std::getenv(name); });
+    return launched_by_mpi(process_environment);
 }
 
 bool is_launcher_variable(std::string_view name) {
@@ -61,7 +63,7 @@ Session::Session(int& argc, char**& argv) {
     MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, world_rank, MPI_INFO_NULL, &node);
     MPI_Comm_size(node, &world_node_size);
     MPI_Comm_free(&node);
-    const int announced = announced_size([](const char* name) -> const char* { return std::getenv(name); });
+    const int announced = announced_size(process_environment);
     if (world_size == 1 && announced > 1) {
         MPI_Finalize();
         active_ = false;
@@ -115,7 +117,7 @@ std::optional<Message> poll() {
 bool built_with_mpi() { return false; }
 
 Session::Session(int&, char**&) {
-    const int announced = announced_size([](const char* name) -> const char* { return std::getenv(name); });
+    const int announced = announced_size(process_environment);
     if (announced > 1)
         throw Error("started by an MPI launcher with " + std::to_string(announced) +
                     " ranks, but this tumble was built without MPI (CMake option TUMBLE_MPI, libopenmpi-dev): "
