@@ -112,6 +112,68 @@ std::optional<Message> poll() {
     return receive_probed(status);
 }
 
+Bytes exchange(int to, const Bytes& out, int from, int tag) {
+    if (world_size == 1) return out;
+    to = to == no_rank ? MPI_PROC_NULL : to;
+    from = from == no_rank ? MPI_PROC_NULL : from;
+    int outgoing = static_cast<int>(out.size()), incoming = 0;
+    MPI_Sendrecv(&outgoing, 1, MPI_INT, to, tag, &incoming, 1, MPI_INT, from, tag, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+    Bytes in(static_cast<std::size_t>(incoming));
+    MPI_Sendrecv(out.data(), outgoing, MPI_CHAR, to, tag, in.data(), incoming, MPI_CHAR, from, tag, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+    return in;
+}
+
+std::vector<Bytes> gather(const Bytes& mine) {
+    if (world_size == 1) return {mine};
+    int count = static_cast<int>(mine.size());
+    std::vector<int> counts(static_cast<std::size_t>(world_size)), offsets(counts.size());
+    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    Bytes all;
+    if (world_rank == 0) {
+        for (std::size_t r = 1; r < counts.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+        all.resize(static_cast<std::size_t>(offsets.back() + counts.back()));
+    }
+    MPI_Gatherv(mine.data(), count, MPI_CHAR, all.data(), counts.data(), offsets.data(), MPI_CHAR, 0,
+                MPI_COMM_WORLD);
+    std::vector<Bytes> parts;
+    if (world_rank == 0)
+        for (std::size_t r = 0; r < counts.size(); ++r)
+            parts.emplace_back(all.begin() + offsets[r], all.begin() + offsets[r] + counts[r]);
+    return parts;
+}
+
+bool any(bool mine) {
+    int v = mine ? 1 : 0, all = 0;
+    if (world_size == 1) return mine;
+    MPI_Allreduce(&v, &all, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
+    return all != 0;
+}
+
+double sum(double mine) {
+    double all = mine;
+    if (world_size > 1) MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    return all;
+}
+
+std::int64_t sum(std::int64_t mine) {
+    std::int64_t all = mine;
+    if (world_size > 1) MPI_Allreduce(&mine, &all, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+    return all;
+}
+
+double max(double mine) {
+    double all = mine;
+    if (world_size > 1) MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    return all;
+}
+
+void sum(std::vector<double>& mine) {
+    if (world_size > 1)
+        MPI_Allreduce(MPI_IN_PLACE, mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+}
+
 #else  // built without MPI
 
 bool built_with_mpi() { return false; }
@@ -130,6 +192,13 @@ void abort_others(int) {}
 void send(int, int, std::string_view) { throw Error("MPI: tumble was built without MPI"); }
 Message receive(int, int) { throw Error("MPI: tumble was built without MPI"); }
 std::optional<Message> poll() { return std::nullopt; }
+Bytes exchange(int, const Bytes& out, int, int) { return out; }
+std::vector<Bytes> gather(const Bytes& mine) { return {mine}; }
+bool any(bool mine) { return mine; }
+double sum(double mine) { return mine; }
+std::int64_t sum(std::int64_t mine) { return mine; }
+double max(double mine) { return mine; }
+void sum(std::vector<double>&) {}
 
 #endif
 

@@ -11,10 +11,12 @@
 // OpenMP threads of a time step never do.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace tumble::mpi {
 
@@ -76,5 +78,24 @@ void send(int to, int tag, std::string_view text);
 Message receive(int from, int tag);
 // A message of any tag from any rank if one has arrived, without waiting.
 std::optional<Message> poll();
+
+// Bytes between ranks, for one simulation shared among the ranks
+// (sim/slabs.hpp). Collective calls: every rank of the world makes them, in
+// the same order. With one rank each returns its input (exchange() with
+// rank 0 itself included), so the callers need no case of their own.
+using Bytes = std::vector<char>;
+// Sends `out` to rank `to` and receives what rank `from` sends to this one
+// (MPI_Sendrecv: no two ranks wait for each other). A rank of -1 (no_rank)
+// is none: nothing is sent, or nothing received.
+inline constexpr int no_rank = -1;
+Bytes exchange(int to, const Bytes& out, int from, int tag);
+// Every rank's `mine`, in rank order, on rank 0 (empty elsewhere).
+std::vector<Bytes> gather(const Bytes& mine);
+// Logical or, sum and maximum over the ranks; the result on every rank.
+bool any(bool mine);
+double sum(double mine);
+std::int64_t sum(std::int64_t mine);
+double max(double mine);
+void sum(std::vector<double>& mine);  // element by element, in place
 
 }  // namespace tumble::mpi

@@ -45,6 +45,29 @@ void VerletList::rebuild(ParticleStore& p) {
     run_in_team(1, [&](Team& team) { rebuild(p, team); });
 }
 
+bool VerletList::wrap_and_sort(ParticleStore& p, Team& team) {
+    const std::size_t n = p.size();
+    const bool sort = sort_every_ > 0 && builds_ % sort_every_ == 0;
+    team.each([&](int c) {
+        wrap_into_box(p, domain_, team.range(c, n));
+        if (c == 0 && sort) sorted_.resize(n);  // the arrays to sort into
+    });
+    if (sort) {
+        search_.sort_order(p, domain_, skin_, team, order_);
+        team.each([&](int c) { sorted_.gather(p, order_, team.range(c, n)); });
+        team.one([&] { std::swap(p, sorted_); });
+    }
+    return sort;
+}
+
+void VerletList::finish_build(const ParticleStore& p, Team& team, int c) {
+    const IndexRange particles = team.range(c, p.size());
+    std::copy(p.position.begin() + static_cast<std::ptrdiff_t>(particles.begin),
+              p.position.begin() + static_cast<std::ptrdiff_t>(particles.end),
+              position_at_build_.begin() + static_cast<std::ptrdiff_t>(particles.begin));
+    if (c == 0) ++builds_;
+}
+
 // Every phase splits particles or pairs between the chunks; none has a part
 // that one thread does for all particles. The contact history is carried
 // over by array index, not by a table of global ids: the old list is kept,
@@ -53,27 +76,20 @@ void VerletList::rebuild(ParticleStore& p) {
 // order_) by a binary search among the few pairs of the lower one.
 void VerletList::rebuild(ParticleStore& p, Team& team) {
     const std::size_t n = p.size();
-    const bool sort = sort_every_ > 0 && builds_ % sort_every_ == 0;
     team.one([&] {
         std::swap(pairs_, previous_);
         previous_start_.resize(n + 1);
         position_at_build_.resize(n);
-        if (sort && sorted_.size() != n) sorted_ = p;  // the arrays to sort into, same size as p from then on
     });
     team.each([&](int c) {
         const IndexRange r = team.range(c, n);
-        wrap_into_box(p, domain_, r);
         for (std::size_t i = r.begin; i < r.end; ++i)
             previous_start_[i] = static_cast<std::size_t>(
                 std::lower_bound(previous_.first.begin(), previous_.first.end(), static_cast<std::uint32_t>(i)) -
                 previous_.first.begin());
         if (c == team.chunks() - 1) previous_start_[n] = previous_.size();
     });
-    if (sort) {
-        search_.sort_order(p, domain_, skin_, team, order_);
-        team.each([&](int c) { sorted_.gather(p, order_, team.range(c, n)); });
-        team.one([&] { std::swap(p, sorted_); });
-    }
+    const bool sort = wrap_and_sort(p, team);
     search_.find_pairs(p, domain_, skin_, team, pairs_);
     team.each([&](int c) {
         const IndexRange r = team.range(c, pairs_.size());
@@ -91,11 +107,27 @@ void VerletList::rebuild(ParticleStore& p, Team& team) {
             const ContactHistory h = previous_.history(static_cast<std::size_t>(found - group));
             pairs_.set_history(k, a < b ? h : h.swapped());
         }
-        const IndexRange particles = team.range(c, n);
-        std::copy(p.position.begin() + static_cast<std::ptrdiff_t>(particles.begin),
-                  p.position.begin() + static_cast<std::ptrdiff_t>(particles.end),
-                  position_at_build_.begin() + static_cast<std::ptrdiff_t>(particles.begin));
-        if (c == 0) ++builds_;
+        finish_build(p, team, c);
+    });
+}
+
+void VerletList::arrange(ParticleStore& p, Team& team) { wrap_and_sort(p, team); }
+
+// The ghosts lie after the own spheres, and every list is sorted by its
+// first sphere with the second after it: the pairs of two ghosts are the
+// end of the list.
+void VerletList::find_pairs(ParticleStore& p, std::size_t owned, const KeyedHistories& histories, Team& team) {
+    search_.find_pairs(p, domain_, skin_, team, pairs_);
+    team.one([&] {
+        const auto own_end = std::lower_bound(pairs_.first.begin(), pairs_.first.end(), owned);
+        pairs_.truncate(static_cast<std::size_t>(own_end - pairs_.first.begin()));
+        position_at_build_.resize(p.size());
+    });
+    team.each([&](int c) {
+        const IndexRange r = team.range(c, pairs_.size());
+        for (std::size_t k = r.begin; k < r.end; ++k)
+            pairs_.set_history(k, find_history(histories, p.id[pairs_.first[k]], p.id[pairs_.second[k]]));
+        finish_build(p, team, c);
     });
 }
 

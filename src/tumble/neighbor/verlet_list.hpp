@@ -12,6 +12,7 @@
 
 #include "tumble/core/parallel.hpp"
 #include "tumble/neighbor/candidate_pairs.hpp"
+#include "tumble/neighbor/keyed_history.hpp"
 #include "tumble/neighbor/pair_list.hpp"
 #include "tumble/neighbor/periodic_images.hpp"
 #include "tumble/core/domain.hpp"
@@ -44,6 +45,15 @@ public:
     void rebuild(ParticleStore& p, Team& team);
     void rebuild(ParticleStore& p);
 
+    // The rebuild of a simulation shared among ranks (sim/slabs.hpp), in two
+    // calls between which the caller appends the ghosts (copies of other
+    // ranks' spheres) after the rank's own spheres. arrange(): wraps and
+    // sorts the store (the own spheres only). find_pairs(): the pairs among
+    // the first `owned` spheres and between them and the ghosts (none
+    // between two ghosts), each with its history from `histories`.
+    void arrange(ParticleStore& p, Team& team);
+    void find_pairs(ParticleStore& p, std::size_t owned, const KeyedHistories& histories, Team& team);
+
     PairList& pairs() { return pairs_; }
     const PairList& pairs() const { return pairs_; }
     const PeriodicImages& images() const { return images_; }
@@ -55,6 +65,13 @@ public:
     void restore(NeighborState state);
 
 private:
+    // Wraps positions into the periodic axes, then sorts the store in cell
+    // order if this build sorts; returns whether it did (order_ then maps
+    // new indices to old).
+    bool wrap_and_sort(ParticleStore& p, Team& team);
+    // The build done: the positions it saw, counted (phase of chunk c).
+    void finish_build(const ParticleStore& p, Team& team, int c);
+
     Domain domain_;
     double skin_ = 0.0;
     int sort_every_ = 1;

@@ -6,29 +6,38 @@
 namespace tumble {
 
 namespace {
-template <class T>
-void gather_field(std::vector<T>& to, const std::vector<T>& from, const std::vector<std::uint32_t>& order, IndexRange r) {
-    for (std::size_t k = r.begin; k < r.end; ++k) to[k] = from[order[k]];
+// f(a_k, b_k) for the k-th field of two stores.
+template <class A, class B, class F>
+void each_field_pair(A& a, B& b, F&& f) {
+    std::apply([&](auto&... to) { std::apply([&](auto&... from) { (f(to, from), ...); }, b.fields()); }, a.fields());
 }
 }  // namespace
 
 void ParticleStore::gather(const ParticleStore& from, const std::vector<std::uint32_t>& order, IndexRange r) {
-    gather_field(id, from.id, order, r);
-    gather_field(position, from.position, order, r);
-    gather_field(velocity, from.velocity, order, r);
-    gather_field(angular_velocity, from.angular_velocity, order, r);
-    gather_field(force, from.force, order, r);
-    gather_field(torque, from.torque, order, r);
-    gather_field(half_kick, from.half_kick, order, r);
-    gather_field(radius, from.radius, order, r);
-    gather_field(inv_mass, from.inv_mass, order, r);
-    gather_field(inv_inertia, from.inv_inertia, order, r);
-    gather_field(mass, from.mass, order, r);
-    gather_field(material, from.material, order, r);
-    gather_field(motion, from.motion, order, r);
-    gather_field(tag, from.tag, order, r);
-    gather_field(reference_position, from.reference_position, order, r);
-    gather_field(image_shift, from.image_shift, order, r);
+    each_field_pair(*this, from, [&](auto& to, const auto& source) {
+        for (std::size_t k = r.begin; k < r.end; ++k) to[k] = source[order[k]];
+    });
+}
+
+void ParticleStore::resize(std::size_t n) {
+    std::apply([&](auto&... field) { (field.resize(n), ...); }, fields());
+}
+
+void ParticleStore::keep(const std::vector<std::uint32_t>& indices) {
+    // In place: indices[k] >= k, so no field value is overwritten before it is read.
+    std::apply(
+        [&](auto&... field) {
+            auto keep_field = [&](auto& f) {
+                for (std::size_t k = 0; k < indices.size(); ++k) f[k] = f[indices[k]];
+                f.resize(indices.size());
+            };
+            (keep_field(field), ...);
+        },
+        fields());
+}
+
+void ParticleStore::append(const ParticleStore& from, std::size_t i) {
+    each_field_pair(*this, from, [&](auto& to, const auto& source) { to.push_back(source[i]); });
 }
 
 void ParticleStore::permute(const std::vector<std::uint32_t>& order) {

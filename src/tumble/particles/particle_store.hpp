@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
 #include "tumble/core/parallel.hpp"
@@ -36,6 +37,17 @@ struct ParticleStore {
     std::vector<Vec3> reference_position;   // kinematic: position at t = 0 of the motion, m
     std::vector<Vec3> image_shift;          // kinematic: periodic wraps applied since t = 0, m
 
+    // Every field above, in this order: for what is done to all of them
+    // alike (reordering, resizing, sending a particle to another rank).
+    auto fields() {
+        return std::tie(id, position, velocity, angular_velocity, force, torque, half_kick, radius, inv_mass,
+                        inv_inertia, mass, material, motion, tag, reference_position, image_shift);
+    }
+    auto fields() const {
+        return std::tie(id, position, velocity, angular_velocity, force, torque, half_kick, radius, inv_mass,
+                        inv_inertia, mass, material, motion, tag, reference_position, image_shift);
+    }
+
     std::size_t size() const { return id.size(); }
     bool is_kinematic(std::size_t i) const { return motion[i] != free_motion; }
     std::size_t free_count() const {
@@ -49,6 +61,12 @@ struct ParticleStore {
     // The same for the indices k of range r, from `from` (a store of the
     // same size): the part of a permutation one thread does.
     void gather(const ParticleStore& from, const std::vector<std::uint32_t>& order, IndexRange r);
+    // Every field n particles long (the first n kept; new ones zero).
+    void resize(std::size_t n);
+    // Keep the particles at `indices` (increasing), in that order.
+    void keep(const std::vector<std::uint32_t>& indices);
+    // Append particle i of `from`.
+    void append(const ParticleStore& from, std::size_t i);
 };
 
 }  // namespace tumble

@@ -7,6 +7,7 @@
 
 #include "tumble/core/error.hpp"
 #include "tumble/core/isa.hpp"
+#include "tumble/core/mpi.hpp"
 #include "tumble/core/parallel.hpp"
 #include "tumble/integrate/velocity_verlet.hpp"
 #include "tumble/particles/rigid_motion.hpp"
@@ -23,9 +24,25 @@ double default_skin(const Scenario& s) {
     return 0.2 * largest;
 }
 
+double largest_radius(const Scenario& s) {
+    double largest = 0.0;
+    for (const auto& p : s.particles) largest = std::max(largest, p.radius);
+    return largest;
+}
+
+// The axis a domain is cut along when shared among ranks: its longest (a
+// drum's rotation axis z; z, then y, on a tie).
+int decomposition_axis(const Domain& d) {
+    const Vec3 L = d.length();
+    int axis = 2;
+    for (int k : {1, 0})
+        if (L[k] > L[axis]) axis = k;
+    return axis;
+}
+
 }  // namespace
 
-Simulation::Simulation(Scenario scenario, int threads) : scenario_(std::move(scenario)) {
+Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(std::move(scenario)) {
     if (const std::string why = scenario_problem(scenario_); !why.empty()) throw Error("scenario: " + why);
     set_threads(threads);
     isa_in_use();  // a wrong TUMBLE_ISA is an error here, not in a thread
@@ -34,17 +51,49 @@ Simulation::Simulation(Scenario scenario, int threads) : scenario_(std::move(sce
     dt_ = time_step_report_.dt;
     particles_ = make_particle_store(scenario_);
     const double skin = scenario_.neighbor.skin > 0.0 ? scenario_.neighbor.skin : default_skin(scenario_);
-    neighbors_ = VerletList(scenario_.domain, skin, scenario_.neighbor.sort_every);
-    for (const RigidMotion& m : scenario_.motions) motions_.push_back({m, 0.0});
     const auto& walls = scenario_.domain.walls;
-    if (walls[0] || walls[1] || walls[2]) wall_history_.resize(6 * particles_.size());
-    move_kinematic(motions_now(time_), {0, particles_.size()});
+    if (walls[0] || walls[1] || walls[2]) wall_history_.resize(6 * particles_.size());  // by global id
+    if (ranks == Ranks::world && mpi::size() > 1) {
+        const int axis = decomposition_axis(scenario_.domain);
+        slabs_ = std::make_unique<Slabs>(scenario_.domain, axis, particles_, 2.0 * largest_radius(scenario_) + skin);
+        slabs_->keep_own(particles_);
+        neighbors_ = VerletList(slabs_->local_domain(), skin, scenario_.neighbor.sort_every);
+    } else {
+        neighbors_ = VerletList(scenario_.domain, skin, scenario_.neighbor.sort_every);
+    }
+    owned_ = particles_.size();
+    for (const RigidMotion& m : scenario_.motions) motions_.push_back({m, 0.0});
+    move_kinematic(motions_now(time_), {0, owned_});
     prepare_chunks();
     run_in_team(chunks(), [&](Team& team) {
-        neighbors_.rebuild(particles_, team);
+        rebuild(team);
         locate_kinds(team);
         compute_forces(team, [](int, IndexRange) {});
     });
+}
+
+// On one rank the Verlet list's rebuild. Shared among ranks (sim/slabs.hpp):
+// the histories keyed by global id, the ghosts dropped, the spheres that
+// left the slab sent away and those that came taken in, the own spheres
+// sorted, the ghosts made anew, and the list found with the keyed histories.
+// The store's size changes, and with it the chunks' force arrays.
+void Simulation::rebuild(Team& team) {
+    if (!slabs_) {
+        neighbors_.rebuild(particles_, team);
+        return;
+    }
+    team.one([&] {
+        histories_ = keyed_histories(particles_, neighbors_.pairs());
+        particles_.resize(owned_);
+        slabs_->migrate(particles_, histories_, wall_history_);
+        owned_ = particles_.size();
+    });
+    neighbors_.arrange(particles_, team);
+    team.one([&] {
+        slabs_->make_ghosts(particles_);
+        prepare_chunks();
+    });
+    neighbors_.find_pairs(particles_, owned_, histories_, team);
 }
 
 // Where the free and the kinematic particles lie in the store, after a
@@ -53,9 +102,9 @@ Simulation::Simulation(Scenario scenario, int threads) : scenario_(std::move(sce
 void Simulation::locate_kinds(Team& team) {
     const ParticleStore& p = particles_;
     team.each([&](int c) {
-        const IndexRange r = team.range(c, p.size());
+        const IndexRange r = team.range(c, owned_);
         IndexRange& kinds = chunk_kinds_[static_cast<std::size_t>(c)];
-        kinds = {p.size(), 0};  // first kinematic, one past the last free
+        kinds = {owned_, 0};  // first kinematic, one past the last free
         for (std::size_t i = r.begin; i < r.end; ++i)
             if (p.is_kinematic(i))
                 kinds.begin = std::min(kinds.begin, i);
@@ -63,7 +112,7 @@ void Simulation::locate_kinds(Team& team) {
                 kinds.end = i + 1;
     });
     team.one([&] {
-        kinematic_begin_ = p.size();
+        kinematic_begin_ = owned_;
         free_end_ = 0;
         for (const IndexRange& kinds : chunk_kinds_) {
             kinematic_begin_ = std::min(kinematic_begin_, kinds.begin);
@@ -90,13 +139,19 @@ void Simulation::step(Team& team, std::int64_t next) {
     const std::vector<MotionNow> now = motions_now(static_cast<double>(next) * dt_);
     ParticleStore& p = particles_;
     team.each([&](int c) {
-        const IndexRange r = team.range(c, p.size());
+        const IndexRange r = team.range(c, owned_);
         kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r));  // v(t) -> v(t + dt/2), x(t) -> x(t + dt); F = 0
         move_kinematic(now, kinematic_part(r));                         // prescribed x, v, omega at t + dt; F = 0
         moved_[static_cast<std::size_t>(c)] = neighbors_.moved_far(p, r);
     });
-    if (std::find(moved_.begin(), moved_.end(), 1) != moved_.end()) {
-        neighbors_.rebuild(p, team);
+    const bool moved_here = std::find(moved_.begin(), moved_.end(), 1) != moved_.end();
+    if (slabs_)  // the ghosts where their owners moved them; a rebuild on every rank if one needs it
+        team.one([&] {
+            slabs_->update_ghosts(p, owned_);
+            rebuild_now_ = mpi::any(moved_here);
+        });
+    if (slabs_ ? rebuild_now_ : moved_here) {
+        rebuild(team);
         locate_kinds(team);
     }
     compute_forces(team, [&](int c, IndexRange r) {  // F(t + dt), with v(t + dt/2) and v(t + dt) predicted
@@ -203,8 +258,9 @@ void Simulation::compute_forces(Team& team, Then&& then) {
                 add_and_clear(&p.torque.data()->x, &(chunk_torque_.data() + offset)->x, 3 * from, 3 * r.end);
             });
         }
-        if (!wall_history_.empty()) add_wall_forces(r);
-        then(c, r);
+        const IndexRange own{std::min(r.begin, owned_), std::min(r.end, owned_)};
+        if (!wall_history_.empty()) add_wall_forces(own);
+        then(c, own);
     });
 }
 
@@ -275,42 +331,49 @@ void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
     if (k >= motions_.size()) throw Error("set_motion: no motion " + std::to_string(k));
     if (!(norm(motion.axis_direction) > 0.0)) throw Error("set_motion: axis direction is zero");
     ParticleStore& p = particles_;
-    for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t i = 0; i < owned_; ++i)
         if (p.motion[i] == static_cast<std::int32_t>(k)) p.reference_position[i] = p.position[i] - p.image_shift[i];
     motions_[k] = {motion, time_};
     scenario_.motions[k] = motion;
-    move_kinematic(motions_now(time_), {0, p.size()});
+    move_kinematic(motions_now(time_), {0, owned_});
 }
 
 SimulationState Simulation::capture() const {
-    return {particles_, neighbors_.state(), wall_history_, motions_, dt_, time_, step_};
+    return {particles_, neighbors_.state(), wall_history_, motions_, dt_,
+            time_,      step_,              owned_,        slabs_ ? slabs_->state() : SlabState{}};
 }
+
+ParticleStore Simulation::gathered() const { return slabs_ ? slabs_->gather_own(particles_, owned_) : particles_; }
 
 namespace {
 
 // Reason why a captured state cannot belong to a run of the scenario whose
-// particles are `fresh` (as built from it), or empty. A state is input (a
-// checkpoint file): every index, count and size is checked before use.
-std::string state_problem(const SimulationState& s, const ParticleStore& fresh) {
+// particles are `fresh` (as built from it), or empty. On one rank the state
+// holds every particle; shared among ranks, the rank's own and its ghosts.
+// A state is input (a checkpoint file): every index, count and size is
+// checked before use.
+std::string state_problem(const SimulationState& s, const ParticleStore& fresh, bool shared) {
     const std::size_t n = fresh.size();
     const ParticleStore& p = s.particles;
+    const std::size_t held = p.size();
     for (std::size_t size : {p.position.size(), p.velocity.size(), p.angular_velocity.size(), p.force.size(),
                              p.torque.size(), p.radius.size(), p.inv_mass.size(), p.inv_inertia.size(), p.mass.size(),
                              p.material.size(), p.motion.size(), p.tag.size(), p.reference_position.size(),
                              p.image_shift.size()})
-        if (size != n || p.size() != n)
-            return "it holds " + std::to_string(p.size()) + " particles (or fields of unequal length), the scenario " +
+        if (size != held || (!shared && held != n) || s.owned > held || (!shared && s.owned != n))
+            return "it holds " + std::to_string(held) + " particles (or fields of unequal length), the scenario " +
                    std::to_string(n);
     std::vector<bool> seen(n, false);
-    for (std::int64_t id : p.id) {
-        if (id < 0 || static_cast<std::size_t>(id) >= n || seen[static_cast<std::size_t>(id)])
-            return "the particle ids are not the numbers 0 .. " + std::to_string(n - 1) + " each once";
+    for (std::size_t k = 0; k < held; ++k) {
+        const std::int64_t id = p.id[k];
+        if (id < 0 || static_cast<std::size_t>(id) >= n || (k < s.owned && seen[static_cast<std::size_t>(id)]))
+            return "the particle ids are not among the numbers 0 .. " + std::to_string(n - 1) + " each once";
         seen[static_cast<std::size_t>(id)] = true;
     }
     // What the scenario fixes for each particle must be as it says.
     std::vector<std::size_t> by_id(n);
     for (std::size_t i = 0; i < n; ++i) by_id[static_cast<std::size_t>(fresh.id[i])] = i;
-    for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t k = 0; k < held; ++k) {
         const std::size_t i = by_id[static_cast<std::size_t>(p.id[k])];
         if (p.material[k] != fresh.material[i] || p.motion[k] != fresh.motion[i] || p.tag[k] != fresh.tag[i] ||
             p.radius[k] != fresh.radius[i] || p.mass[k] != fresh.mass[i] || p.inv_mass[k] != fresh.inv_mass[i] ||
@@ -324,11 +387,19 @@ std::string state_problem(const SimulationState& s, const ParticleStore& fresh) 
         pairs.slip.size() != n_pairs || pairs.angular_slip.size() != n_pairs || pairs.viscous_force.size() != n_pairs)
         return "the neighbour pairs have fields of unequal length";
     for (std::size_t k = 0; k < pairs.size(); ++k)
-        if (pairs.first[k] >= n || pairs.second[k] >= n || pairs.image[k] >= 27)
+        if (pairs.first[k] >= s.owned || pairs.second[k] >= held || pairs.image[k] >= 27)
             return "neighbour pair " + std::to_string(k) + " refers to a particle or image that does not exist";
         else if (pairs.first[k] >= pairs.second[k] || (k > 0 && pairs.first[k] < pairs.first[k - 1]))
             return "neighbour pair " + std::to_string(k) + " is out of order (lower index first, sorted by it)";
-    if (s.neighbors.position_at_build.size() != n) return "the positions at the last neighbour build do not match";
+    if (s.neighbors.position_at_build.size() != held) return "the positions at the last neighbour build do not match";
+    for (int side = 0; side < 2; ++side) {
+        const auto sd = static_cast<std::size_t>(side);
+        for (std::uint32_t i : s.slabs.send[sd])
+            if (i >= s.owned) return "a ghost it sends is not one of its own particles";
+        if (s.slabs.receive_begin[sd] + s.slabs.receive_count[sd] > held ||
+            (s.slabs.receive_count[sd] > 0 && s.slabs.receive_begin[sd] < s.owned))
+            return "the ghosts it receives lie outside its store";
+    }
     if (s.step < 0 || s.time != static_cast<double>(s.step) * s.dt) return "its time is not its step times its dt";
     return "";
 }
@@ -336,7 +407,7 @@ std::string state_problem(const SimulationState& s, const ParticleStore& fresh) 
 }  // namespace
 
 void Simulation::restore(SimulationState state) {
-    std::string why = state_problem(state, particles_);
+    std::string why = state_problem(state, make_particle_store(scenario_), slabs_ != nullptr);
     if (why.empty() && state.dt != dt_) {
         std::ostringstream text;
         text.precision(17);
@@ -349,6 +420,8 @@ void Simulation::restore(SimulationState state) {
     if (!why.empty()) throw Error("restoring a simulation state: " + why);
     particles_ = std::move(state.particles);
     particles_.half_kick.assign(particles_.size(), Vec3{});  // 0 between steps
+    owned_ = state.owned;
+    if (slabs_) slabs_->restore(std::move(state.slabs));
     neighbors_.restore(std::move(state.neighbors));
     wall_history_ = std::move(state.wall_history);
     motions_ = std::move(state.motions);
@@ -366,7 +439,7 @@ Observables Simulation::observe() const {
     o.step = step_;
     o.neighbor_builds = neighbors_.builds();
     o.per_material.resize(scenario_.materials.size());
-    for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t i = 0; i < owned_; ++i) {
         if (p.is_kinematic(i)) continue;
         MaterialEnergies& e = o.per_material[static_cast<std::size_t>(p.material[i])];
         const double translational = 0.5 * p.mass[i] * norm2(p.velocity[i]);
@@ -380,6 +453,7 @@ Observables Simulation::observe() const {
     const PairList& pairs = neighbors_.pairs();
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const std::uint32_t i = pairs.first[k], j = pairs.second[k];
+        if (j >= owned_ && p.id[j] < p.id[i]) continue;  // a pair with a ghost: counted on the rank of the lower id
         const double distance = norm(p.position[i] - p.position[j] + neighbors_.images()[pairs.image[k]]);
         const double overlap = p.radius[i] + p.radius[j] - distance;
         if (overlap <= 0.0) continue;
@@ -391,7 +465,7 @@ Observables Simulation::observe() const {
         if (scenario_.model.attraction) o.contact_energy += attraction_energy(c.attraction, a, overlap);
     }
     const Domain& box = scenario_.domain;
-    for (std::size_t i = 0; i < p.size() && !wall_history_.empty(); ++i)
+    for (std::size_t i = 0; i < owned_ && !wall_history_.empty(); ++i)
         for (int axis = 0; axis < 3; ++axis) {
             if (!box.walls[axis] || p.is_kinematic(i)) continue;
             for (double distance : {p.position[i][axis] - box.lo[axis], box.hi[axis] - p.position[i][axis]}) {
@@ -405,6 +479,21 @@ Observables Simulation::observe() const {
                 if (scenario_.model.attraction) o.contact_energy += attraction_energy(c.attraction, a, overlap);
             }
         }
+    if (slabs_) {  // the sums of every rank's own spheres and pairs
+        std::vector<double> sums;
+        for (const MaterialEnergies& e : o.per_material)
+            sums.insert(sums.end(), {static_cast<double>(e.particles), e.kinetic_translational, e.kinetic_rotational});
+        sums.insert(sums.end(), {o.kinetic_translational, o.kinetic_rotational, o.contact_energy});
+        mpi::sum(sums);
+        for (std::size_t m = 0; m < o.per_material.size(); ++m)
+            o.per_material[m] = {static_cast<std::size_t>(sums[3 * m]), sums[3 * m + 1], sums[3 * m + 2]};
+        const std::size_t t = 3 * o.per_material.size();
+        o.kinetic_translational = sums[t];
+        o.kinetic_rotational = sums[t + 1];
+        o.contact_energy = sums[t + 2];
+        o.contacts = static_cast<std::size_t>(mpi::sum(static_cast<std::int64_t>(o.contacts)));
+        o.max_overlap_ratio = mpi::max(o.max_overlap_ratio);
+    }
     return o;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "tumble/sim/pair_loop.hpp"
 #include "tumble/sim/scenario.hpp"
 #include "tumble/sim/simulation_state.hpp"
+#include "tumble/sim/slabs.hpp"
 
 namespace tumble {
 
@@ -42,12 +44,20 @@ struct Observables {
 // lo, 1 at hi).
 constexpr std::int64_t wall_id(int face) { return -1 - face; }
 
+// Where a simulation runs: on this process alone, or shared among the ranks
+// of the MPI world, a slab of the domain each (sim/slabs.hpp; with one rank
+// in the world the same as `one`).
+enum class Ranks { one, world };
+
 class Simulation {
 public:
     // Checks the scenario (throws tumble::Error with the reason), chooses or
     // checks the time step, builds the neighbour list and the initial forces.
     // `threads` as in set_threads().
-    explicit Simulation(Scenario scenario, int threads = 1);
+    // With Ranks::world every rank of the world constructs it, and then makes
+    // the same calls in the same order: step() and advance() exchange the
+    // ghosts, observe(), gathered(), capture() and restore() are collective.
+    explicit Simulation(Scenario scenario, int threads = 1, Ranks ranks = Ranks::one);
 
     // Threads for the time step (1 to max_threads; tumble::Error otherwise). The same
     // thread count gives the same numbers bitwise on every run; another count
@@ -68,7 +78,16 @@ public:
     double dt() const { return dt_; }
     std::int64_t step_count() const { return step_; }
     const Scenario& scenario() const { return scenario_; }
+    // The spheres this process holds: on one rank every sphere; shared among
+    // ranks, the rank's own spheres [0, owned()) and after them the ghosts.
     const ParticleStore& particles() const { return particles_; }
+    std::size_t owned() const { return owned_; }
+    bool shared() const { return slabs_ != nullptr; }
+    const Slabs* slabs() const { return slabs_.get(); }
+    // Every sphere: on one rank particles(); shared among ranks, the own
+    // spheres of every rank on rank 0 in the order of their global ids
+    // (empty on the other ranks). Collective.
+    ParticleStore gathered() const;
     const TimeStepReport& time_step_report() const { return time_step_report_; }
     const VerletList& neighbors() const { return neighbors_; }
     Observables observe() const;
@@ -106,6 +125,8 @@ private:
     void step(Team& team, std::int64_t next);
     void move_kinematic(const std::vector<MotionNow>& now, IndexRange r);
     void locate_kinds(Team& team);
+    // The neighbour list anew (shared among ranks: migration and ghosts too).
+    void rebuild(Team& team);
     // The part of range r where free (kinematic) particles can be.
     IndexRange free_part(IndexRange r) const;
     IndexRange kinematic_part(IndexRange r) const;
@@ -141,6 +162,13 @@ private:
     // History of the contacts with the six flat walls, at 6 id + face (ids are
     // dense, 0 .. N-1); empty when the domain has no walls.
     std::vector<ContactHistory> wall_history_;
+    // Shared among ranks: the slabs, the spheres this rank owns (the first
+    // owned_ of the store; all of them on one rank), the keyed histories of
+    // a rebuild, and whether a sphere of any rank moved far enough for one.
+    std::unique_ptr<Slabs> slabs_;
+    std::size_t owned_ = 0;
+    KeyedHistories histories_;
+    bool rebuild_now_ = false;
 };
 
 }  // namespace tumble

@@ -15,6 +15,7 @@
 #include "tumble/neighbor/verlet_list.hpp"
 #include "tumble/particles/particle_store.hpp"
 #include "tumble/sim/scenario.hpp"
+#include "tumble/sim/slabs.hpp"
 
 namespace tumble {
 
@@ -32,6 +33,11 @@ struct SimulationState {
     double dt = 0.0;                         // s
     double time = 0.0;                       // s
     std::int64_t step = 0;
+    // Shared among ranks (sim/slabs.hpp): the rank's own spheres are the
+    // first `owned` of `particles`, the ghosts follow; on one rank owned is
+    // every particle and the slab state empty.
+    std::size_t owned = 0;
+    SlabState slabs;
 };
 
 }  // namespace tumble

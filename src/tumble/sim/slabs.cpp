@@ -1,0 +1,244 @@
+// SPDX-License-Identifier: MIT
+#include "tumble/sim/slabs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <tuple>
+
+#include "tumble/core/error.hpp"
+#include "tumble/core/mpi.hpp"
+
+namespace tumble {
+
+namespace {
+
+// Tags of the three kinds of exchange, one per direction (+0: upwards, +1: downwards).
+constexpr int migrate_tag = 100, ghost_tag = 102, update_tag = 104;
+
+// Plain values into and out of a message.
+template <class T>
+void put(mpi::Bytes& b, const T& v) {
+    const char* c = reinterpret_cast<const char*>(&v);
+    b.insert(b.end(), c, c + sizeof(T));
+}
+
+class Reader {
+public:
+    explicit Reader(const mpi::Bytes& b) : b_(b) {}
+    template <class T>
+    T get() {
+        if (at_ + sizeof(T) > b_.size()) throw Error("slabs: a message from another rank is shorter than it says");
+        T v;
+        std::memcpy(&v, b_.data() + at_, sizeof(T));
+        at_ += sizeof(T);
+        return v;
+    }
+    bool done() const { return at_ == b_.size(); }
+
+private:
+    const mpi::Bytes& b_;
+    std::size_t at_ = 0;
+};
+
+// Every field of sphere i (ParticleStore::fields(), in order).
+void put_particle(mpi::Bytes& b, const ParticleStore& p, std::size_t i) {
+    std::apply([&](const auto&... field) { (put(b, field[i]), ...); }, p.fields());
+}
+
+void get_particle(Reader& r, ParticleStore& p) {
+    std::apply([&](auto&... field) { (field.push_back(r.get<typename std::decay_t<decltype(field)>::value_type>()), ...); },
+               p.fields());
+}
+
+// The motion sent each step: position, velocity, spin, half kick.
+constexpr std::size_t motion_bytes = 4 * sizeof(Vec3);
+
+// Moves sphere i by `shift` along the axis (a wrap across the period): its
+// position, and the wraps a kinematic sphere remembers.
+void shift_particle(ParticleStore& p, std::size_t i, int axis, double shift) {
+    p.position[i][axis] += shift;
+    p.image_shift[i][axis] += shift;
+}
+
+}  // namespace
+
+Slabs::Slabs(const Domain& domain, int axis, const ParticleStore& all, double reach)
+    : domain_(domain), axis_(axis), reach_(reach), rank_(mpi::rank()), ranks_(mpi::size()) {
+    const bool periodic = domain.periodic[axis];
+    const double length = domain.hi[axis] - domain.lo[axis];
+    std::vector<double> x;
+    for (std::size_t i = 0; i < all.size(); ++i)
+        if (!all.is_kinematic(i)) {
+            double v = all.position[i][axis];
+            if (periodic) v -= std::floor((v - domain.lo[axis]) / length) * length;
+            x.push_back(v);
+        }
+    std::sort(x.begin(), x.end());
+    const auto n = static_cast<std::size_t>(ranks_);
+    const double infinity = std::numeric_limits<double>::infinity();
+    cut_.assign(n + 1, 0.0);
+    cut_[0] = periodic ? domain.lo[axis] : -infinity;
+    cut_[n] = periodic ? domain.hi[axis] : infinity;
+    for (std::size_t r = 1; r < n; ++r) {
+        const std::size_t k = x.size() * r / n;  // the first grain of slab r
+        cut_[r] = x.empty() ? domain.lo[axis] + length * static_cast<double>(r) / static_cast<double>(n)
+                  : k == 0  ? x[0]
+                            : 0.5 * (x[k - 1] + x[k]);
+    }
+    for (std::size_t r = 0; r < n; ++r)
+        if (std::isfinite(cut_[r]) && std::isfinite(cut_[r + 1]) && cut_[r + 1] - cut_[r] < reach)
+            throw Error("domain decomposition: slab " + std::to_string(r) + " of " + std::to_string(n) + " along " +
+                        std::string(1, "xyz"[axis]) + " would be " + std::to_string(cut_[r + 1] - cut_[r]) +
+                        " m wide, less than the reach of a contact plus the skin (" + std::to_string(reach) +
+                        " m): run on fewer ranks");
+    side_[0] = {rank_ > 0 ? rank_ - 1 : periodic ? ranks_ - 1 : mpi::no_rank, rank_ == 0 && periodic ? length : 0.0};
+    side_[1] = {rank_ + 1 < ranks_ ? rank_ + 1 : periodic ? 0 : mpi::no_rank,
+                rank_ + 1 == ranks_ && periodic ? -length : 0.0};
+}
+
+Domain Slabs::local_domain() const {
+    Domain d = domain_;
+    d.periodic[static_cast<std::size_t>(axis_)] = false;
+    return d;
+}
+
+void Slabs::keep_own(ParticleStore& p) const {
+    const double length = domain_.hi[axis_] - domain_.lo[axis_];
+    std::vector<std::uint32_t> own;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        if (domain_.periodic[axis_])
+            shift_particle(p, i, axis_, -std::floor((p.position[i][axis_] - domain_.lo[axis_]) / length) * length);
+        const double x = p.position[i][axis_];
+        if (x >= lo() && x < hi()) own.push_back(static_cast<std::uint32_t>(i));
+    }
+    p.keep(own);
+}
+
+void Slabs::migrate(ParticleStore& p, KeyedHistories& histories, std::vector<ContactHistory>& wall_history) const {
+    std::array<std::vector<std::uint32_t>, 2> leaving;
+    std::vector<std::uint32_t> staying;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const double x = p.position[i][axis_];
+        (x < lo() ? leaving[0] : x >= hi() ? leaving[1] : staying).push_back(static_cast<std::uint32_t>(i));
+    }
+    // Per side: the spheres (each with its six flat-wall histories when the
+    // domain has walls), then the histories of their pairs.
+    std::array<mpi::Bytes, 2> out;
+    for (int s = 0; s < 2; ++s) {
+        mpi::Bytes& b = out[static_cast<std::size_t>(s)];
+        const auto& go = leaving[static_cast<std::size_t>(s)];
+        std::vector<std::int64_t> ids;
+        put(b, go.size());
+        for (std::uint32_t i : go) {
+            shift_particle(p, i, axis_, side_[static_cast<std::size_t>(s)].shift);
+            put_particle(b, p, i);
+            ids.push_back(p.id[i]);
+            if (!wall_history.empty())
+                for (int face = 0; face < 6; ++face) put(b, wall_history[6 * static_cast<std::size_t>(p.id[i]) + face]);
+        }
+        std::sort(ids.begin(), ids.end());
+        KeyedHistories theirs;
+        for (const KeyedHistory& h : histories)
+            if (std::binary_search(ids.begin(), ids.end(), h.lo) || std::binary_search(ids.begin(), ids.end(), h.hi))
+                theirs.push_back(h);
+        put(b, theirs.size());
+        for (const KeyedHistory& h : theirs) put(b, h);
+    }
+    p.keep(staying);
+    // Upwards first (each rank sends above, hears from below), then downwards.
+    for (int s : {1, 0}) {
+        const mpi::Bytes in = mpi::exchange(side_[static_cast<std::size_t>(s)].rank, out[static_cast<std::size_t>(s)],
+                                            side_[static_cast<std::size_t>(1 - s)].rank, migrate_tag + (1 - s));
+        if (in.empty()) continue;
+        Reader r(in);
+        const auto count = r.get<std::size_t>();
+        for (std::size_t k = 0; k < count; ++k) {
+            get_particle(r, p);
+            if (!wall_history.empty())
+                for (int face = 0; face < 6; ++face)
+                    wall_history[6 * static_cast<std::size_t>(p.id.back()) + face] = r.get<ContactHistory>();
+        }
+        KeyedHistories arrived(r.get<std::size_t>());
+        for (KeyedHistory& h : arrived) h = r.get<KeyedHistory>();
+        std::sort(arrived.begin(), arrived.end());
+        merge_histories(histories, arrived);
+        if (!r.done()) throw Error("slabs: a migration message from another rank is longer than it says");
+    }
+}
+
+void Slabs::make_ghosts(ParticleStore& p) {
+    const std::size_t owned = p.size();
+    for (auto& list : state_.send) list.clear();
+    for (std::size_t i = 0; i < owned; ++i) {
+        const double x = p.position[i][axis_];
+        if (side_[0].rank != mpi::no_rank && x < lo() + reach_) state_.send[0].push_back(static_cast<std::uint32_t>(i));
+        if (side_[1].rank != mpi::no_rank && x >= hi() - reach_) state_.send[1].push_back(static_cast<std::uint32_t>(i));
+    }
+    for (int s : {1, 0}) {
+        const auto& side = side_[static_cast<std::size_t>(s)];
+        mpi::Bytes out;
+        for (std::uint32_t i : state_.send[static_cast<std::size_t>(s)]) {
+            shift_particle(p, i, axis_, side.shift);  // the copy is sent shifted, the sphere stays
+            put_particle(out, p, i);
+            shift_particle(p, i, axis_, -side.shift);
+        }
+        const mpi::Bytes in =
+            mpi::exchange(side.rank, out, side_[static_cast<std::size_t>(1 - s)].rank, ghost_tag + (1 - s));
+        const std::size_t from = static_cast<std::size_t>(1 - s);  // received from below in the upward pass
+        state_.receive_begin[from] = p.size();
+        Reader r(in);
+        while (!r.done()) get_particle(r, p);
+        state_.receive_count[from] = p.size() - state_.receive_begin[from];
+    }
+}
+
+void Slabs::update_ghosts(ParticleStore& p, std::size_t owned) const {
+    for (int s : {1, 0}) {
+        const auto& side = side_[static_cast<std::size_t>(s)];
+        mpi::Bytes out;
+        out.reserve(state_.send[static_cast<std::size_t>(s)].size() * motion_bytes);
+        for (std::uint32_t i : state_.send[static_cast<std::size_t>(s)]) {
+            Vec3 x = p.position[i];
+            x[axis_] += side.shift;
+            put(out, x);
+            put(out, p.velocity[i]);
+            put(out, p.angular_velocity[i]);
+            put(out, p.half_kick[i]);
+        }
+        const mpi::Bytes in =
+            mpi::exchange(side.rank, out, side_[static_cast<std::size_t>(1 - s)].rank, update_tag + (1 - s));
+        const std::size_t from = static_cast<std::size_t>(1 - s);
+        const std::size_t begin = state_.receive_begin[from], count = state_.receive_count[from];
+        if (in.size() != count * motion_bytes || begin + count > p.size())
+            throw Error("slabs: the ghosts from rank " + std::to_string(side_[from].rank) +
+                        " do not match those of the last rebuild");
+        Reader r(in);
+        for (std::size_t g = begin; g < begin + count; ++g) {
+            p.position[g] = r.get<Vec3>();
+            p.velocity[g] = r.get<Vec3>();
+            p.angular_velocity[g] = r.get<Vec3>();
+            p.half_kick[g] = r.get<Vec3>();
+        }
+    }
+    for (std::size_t g = owned; g < p.size(); ++g) p.force[g] = p.torque[g] = Vec3{};
+}
+
+ParticleStore Slabs::gather_own(const ParticleStore& p, std::size_t owned) const {
+    mpi::Bytes mine;
+    for (std::size_t i = 0; i < owned; ++i) put_particle(mine, p, i);
+    ParticleStore all;
+    for (const mpi::Bytes& part : mpi::gather(mine)) {
+        Reader r(part);
+        while (!r.done()) get_particle(r, all);
+    }
+    std::vector<std::uint32_t> order(all.size());
+    for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return all.id[a] < all.id[b]; });
+    all.permute(order);
+    return all;
+}
+
+}  // namespace tumble

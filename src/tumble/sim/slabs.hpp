@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: MIT
+// One simulation shared among the ranks of the MPI world (docs/PARALLEL.md):
+// the domain cut into slabs along one axis, one slab per rank. A rank owns
+// the spheres whose centre lies in its slab, integrates them, and holds
+// copies (ghosts) of the other ranks' spheres within `reach` = 2 R_max +
+// skin of its slab, refreshed every step. A pair of an own sphere and a ghost
+// is computed on both ranks, each keeping the force on its own sphere: no
+// forces travel back. At each neighbour-list rebuild the spheres that left a
+// slab migrate to the neighbour's, with their contact histories keyed by
+// global id (neighbor/keyed_history.hpp), and the ghosts are chosen anew.
+//
+// The store of a rank: its own spheres first (sorted in cell order as in one
+// rank), then the ghosts from the rank below, then those from the rank
+// above. Slabs are at least `reach` wide, so ghosts come from the two
+// neighbours only, and a sphere, which moves less than skin/2 between
+// rebuilds, migrates at most one slab. Along a periodic axis the first and
+// last slabs are neighbours and what crosses the period is shifted by its
+// length.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "tumble/contact/history.hpp"
+#include "tumble/core/domain.hpp"
+#include "tumble/neighbor/keyed_history.hpp"
+#include "tumble/particles/particle_store.hpp"
+
+namespace tumble {
+
+// What a checkpoint of one rank keeps of its slab: the ghosts it sends each
+// step and where those it receives lie in its store (below, above).
+struct SlabState {
+    std::array<std::vector<std::uint32_t>, 2> send;
+    std::array<std::size_t, 2> receive_begin{}, receive_count{};
+};
+
+class Slabs {
+public:
+    // Cuts along `axis` placed at the quantiles of the free spheres'
+    // coordinates in `all` (the whole scenario, the same on every rank), so
+    // that every slab starts with as many grains as can be (wall spheres
+    // cost little: docs/PARALLEL.md "Load balance"). The end slabs reach to
+    // infinity on an open axis and to the box on a periodic one. Throws
+    // tumble::Error if a slab with two cuts would be narrower than `reach`.
+    Slabs(const Domain& domain, int axis, const ParticleStore& all, double reach);
+
+    int axis() const { return axis_; }
+    const std::vector<double>& cuts() const { return cut_; }
+    double lo() const { return cut_[static_cast<std::size_t>(rank_)]; }
+    double hi() const { return cut_[static_cast<std::size_t>(rank_) + 1]; }
+    // The domain a rank's neighbour search sees: not periodic along the
+    // axis (ghosts carry their image).
+    Domain local_domain() const;
+
+    // The spheres of the slab, from a store of all spheres.
+    void keep_own(ParticleStore& p) const;
+    // At a rebuild, on the own spheres (no ghosts in p): those that left the
+    // slab go to the neighbour with their histories (of pairs and of the
+    // flat walls, at 6 id + face); those that arrive are appended, their
+    // histories merged into `histories` and `wall_history`.
+    void migrate(ParticleStore& p, KeyedHistories& histories, std::vector<ContactHistory>& wall_history) const;
+    // After the sort: copies of the own spheres within reach of each cut go
+    // to the neighbours; theirs are appended as ghosts.
+    void make_ghosts(ParticleStore& p);
+    // Every step, after the drift: the ghosts' positions, velocities and
+    // half kicks from their owners; their forces zero (never used).
+    void update_ghosts(ParticleStore& p, std::size_t owned) const;
+
+    // Collective: the own spheres of every rank (the first `owned` of each
+    // store), on rank 0 in the order of their global ids; empty elsewhere.
+    ParticleStore gather_own(const ParticleStore& p, std::size_t owned) const;
+
+    SlabState state() const { return state_; }
+    void restore(SlabState state) { state_ = std::move(state); }
+
+private:
+    struct Side {
+        int rank = -1;       // neighbour rank, -1: none
+        double shift = 0.0;  // added to the axis coordinate of what is sent (periodic wrap), m
+    };
+    Domain domain_;
+    int axis_ = 2;
+    double reach_ = 0.0;
+    int rank_ = 0, ranks_ = 1;
+    std::vector<double> cut_;       // ranks + 1
+    std::array<Side, 2> side_{};    // 0: below, 1: above
+    SlabState state_;
+};
+
+}  // namespace tumble

@@ -1,0 +1,174 @@
+// SPDX-License-Identifier: MIT
+// One simulation shared among MPI ranks (sim/slabs.hpp) against the same
+// simulation on one process. Run under mpirun on 2 and 3 ranks (ctest
+// label "mpi"; tests/CMakeLists.txt); on one rank the shared run is the
+// one-process run and every comparison is trivially met.
+//
+// Every rank also runs the scenario alone (Ranks::one) and compares its own
+// spheres, by global id, with that run.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "../physics/physics_helpers.hpp"
+#include "tumble/core/mpi.hpp"
+#include "tumble/setup/drum.hpp"
+
+namespace physics_test {
+namespace {
+
+using tumble::Ranks;
+using tumble::Simulation;
+
+// Largest |a - b| of a field over this rank's own spheres of `shared`
+// against the same spheres of the one-process run `alone`, over all ranks.
+double largest_difference(const Simulation& shared, const Simulation& alone,
+                          std::vector<Vec3> tumble::ParticleStore::*field) {
+    const auto& p = shared.particles();
+    const auto& q = alone.particles();
+    double worst = 0.0;
+    for (std::size_t i = 0; i < shared.owned(); ++i)
+        worst = std::max(worst, tumble::norm((p.*field)[i] - (q.*field)[index_of(q, p.id[i])]));
+    return tumble::mpi::max(worst);
+}
+
+// The short drum of test_threads.cpp: the paper's cross-section and wall
+// spheres, end caps, 300 grains thrown at up to 1 m/s while it turns at
+// 5 rad/s. 6 cm long and 8 cm across: cut across the rotation axis (along x,
+// its longest), so grains and wall spheres both migrate.
+tumble::Scenario short_drum() {
+    tumble::DrumGeometry g;
+    g.length = 0.06;
+    tumble::Scenario s = tumble::build_drum_scenario(g, "two-component", 300, 5).scenario;
+    s.motions[0].angular_velocity = 5.0;
+    std::mt19937_64 rng(13);
+    for (tumble::ParticleSpec& grain : s.particles)
+        if (grain.motion == tumble::free_motion) grain.velocity = random_vector(rng);
+    return s;
+}
+
+// The tolerance of test_threads.cpp's ShortDrumOneAndTwoThreadsAgreeOverARun
+// and its reason: the shared run adds each sphere's contact forces in
+// another order than one process does (ghost pairs are computed from the
+// other sphere's side, the lists are ordered by slab), a difference in the
+// last bit that the collisions amplify (e-folding in about 30 steps) but
+// that stays below 1e-12 of the grain radius, the throw speed and speed
+// over radius after 200 steps. A contact or history lost at a cut shows at
+// 1e-6 of those scales or more.
+void expect_agreement(const tumble::Scenario& s, int steps, double R, double speed, const char* what,
+                      int threads = 1) {
+    Simulation alone(s, 1), shared(s, threads, Ranks::world);
+    alone.advance(steps);
+    shared.advance(steps);
+    const double dx = largest_difference(shared, alone, &tumble::ParticleStore::position);
+    const double dv = largest_difference(shared, alone, &tumble::ParticleStore::velocity);
+    const double dw = largest_difference(shared, alone, &tumble::ParticleStore::angular_velocity);
+    const auto owned = static_cast<std::int64_t>(shared.owned());
+    if (tumble::mpi::rank() == 0)
+        std::printf("  [measured] %s on %d ranks of %d threads, %d steps: positions differ by %.3g m, velocities by "
+                    "%.3g m/s, spins by %.3g rad/s\n",
+                    what, tumble::mpi::size(), threads, steps, dx, dv, dw);
+    EXPECT_EQ(tumble::mpi::sum(owned), static_cast<std::int64_t>(s.particles.size()));  // each sphere on one rank
+    EXPECT_LE(dx, 1e-12 * R);
+    EXPECT_LE(dv, 1e-12 * speed);
+    EXPECT_LE(dw, 1e-12 * speed / R);
+    const tumble::Observables a = alone.observe(), b = shared.observe();
+    EXPECT_EQ(a.contacts, b.contacts);
+    EXPECT_NEAR(b.kinetic_translational, a.kinetic_translational, 1e-12 * a.kinetic_translational);
+    EXPECT_GT(a.neighbor_builds, 5);
+}
+
+TEST(Slabs, WalledDrumAgreesWithOneProcess) { expect_agreement(short_drum(), 200, R2, 1.0, "short drum"); }
+
+// Hybrid: threads inside each rank (the chunks of the pair list sum in
+// another order again); the same tolerance.
+TEST(Slabs, TwoThreadsPerRankAgreeWithOneProcess) {
+    expect_agreement(short_drum(), 200, R2, 1.0, "short drum", 2);
+}
+
+// The periodic box of test_determinism.cpp (64 spheres of the three
+// materials, periodic on every axis, spinning and colliding), cut along z:
+// ghosts and migrants cross the period between the first and last slabs.
+// The same tolerance and reason as the drum's.
+TEST(Slabs, PeriodicBoxAgreesWithOneProcess) { expect_agreement(shaken_box(), 300, R2, 0.5, "periodic box"); }
+
+// Shared runs are deterministic: twice the same on the same ranks, bit for
+// bit; and a state captured on the ranks and restored into a new shared
+// simulation goes on bit for bit as the uninterrupted run (checkpoints).
+TEST(Slabs, CaptureAndRestoreContinueBitwise) {
+    const tumble::Scenario s = short_drum();
+    Simulation whole(s, 1, Ranks::world), first(s, 1, Ranks::world);
+    whole.advance(300);
+    first.advance(150);
+    Simulation resumed(s, 1, Ranks::world);
+    resumed.restore(first.capture());
+    resumed.advance(150);
+    const auto& p = whole.particles();
+    const auto& q = resumed.particles();
+    EXPECT_EQ(whole.owned(), resumed.owned());
+    EXPECT_TRUE(p.id == q.id);
+    EXPECT_TRUE(p.position == q.position);
+    EXPECT_TRUE(p.velocity == q.velocity);
+    EXPECT_TRUE(p.angular_velocity == q.angular_velocity);
+    EXPECT_TRUE(whole.neighbors().pairs().slip == resumed.neighbors().pairs().slip);
+}
+
+// A grain sliding on a flat floor across the cut between two ranks keeps
+// its wall contact's history: its friction force, step by step, is the
+// one-process run's. Two grains 20 cm apart in x slide towards each other's
+// side along z at 0.5 m/s, 3 mm from the cut (at z = 0, the median of the
+// two), crossing it after 6 ms, while friction turns their sliding into
+// rolling; nothing else touches them, so the forces are the same bit for bit.
+TEST(Slabs, SlidingGrainKeepsItsFrictionAcrossTheCut) {
+    if (tumble::mpi::size() != 2) GTEST_SKIP() << "two ranks only (the cut lies between the two grains)";
+    tumble::Scenario s = open_scenario(1e-5);
+    s.domain.walls = {false, true, false};
+    s.gravity = {0.0, -9.81, 0.0};
+    const double floor = s.domain.lo.y + R1 - 1e-6;  // resting on it, slightly pressed
+    s.particles.push_back(sphere({-0.1, floor, -0.003}, R1, 0, {0.0, 0.0, 0.5}));
+    s.particles.push_back(sphere({0.1, floor, 0.003}, R1, 0, {0.0, 0.0, -0.5}));
+    Simulation alone(s, 1), shared(s, 1, Ranks::world);
+    alone.set_contact_recording(true);
+    shared.set_contact_recording(true);
+    int compared = 0, owners_of_grain_0 = 0;
+    bool owned_at_start = false, owned_at_end = false;
+    for (int step = 0; step < 1500; ++step) {
+        alone.step();
+        shared.step();
+        for (const tumble::ContactRecord& r : shared.contact_records())
+            for (const tumble::ContactRecord& q : alone.contact_records())
+                if (q.id_i == r.id_i && q.id_j == r.id_j) {
+                    ++compared;
+                    EXPECT_EQ(r.forces.force_i, q.forces.force_i) << "step " << step;
+                    EXPECT_EQ(r.history.slip, q.history.slip) << "step " << step;
+                }
+        const bool mine = shared.owned() > 0 && std::find(shared.particles().id.begin(),
+                                                          shared.particles().id.begin() + static_cast<std::ptrdiff_t>(shared.owned()),
+                                                          0) != shared.particles().id.begin() + static_cast<std::ptrdiff_t>(shared.owned());
+        if (step == 0) owned_at_start = mine;
+        if (step == 1499) owned_at_end = mine;
+        owners_of_grain_0 += mine;
+    }
+    // Each step both grains touch the floor, on the rank that owns them.
+    EXPECT_EQ(tumble::mpi::sum(static_cast<std::int64_t>(compared)), 2 * 1500);
+    EXPECT_EQ(tumble::mpi::sum(static_cast<std::int64_t>(owners_of_grain_0)), 1500);
+    // Grain 0 starts below the cut (rank 0) and ends above it (rank 1).
+    EXPECT_EQ(owned_at_start, tumble::mpi::rank() == 0);
+    EXPECT_EQ(owned_at_end, tumble::mpi::rank() == 1);
+    const auto& p = alone.particles();
+    const std::size_t g = index_of(p, 0);
+    EXPECT_GT(p.position[g].z, 0.003);  // it did cross
+    EXPECT_GT(std::abs(p.angular_velocity[g].x), 1.0);  // friction set it spinning
+}
+
+}  // namespace
+}  // namespace physics_test
+
+// MPI for the whole suite (started only under a launcher).
+int main(int argc, char** argv) {
+    tumble::mpi::Session session(argc, argv);
+    ::testing::InitGoogleTest(&argc, argv);
+    return RUN_ALL_TESTS();
+}
