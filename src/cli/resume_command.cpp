@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: MIT
 // tumble resume DIR: continue an interrupted run from its newest intact
 // checkpoint; a damaged newer one is reported and skipped.
+#include <optional>
+
 #include <fmt/format.h>
+
+#include "tumble/core/mpi.hpp"
 
 #include "cli/commands.hpp"
 #include "experiments/limits.hpp"
@@ -11,18 +15,37 @@
 namespace tumble::cli {
 
 int resume_command(const std::string& directory, bool quiet, double progress_every) {
-    const io::RunLock lock(directory);  // held until the run ends
-    io::LoadedCheckpoint loaded =
-        io::load_newest_checkpoint(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0)));
+    // Under mpirun every rank reads its own checkpoint file (a run shared
+    // among ranks, io/checkpoint.hpp); rank 0 holds the lock and talks.
+    const io::CheckpointRank who{mpi::rank(), mpi::size()};
+    std::optional<io::RunLock> lock;  // held until the run ends
+    if (who.rank == 0) lock.emplace(directory);
+    const bool talk = !quiet && who.rank == 0;
+    io::LoadedCheckpoint loaded;
+    try {
+        loaded = io::load_newest_checkpoint(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0)), who);
+    } catch (const Error& e) {
+        if (who.ranks == 1 && !io::checkpoint_files(directory, {0, 2}).empty())
+            throw Error(std::string(e.what()) + "\n  its checkpoints were written by a run on several MPI ranks "
+                                                "(NNNNNN.rR.tck): resume it with mpirun -np RANKS tumble resume");
+        throw;
+    }
     for (const std::string& why : loaded.rejected)
-        fmt::print(stderr, "tumble resume: warning: {}; using the previous checkpoint\n", why);
+        fmt::print(stderr, "tumble resume: {}warning: {}; using the previous checkpoint\n", mpi::line_prefix(), why);
+    if (who.ranks > 1) {  // the ranks resume from checkpoints written together
+        const double number = std::stod(loaded.file.filename().string().substr(0, 6));
+        if (mpi::max(number) != -mpi::max(-number))
+            throw Error(directory + ": the ranks' newest intact checkpoints are not of the same moment (one was "
+                                    "damaged); resume is not possible from mixed checkpoints");
+    }
     const io::CheckpointRecord& record = loaded.checkpoint.record;
     if (record.integer("finished")) {
-        fmt::print("tumble resume: the run in {} has finished ({}); nothing to do\n", directory,
-                   loaded.file.string());
+        if (talk)
+            fmt::print("tumble resume: the run in {} has finished ({}); nothing to do\n", directory,
+                       loaded.file.string());
         return 0;
     }
-    if (!quiet) fmt::print("tumble resume: from {}\n", loaded.file.string());
+    if (talk) fmt::print("tumble resume: from {}\n", loaded.file.string());
     const std::string command = record.text("command");
     if (command == "run") return resume_run(std::move(loaded.checkpoint), directory, quiet, progress_every);
     if (command == "drum") return resume_drum(std::move(loaded.checkpoint), directory, quiet, progress_every);

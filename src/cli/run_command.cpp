@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // tumble run FILE: read a scenario, simulate it, write the output directory;
 // checkpoints on the way, so that `tumble resume DIR` can continue it.
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -13,6 +14,7 @@
 #include "io/config.hpp"
 #include "io/output.hpp"
 #include "io/snapshots.hpp"
+#include "tumble/core/mpi.hpp"
 #include "tumble/sim/health.hpp"
 #include "tumble/sim/simulation.hpp"
 
@@ -25,6 +27,12 @@ namespace {
 // Steps between two samples at the given interval (s); 0 if never.
 std::int64_t every(double interval, double dt) {
     return interval > 0.0 ? std::max<std::int64_t>(1, std::llround(std::min(interval / dt, max_steps))) : 0;
+}
+
+// The free particles of a scenario (of every rank when shared).
+std::size_t free_count(const Scenario& s) {
+    return static_cast<std::size_t>(std::count_if(s.particles.begin(), s.particles.end(),
+                                                   [](const ParticleSpec& p) { return p.motion == free_motion; }));
 }
 
 // What a run carries from one process to the next (kept in its checkpoints).
@@ -61,21 +69,24 @@ RunPlan load_plan(const io::CheckpointRecord& r) {
     return plan;
 }
 
-// The run from wherever `sim` stands to the end.
+// The run from wherever `sim` stands to the end. Shared among MPI ranks,
+// every rank steps, measures (collectively) and writes its own checkpoint
+// file; rank 0 alone writes the time series and run.json and talks.
 class RunLoop {
 public:
     RunLoop(Simulation& sim, RunPlan plan, fs::path dir, CheckpointPolicy policy, bool continuing,
             const std::vector<double>& snapshot_times)
         : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)),
-          checkpoints_(dir_, policy, default_health_limits(sim.scenario())),
-          series_(dir_ / "time_series.csv", sim.scenario().materials, continuing) {
+          checkpoints_(dir_, policy, default_health_limits(sim.scenario())) {
+        if (mpi::rank() == 0) series_.emplace(dir_ / "time_series.csv", sim.scenario().materials, continuing);
         if (plan_.snapshot_every) snapshots_.emplace(dir_, snapshot_times);
     }
 
     int run() {
-        const bool talk = !plan_.quiet;
+        const bool talk = !plan_.quiet && mpi::rank() == 0;
+        if (mpi::rank() != 0) plan_.progress = progress_style(true, 0.0);
         Progress progress("run", sim_.step_count(), plan_.steps, plan_.progress,
-                          {.particles = sim_.particles().free_count(), .seconds_per_step = sim_.dt()});
+                          {.particles = free_count(sim_.scenario()), .seconds_per_step = sim_.dt()});
         while (sim_.step_count() < plan_.steps) {
             sim_.step();
             sample();
@@ -93,26 +104,32 @@ public:
         // of the final state first (a resume from it writes the results
         // again), then the results, then the checkpoint that says "finished".
         checkpoint(false, progress.elapsed_seconds());
-        if (!plan_.sample_every || plan_.steps % plan_.sample_every != 0) series_.write(sim_.observe());  // the final state
+        if (!plan_.sample_every || plan_.steps % plan_.sample_every != 0) write_series();  // the final state
         const double seconds = plan_.wall_seconds + progress.elapsed_seconds();
-        io::write_run_json(dir_ / "run.json", sim_,
-                           {plan_.scenario_file, plan_.seed, plan_.duration, plan_.steps, seconds,
-                            sim_.particles().size(), sim_.particles().free_count()});
+        if (mpi::rank() == 0)
+            io::write_run_json(dir_ / "run.json", sim_,
+                               {plan_.scenario_file, plan_.seed, plan_.duration, plan_.steps, seconds,
+                                sim_.scenario().particles.size(), free_count(sim_.scenario())});
         checkpoint(true, progress.elapsed_seconds());
         if (talk)
             fmt::print("done in {:.1f} s ({:.3g} particle updates/s); output in {}\n", seconds,
-                       seconds > 0 ? static_cast<double>(sim_.particles().free_count()) * plan_.steps / seconds : 0.0,
+                       seconds > 0 ? static_cast<double>(free_count(sim_.scenario())) * plan_.steps / seconds : 0.0,
                        dir_.string());
         return 0;
     }
 
     // The samples due at the current step (the first at step 0).
     void sample() {
-        if (plan_.sample_every && sim_.step_count() % plan_.sample_every == 0) series_.write(sim_.observe());
+        if (plan_.sample_every && sim_.step_count() % plan_.sample_every == 0) write_series();
         if (plan_.snapshot_every && sim_.step_count() % plan_.snapshot_every == 0) snapshots_->write(sim_);
     }
 
 private:
+    void write_series() {
+        const Observables o = sim_.observe();  // collective
+        if (series_) series_->write(o);
+    }
+
     // seconds: spent by this process so far.
     void checkpoint(bool finished, double seconds) {
         io::Checkpoint c = checkpoint_of(sim_);
@@ -122,7 +139,7 @@ private:
         save_policy(c.record, checkpoints_.policy());
         c.record.set("finished", static_cast<std::int64_t>(finished));
         c.record.set("snapshot_times", snapshots_ ? snapshots_->times() : std::vector<double>{});
-        io::record_file_lengths(c.record, dir_, {"time_series.csv"});
+        if (mpi::rank() == 0) io::record_file_lengths(c.record, dir_, {"time_series.csv"});
         checkpoints_.write(sim_, c);
     }
 
@@ -130,7 +147,7 @@ private:
     RunPlan plan_;
     fs::path dir_;
     Checkpointer checkpoints_;
-    io::TimeSeriesWriter series_;
+    std::optional<io::TimeSeriesWriter> series_;  // rank 0
     std::optional<io::SnapshotSeries> snapshots_;
 };
 
@@ -143,7 +160,11 @@ int run_command(const RunOptions& options) {
     const int threads = resolve_threads(options.threads);
     check_memory(scenario_memory(config.scenario, threads), memory_limit_bytes(options.max_memory_gib),
                  options.scenario_file);
-    Simulation sim(std::move(config.scenario), threads);
+    const bool shared = mpi::size() > 1;
+    if (shared && config.output.snapshot_interval > 0.0)
+        throw Error(options.scenario_file + ": output.snapshot_interval: snapshots of a run on several MPI ranks are "
+                                            "not written yet; set it to 0 or run on one rank");
+    Simulation sim(std::move(config.scenario), threads, shared ? Ranks::world : Ranks::one);
     const double dt = sim.dt();
     RunPlan plan{options.scenario_file,
                  config.seed,
@@ -157,12 +178,14 @@ int run_command(const RunOptions& options) {
     check_stiffness(sim.scenario(), options.allow_soft, options.scenario_file);  // after what no run can do
 
     const auto& dir = config.output.directory;
-    const io::RunLock lock = io::prepare_output_directory(dir, options.force);
-    if (!options.quiet) {
+    std::optional<io::RunLock> lock;  // rank 0's: the other ranks write only their checkpoints
+    if (mpi::rank() == 0) lock.emplace(io::prepare_output_directory(dir, options.force));
+    if (!options.quiet && mpi::rank() == 0) {
         const TimeStepReport& t = sim.time_step_report();
-        fmt::print("tumble run {}: {} particles ({} free), {} steps of {:.3g} s ({}; safe maximum {:.3g} s)\n",
-                   options.scenario_file, sim.particles().size(), sim.particles().free_count(), plan.steps, dt,
-                   t.automatic ? "chosen automatically" : "given", t.maximum);
+        fmt::print("tumble run {}: {} particles ({} free), {} steps of {:.3g} s ({}; safe maximum {:.3g} s){}\n",
+                   options.scenario_file, sim.scenario().particles.size(), free_count(sim.scenario()), plan.steps, dt,
+                   t.automatic ? "chosen automatically" : "given", t.maximum,
+                   shared ? fmt::format(", shared among {} MPI ranks", mpi::size()) : "");
     }
     RunLoop loop(sim, plan, dir, options.checkpoints, false, {});
     loop.sample();
@@ -179,7 +202,7 @@ int resume_run(io::Checkpoint checkpoint, const fs::path& dir, bool quiet, doubl
         throw Error(checkpoint.record.source + ": record keys run.steps, run.sample_every or run.snapshot_every do not "
                                                "fit its duration and time step");
     Simulation sim = restore_simulation(checkpoint, dir);
-    if (!quiet)
+    if (!quiet && mpi::rank() == 0)
         fmt::print("tumble resume: run of {} at step {} of {} (t = {:.6g} s)\n", plan.scenario_file, sim.step_count(),
                    plan.steps, sim.time());
     RunLoop loop(sim, plan, dir, load_policy(checkpoint.record), true, checkpoint.record.numbers("snapshot_times"));

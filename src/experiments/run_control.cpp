@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "experiments/run_control.hpp"
 
+#include "tumble/core/mpi.hpp"
+
 #include <csignal>
 #include <unistd.h>
 
@@ -46,14 +48,17 @@ Checkpointer::Checkpointer(std::filesystem::path run_directory, CheckpointPolicy
 Checkpointer::Due Checkpointer::after_steps(const Simulation& sim, std::int64_t steps_done) {
     constexpr std::int64_t health_every = 100;  // steps; the check costs about one force evaluation
     if (sim.step_count() - checked_at_step_ >= health_every) check_health(sim);
-    return due(sim.step_count(), steps_done);
+    const Due d = due(sim.step_count(), steps_done);
+    // Shared among ranks: every rank writes its checkpoint, or none does (a
+    // signal or the clock may reach one rank first).
+    return sim.shared() ? static_cast<Due>(mpi::max(static_cast<double>(d))) : d;
 }
 
 void Checkpointer::check_health(const Simulation& sim) {
     checked_at_step_ = sim.step_count();
     const std::string problem = health_problem(sim, limits_);
     if (problem.empty()) return;
-    std::vector<std::filesystem::path> kept = io::checkpoint_files(directory_);
+    std::vector<std::filesystem::path> kept = io::checkpoint_files(directory_, checkpoint_rank(sim));
     throw BlewUp("the simulation blew up at " + problem + ". " +
                  (kept.empty() ? std::string("No checkpoint was written before.")
                                : "The last good checkpoint is kept: " + kept.back().string() + ".") +
@@ -69,12 +74,13 @@ Checkpointer::Due Checkpointer::due(std::int64_t step, std::int64_t steps_done) 
 
 void Checkpointer::write(const Simulation& sim, const io::Checkpoint& checkpoint) {
     check_health(sim);
-    io::write_checkpoint(directory_, checkpoint);
+    io::write_checkpoint(directory_, checkpoint, checkpoint_rank(sim));
     last_ = std::chrono::steady_clock::now();
 }
 
 int Checkpointer::stopped(std::int64_t step) const {
-    fmt::print(stderr, "tumble: {} at step {}; checkpoint written. Continue with: tumble resume {}\n",
+    if (mpi::rank() == 0)  // shared among ranks, every rank stops at the same step
+        fmt::print(stderr, "tumble: {} at step {}; checkpoint written. Continue with: tumble resume {}\n",
                stop_signalled() ? "stopped by a signal" : "stopped as asked (--stop-at-step)", step,
                directory_.string());
     return exit_stopped;
@@ -83,13 +89,25 @@ int Checkpointer::stopped(std::int64_t step) const {
 io::Checkpoint checkpoint_of(const Simulation& sim) {
     io::Checkpoint c{{}, sim.scenario(), sim.capture()};
     c.record.set("threads", std::int64_t{sim.threads()});
+    c.record.set("ranks", std::int64_t{checkpoint_rank(sim).ranks});
     return c;
 }
 
+io::CheckpointRank checkpoint_rank(const Simulation& sim) {
+    return sim.shared() ? io::CheckpointRank{mpi::rank(), mpi::size()} : io::CheckpointRank{};
+}
+
 Simulation restore_simulation(io::Checkpoint& checkpoint, const std::filesystem::path& run_directory) {
-    Simulation sim(std::move(checkpoint.scenario), static_cast<int>(checkpoint.record.integer("threads")));
+    const std::int64_t ranks = checkpoint.record.has("ranks") ? checkpoint.record.integer("ranks") : 1;
+    if (ranks != mpi::size())
+        throw Error(checkpoint.record.source + ": written by a run on " + std::to_string(ranks) +
+                    " rank(s); resume it on as many (" +
+                    (ranks > 1 ? "mpirun -np " + std::to_string(ranks) + " tumble resume" : "tumble resume without mpirun") +
+                    "; another rank count is not supported yet)");
+    Simulation sim(std::move(checkpoint.scenario), static_cast<int>(checkpoint.record.integer("threads")),
+                   ranks > 1 ? Ranks::world : Ranks::one);
     sim.restore(std::move(checkpoint.state));
-    io::truncate_to_recorded_lengths(checkpoint.record, run_directory);
+    if (mpi::rank() == 0) io::truncate_to_recorded_lengths(checkpoint.record, run_directory);
     return sim;
 }
 

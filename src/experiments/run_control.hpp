@@ -77,9 +77,12 @@ private:
 // A checkpoint of the simulation now: its scenario, its state, and in the
 // record its thread count (the order of the force sums depends on it).
 io::Checkpoint checkpoint_of(const Simulation& sim);
+// Whose checkpoint files a simulation writes: this rank's if it is shared
+// among ranks.
+io::CheckpointRank checkpoint_rank(const Simulation& sim);
 
-// The simulation of a checkpoint, on the recorded thread count, in the
-// recorded state; the run directory's output files are cut back to the
+// The simulation of a checkpoint, on the recorded thread count (and rank
+// count: tumble::Error if the world has another), in the recorded state; the run directory's output files are cut back to the
 // lengths they had when the checkpoint was written.
 Simulation restore_simulation(io::Checkpoint& checkpoint, const std::filesystem::path& run_directory);
 

@@ -170,6 +170,12 @@ void put_state(ByteWriter& w, const SimulationState& s) {
     w.put(s.dt);
     w.put(s.time);
     w.put(s.step);
+    w.put(static_cast<std::uint64_t>(s.owned));
+    for (int side = 0; side < 2; ++side) {
+        w.put_array(s.slabs.send[static_cast<std::size_t>(side)]);
+        w.put(static_cast<std::uint64_t>(s.slabs.receive_begin[static_cast<std::size_t>(side)]));
+        w.put(static_cast<std::uint64_t>(s.slabs.receive_count[static_cast<std::size_t>(side)]));
+    }
 }
 
 // The contact histories of a file of format `version`. Format 2 kept no
@@ -207,14 +213,32 @@ SimulationState get_state(ByteReader& r, std::uint32_t version) {
     s.dt = r.get<double>("dt");
     s.time = r.get<double>("time");
     s.step = r.get<std::int64_t>("step");
+    s.owned = p.id.size();  // formats 2 and 3: one rank, every sphere its own
+    if (version >= 4) {
+        s.owned = static_cast<std::size_t>(r.get<std::uint64_t>("own spheres"));
+        for (int side = 0; side < 2; ++side) {
+            const auto sd = static_cast<std::size_t>(side);
+            s.slabs.send[sd] = r.get_array<std::uint32_t>("ghosts sent");
+            s.slabs.receive_begin[sd] = static_cast<std::size_t>(r.get<std::uint64_t>("ghosts received"));
+            s.slabs.receive_count[sd] = static_cast<std::size_t>(r.get<std::uint64_t>("ghosts received"));
+        }
+    }
     return s;
 }
 
-// NNNNNN of RUN/checkpoints/NNNNNN.tck, or -1 for another file.
-long checkpoint_number(const fs::path& file) {
-    const std::string stem = file.stem().string();
-    if (file.extension() != ".tck" || stem.size() != 6 || !std::all_of(stem.begin(), stem.end(), ::isdigit)) return -1;
-    return std::stol(stem);
+// The end of a checkpoint file's name after NNNNNN for a rank.
+std::string rank_suffix(CheckpointRank who) {
+    return who.ranks > 1 ? ".r" + std::to_string(who.rank) + ".tck" : ".tck";
+}
+
+// NNNNNN of RUN/checkpoints/NNNNNN.tck (of a rank: NNNNNN.rR.tck), or -1
+// for another file.
+long checkpoint_number(const fs::path& file, CheckpointRank who) {
+    const std::string name = file.filename().string(), suffix = rank_suffix(who);
+    if (name.size() != 6 + suffix.size() || name.substr(6) != suffix ||
+        !std::all_of(name.begin(), name.begin() + 6, ::isdigit))
+        return -1;
+    return std::stol(name.substr(0, 6));
 }
 
 }  // namespace
@@ -261,8 +285,8 @@ Header check_header(std::string_view head, std::uint64_t file_size, const std::s
     if (head.substr(0, magic.size()) != magic) header.fail("not a tumble checkpoint (no TUMBLECK at the start)");
     for (std::size_t k = 0; k < magic.size(); ++k) header.get<char>("magic");
     const auto version = header.get<std::uint32_t>("format version");
-    if (version != checkpoint_format_version && version != 2)
-        header.fail(fmt::format("checkpoint format version {}, this tumble reads versions 2 and {}", version,
+    if (version < 2 || version > checkpoint_format_version)
+        header.fail(fmt::format("checkpoint format version {}, this tumble reads versions 2 to {}", version,
                                 checkpoint_format_version));
     const auto length = header.get<std::uint64_t>("payload length");
     if (length != file_size - std::min<std::uint64_t>(file_size, header_size + sizeof(std::uint32_t)))
@@ -289,23 +313,23 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
     return c;
 }
 
-std::vector<fs::path> checkpoint_files(const fs::path& run_directory) {
+std::vector<fs::path> checkpoint_files(const fs::path& run_directory, CheckpointRank who) {
     std::vector<fs::path> files;
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(run_directory / "checkpoints", ec))
-        if (checkpoint_number(entry.path()) >= 0) files.push_back(entry.path());
+        if (checkpoint_number(entry.path(), who) >= 0) files.push_back(entry.path());
     std::sort(files.begin(), files.end());
     return files;
 }
 
-fs::path write_checkpoint(const fs::path& run_directory, const Checkpoint& checkpoint) {
+fs::path write_checkpoint(const fs::path& run_directory, const Checkpoint& checkpoint, CheckpointRank who) {
     const fs::path folder = run_directory / "checkpoints";
     std::error_code ec;
     fs::create_directories(folder, ec);
     if (ec) throw Error(folder.string() + ": cannot create the checkpoint folder: " + ec.message());
-    std::vector<fs::path> old = checkpoint_files(run_directory);
-    const long number = old.empty() ? 1 : checkpoint_number(old.back()) + 1;
-    const fs::path file = folder / fmt::format("{:06d}.tck", number);
+    std::vector<fs::path> old = checkpoint_files(run_directory, who);
+    const long number = old.empty() ? 1 : checkpoint_number(old.back(), who) + 1;
+    const fs::path file = folder / fmt::format("{:06d}{}", number, rank_suffix(who));
     write_file_atomically(file, encode_checkpoint(checkpoint));
     old.push_back(file);
     for (std::size_t k = 0; k + 2 < old.size(); ++k) fs::remove(old[k], ec);
@@ -348,9 +372,9 @@ std::string recorded_lengths_problem(const CheckpointRecord& record, const fs::p
 }
 }  // namespace
 
-LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory, std::uintmax_t max_bytes) {
+LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory, std::uintmax_t max_bytes, CheckpointRank who) {
     LoadedCheckpoint loaded;
-    const std::vector<fs::path> files = checkpoint_files(run_directory);
+    const std::vector<fs::path> files = checkpoint_files(run_directory, who);
     for (auto file = files.rbegin(); file != files.rend(); ++file) {
         try {
             loaded.checkpoint = decode_checkpoint(read_checkpoint_file(*file, max_bytes), file->string());
@@ -362,7 +386,8 @@ LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory, std::uint
             loaded.rejected.push_back(e.what());
         }
     }
-    std::string reason = files.empty() ? "no checkpoints (RUN/checkpoints/NNNNNN.tck)" : "no intact checkpoint";
+    std::string reason = files.empty() ? "no checkpoints (RUN/checkpoints/NNNNNN" + rank_suffix(who) + ")"
+                                       : "no intact checkpoint";
     for (const std::string& why : loaded.rejected) reason += "\n  " + why;
     throw Error(run_directory.string() + ": cannot resume: " + reason);
 }

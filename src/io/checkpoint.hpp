@@ -13,6 +13,11 @@
 // all little-endian. It is written to NNNNNN.tck.tmp, flushed to the disk
 // (fsync), renamed into place and the directory flushed, so a crash while
 // writing leaves the previous checkpoint as it was; the newest two are kept.
+//
+// A run shared among MPI ranks (sim/slabs.hpp) keeps one file per rank,
+// RUN/checkpoints/NNNNNN.rR.tck for rank R, each written by its rank with
+// that rank's spheres and ghosts (no rank gathers the whole state), the
+// scenario in each, and the rank count in the record ("ranks").
 #pragma once
 
 #include <cstdint>
@@ -30,7 +35,9 @@
 
 namespace tumble::io {
 
-inline constexpr std::uint32_t checkpoint_format_version = 3;  // 2: slip vector history, friction normal; 3: viscous force history
+// 2: slip vector history, friction normal; 3: viscous force history; 4: own
+// spheres and slab state of a rank (sim/slabs.hpp)
+inline constexpr std::uint32_t checkpoint_format_version = 4;
 
 // Named values; reading a missing key, or one of another kind, throws
 // tumble::Error naming the source (the checkpoint file) and the key.
@@ -68,13 +75,20 @@ struct Checkpoint {
 std::string encode_checkpoint(const Checkpoint& checkpoint);
 Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name);
 
-// RUN/checkpoints/*.tck, oldest first.
-std::vector<std::filesystem::path> checkpoint_files(const std::filesystem::path& run_directory);
+// Whose checkpoint files: rank `rank` of `ranks` (one rank: NNNNNN.tck).
+struct CheckpointRank {
+    int rank = 0, ranks = 1;
+};
+
+// RUN/checkpoints/*.tck of a rank, oldest first.
+std::vector<std::filesystem::path> checkpoint_files(const std::filesystem::path& run_directory,
+                                                    CheckpointRank who = {});
 
 // Writes the next checkpoint of the run (see above) and removes all but the
 // newest two. Returns its path; tumble::Error naming the file on failure
 // (disk full, no permission), with no partial file left under a valid name.
-std::filesystem::path write_checkpoint(const std::filesystem::path& run_directory, const Checkpoint& checkpoint);
+std::filesystem::path write_checkpoint(const std::filesystem::path& run_directory, const Checkpoint& checkpoint,
+                                       CheckpointRank who = {});
 
 // The newest checkpoint that reads back intact and whose output files are at
 // least as long as it recorded; `rejected` gets a message for each newer one
@@ -86,7 +100,8 @@ struct LoadedCheckpoint {
     std::vector<std::string> rejected;
 };
 LoadedCheckpoint load_newest_checkpoint(const std::filesystem::path& run_directory,
-                                        std::uintmax_t max_bytes = std::numeric_limits<std::uintmax_t>::max());
+                                        std::uintmax_t max_bytes = std::numeric_limits<std::uintmax_t>::max(),
+                                        CheckpointRank who = {});
 
 // True if the run stopped before its end and has an intact checkpoint to go
 // on from (its record's "finished" is 0).

@@ -775,7 +775,7 @@ TEST_F(Sweep, OtherCommandsRefuseSeveralRanks) {
     const Result r = run("mpirun --allow-run-as-root --oversubscribe -np 2 " + tumble_binary() +
                          " drum --grains 20 --revolutions 0.1 -o " + (dir_ / "drum").string());
     EXPECT_NE(r.exit_code, 0) << r.output;
-    EXPECT_NE(r.output.find("only tumble sweep runs on several MPI ranks"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("only tumble sweep (each rank a share of the points), run and resume"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir_ / "drum"));
 }
 

@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: MIT
+// `mpirun -np N tumble run` (one simulation shared among the ranks,
+// sim/slabs.hpp) end to end: it runs, the same ranks give the same bytes,
+// it stops with a checkpoint per rank and resumes on as many ranks bitwise,
+// and the wrong rank count is refused with the way out. Skipped without
+// mpirun or without MPI in this build.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "test_support.hpp"
+#include "tumble/core/mpi.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tumble::test_support::read_file;
+using tumble::test_support::run_command;
+
+class MpiRun : public tumble::test_support::ScratchTest {
+protected:
+    void SetUp() override {
+        ScratchTest::SetUp();
+        if (run_command("mpirun --version").exit_code != 0) GTEST_SKIP() << "no mpirun";
+        if (!tumble::mpi::built_with_mpi()) GTEST_SKIP() << "built without MPI (TUMBLE_MPI=OFF)";
+        // The demonstration tray of examples/demo.toml, 0.1 s (2,516 steps:
+        // grains pour, collide and settle), no snapshots.
+        std::string text = read_file(std::string(TUMBLE_SOURCE_DIR) + "/examples/demo.toml");
+        text.replace(text.find("duration = 0.5 "), 15, "duration = 0.1 ");
+        text.replace(text.find("snapshot_interval = 0.05 "), 25, "snapshot_interval = 0.0  ");
+        scenario_ = write("demo.toml", text).string();
+    }
+    std::string mpirun(int ranks, const std::string& args) {
+        return "OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np " + std::to_string(ranks) + " " +
+               TUMBLE_BINARY + " " + args;
+    }
+    std::string scenario_;
+};
+
+TEST_F(MpiRun, TwoRanksRunStopAndResumeBitwise) {
+    const fs::path a = dir_ / "a", b = dir_ / "b", stopped = dir_ / "stopped";
+    auto r = run_command(mpirun(2, "run " + scenario_ + " -o " + a.string()));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("shared among 2 MPI ranks"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(a / "run.json"));
+    EXPECT_TRUE(fs::exists(a / "checkpoints" / "000002.r1.tck"));  // the final checkpoint, one file per rank
+    // The same ranks, the same bytes.
+    ASSERT_EQ(run_command(mpirun(2, "run -q " + scenario_ + " -o " + b.string())).exit_code, 0);
+    EXPECT_EQ(read_file(a / "time_series.csv"), read_file(b / "time_series.csv"));
+    // Stopped at step 1000 (exit 4), resumed on 2 ranks: the uninterrupted run's series, bit for bit.
+    r = run_command(mpirun(2, "run -q " + scenario_ + " -o " + stopped.string() + " --stop-at-step 1000"));
+    ASSERT_EQ(r.exit_code, 4) << r.output;
+    ASSERT_TRUE(fs::exists(stopped / "checkpoints" / "000001.r0.tck"));
+    ASSERT_TRUE(fs::exists(stopped / "checkpoints" / "000001.r1.tck"));
+    // On one process or 3 ranks it is refused, naming the way out; nothing is changed.
+    r = run_command(std::string(TUMBLE_BINARY) + " resume " + stopped.string());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("resume it with mpirun -np RANKS"), std::string::npos) << r.output;
+    r = run_command(mpirun(3, "resume " + stopped.string()));
+    EXPECT_NE(r.exit_code, 0) << r.output;
+    r = run_command(mpirun(2, "resume " + stopped.string()));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(read_file(a / "time_series.csv"), read_file(stopped / "time_series.csv"));
+}
+
+// Snapshots of a shared run are not written yet: refused before any work.
+TEST_F(MpiRun, SnapshotsOnSeveralRanksAreRefusedBeforeAnyWork) {
+    std::string text = read_file(scenario_);
+    text.replace(text.find("snapshot_interval = 0.0  "), 25, "snapshot_interval = 0.05 ");
+    const std::string file = write("snap.toml", text).string();
+    const auto r = run_command(mpirun(2, "run " + file + " -o " + (dir_ / "s").string()));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("output.snapshot_interval"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "s"));
+}
+
+}  // namespace
