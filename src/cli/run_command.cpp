@@ -161,9 +161,6 @@ int run_command(const RunOptions& options) {
     check_memory(scenario_memory(config.scenario, threads), memory_limit_bytes(options.max_memory_gib),
                  options.scenario_file);
     const bool shared = mpi::size() > 1;
-    if (shared && config.output.snapshot_interval > 0.0)
-        throw Error(options.scenario_file + ": output.snapshot_interval: snapshots of a run on several MPI ranks are "
-                                            "not written yet; set it to 0 or run on one rank");
     Simulation sim(std::move(config.scenario), threads, shared ? Ranks::world : Ranks::one);
     const double dt = sim.dt();
     RunPlan plan{options.scenario_file,

@@ -127,18 +127,22 @@ std::vector<std::size_t> order_by_id(const ParticleStore& p) {
 }
 
 fs::path write_snapshot(const fs::path& directory, int number, const Simulation& sim) {
+    return write_snapshot(directory, number, snapshot_of(sim));
+}
+
+fs::path write_snapshot(const fs::path& directory, int number, const SnapshotData& snapshot) {
     const fs::path folder = directory / "snapshots";
     fs::create_directories(folder);
     const fs::path file = folder / fmt::format("{:06d}.csv", number);
     std::ofstream out = open_for_writing(file);
-    const ParticleStore& p = sim.particles();
+    const ParticleStore& p = snapshot.particles;
     // The time and step on every row, so that snapshots concatenated stay apart.
-    const std::string when = fmt::format("{},{}", sim.time(), sim.step_count());
+    const std::string when = fmt::format("{},{}", snapshot.time, snapshot.step);
     out << "time,step,id,x,y,z,vx,vy,vz,wx,wy,wz,radius,material,tag,kinematic\n";
     for (std::size_t i : order_by_id(p)) {
         const Vec3 &x = p.position[i], &v = p.velocity[i], &w = p.angular_velocity[i];
         out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", when, p.id[i], x.x, x.y, x.z, v.x, v.y,
-                           v.z, w.x, w.y, w.z, p.radius[i], sim.scenario().materials[p.material[i]].name, p.tag[i],
+                           v.z, w.x, w.y, w.z, p.radius[i], snapshot.material_names[static_cast<std::size_t>(p.material[i])], p.tag[i],
                            p.is_kinematic(i) ? 1 : 0);
     }
     check_written(out, file);

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "io/run_lock.hpp"
+#include "io/snapshot_data.hpp"
 #include "tumble/sim/simulation.hpp"
 
 namespace tumble::io {
@@ -51,6 +52,7 @@ private:
 std::vector<std::size_t> order_by_id(const ParticleStore& p);
 
 // Writes snapshots/NNNNNN.csv (NNNNNN = the sample number) and returns its path.
+std::filesystem::path write_snapshot(const std::filesystem::path& directory, int number, const SnapshotData& snapshot);
 std::filesystem::path write_snapshot(const std::filesystem::path& directory, int number, const Simulation& sim);
 
 // The files and folders a run writes into its directory (tumble run, tumble

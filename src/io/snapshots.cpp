@@ -12,6 +12,7 @@
 #include "io/csv_table.hpp"
 #include "io/output.hpp"
 #include "io/xyz_output.hpp"
+#include "tumble/core/mpi.hpp"
 
 namespace tumble::io {
 
@@ -24,24 +25,31 @@ fs::path dataset(std::size_t number, const char* extension) {
 }  // namespace
 
 SnapshotSeries::SnapshotSeries(const fs::path& directory, const std::vector<double>& earlier_times)
-    : directory_(directory), particles_(directory / "particles.pvd"), contacts_(directory / "contacts.pvd") {
-    fs::create_directories(directory / "snapshots");
+    : directory_(directory) {
+    if (mpi::rank() == 0) {  // shared among ranks, rank 0 writes the snapshots
+        particles_.emplace(directory / "particles.pvd");
+        contacts_.emplace(directory / "contacts.pvd");
+        fs::create_directories(directory / "snapshots");
+    }
     for (double time : earlier_times) add_to_indexes(time);
 }
 
 void SnapshotSeries::write(const Simulation& sim) {
     const std::size_t number = times_.size();
-    write_snapshot(directory_, static_cast<int>(number), sim);
-    write_vtu_snapshot(directory_ / dataset(number, "vtu"), sim);
-    write_xyz_snapshot(directory_ / dataset(number, "xyz"), sim);
-    write_vtp_contact_network(directory_ / dataset(number, "vtp"), sim);
+    const SnapshotData snapshot = snapshot_of(sim);  // collective when shared among ranks
+    if (particles_) {
+        write_snapshot(directory_, static_cast<int>(number), snapshot);
+        write_vtu_snapshot(directory_ / dataset(number, "vtu"), snapshot);
+        write_xyz_snapshot(directory_ / dataset(number, "xyz"), snapshot);
+        write_vtp_contact_network(directory_ / dataset(number, "vtp"), snapshot);
+    }
     add_to_indexes(sim.time());
 }
 
 void SnapshotSeries::add_to_indexes(double time) {
     const std::size_t number = times_.size();
-    particles_.add(time, dataset(number, "vtu"));
-    contacts_.add(time, dataset(number, "vtp"));
+    if (particles_) particles_->add(time, dataset(number, "vtu"));
+    if (contacts_) contacts_->add(time, dataset(number, "vtp"));
     times_.push_back(time);
 }
 

@@ -6,7 +6,8 @@
 //   snapshots/NNNNNN.vtp   the contact network: a line per contact with its normal force
 // and two ParaView time-series indexes in the run directory, particles.pvd
 // and contacts.pvd (open them in ParaView: File > Open). The CSV files are
-// read back for `tumble render`.
+// read back for `tumble render`. A run shared among MPI ranks writes the same
+// files, gathered on rank 0 (write() is then collective).
 #pragma once
 
 #include <cstdint>
@@ -33,7 +34,7 @@ private:
     void add_to_indexes(double time);
 
     std::filesystem::path directory_;
-    PvdIndex particles_, contacts_;
+    std::optional<PvdIndex> particles_, contacts_;  // on rank 0 only
     std::vector<double> times_;
 };
 

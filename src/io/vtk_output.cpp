@@ -144,9 +144,9 @@ private:
 
 // The time of the state, which ParaView reads from FieldData "TimeValue",
 // and the step.
-void time_field(VtkFile& f, const Simulation& sim) {
-    f.field("TimeValue", std::vector<double>{sim.time()});
-    f.field("step", std::vector<std::int64_t>{sim.step_count()});
+void time_field(VtkFile& f, const SnapshotData& snapshot) {
+    f.field("TimeValue", std::vector<double>{snapshot.time});
+    f.field("step", std::vector<std::int64_t>{snapshot.step});
 }
 
 void write_buffer(const fs::path& file, const Buffer& b) {
@@ -173,10 +173,12 @@ std::string xml_attribute(std::string_view s) {
 
 }  // namespace
 
-void write_vtu_snapshot(const fs::path& file, const Simulation& sim) {
-    const ParticleStore& p = sim.particles();
+void write_vtu_snapshot(const fs::path& file, const Simulation& sim) { write_vtu_snapshot(file, snapshot_of(sim)); }
+
+void write_vtu_snapshot(const fs::path& file, const SnapshotData& snapshot) {
+    const ParticleStore& p = snapshot.particles;
     const std::vector<std::size_t> by_id = order_by_id(p);
-    const std::vector<std::uint32_t> counts = contact_counts(sim);
+    const std::vector<std::uint32_t>& counts = snapshot.contacts;
     const std::size_t n = p.size();
 
     std::vector<Vec3> position(n), velocity(n), angular_velocity(n);
@@ -203,13 +205,10 @@ void write_vtu_snapshot(const fs::path& file, const Simulation& sim) {
     std::iota(offsets.begin(), offsets.end(), std::int64_t{1});
     const std::vector<std::uint8_t> types(n, 1);
 
-    std::vector<std::string> material_names;
-    for (const Material& m : sim.scenario().materials) material_names.push_back(m.name);
-
     VtkFile f("UnstructuredGrid");
     f.text("    <FieldData>\n");
-    time_field(f, sim);
-    f.strings("material_names", material_names);
+    time_field(f, snapshot);
+    f.strings("material_names", snapshot.material_names);
     f.text(fmt::format("    </FieldData>\n    <Piece NumberOfPoints=\"{0}\" NumberOfCells=\"{0}\">\n", n));
     f.text("      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n");
     f.array("id", id);
@@ -231,8 +230,12 @@ void write_vtu_snapshot(const fs::path& file, const Simulation& sim) {
 }
 
 void write_vtp_contact_network(const fs::path& file, const Simulation& sim) {
-    const std::vector<ContactLink> links = contact_network(sim);
-    const ParticleStore& p = sim.particles();
+    write_vtp_contact_network(file, snapshot_of(sim));
+}
+
+void write_vtp_contact_network(const fs::path& file, const SnapshotData& snapshot) {
+    const std::vector<ContactLink>& links = snapshot.links;
+    const ParticleStore& p = snapshot.particles;
     // Array index of each global id, to find the centre of i.
     std::vector<std::size_t> index_of(p.size());
     for (std::size_t i = 0; i < p.size(); ++i) index_of[static_cast<std::size_t>(p.id[i])] = i;
@@ -259,7 +262,7 @@ void write_vtp_contact_network(const fs::path& file, const Simulation& sim) {
 
     VtkFile f("PolyData");
     f.text("    <FieldData>\n");
-    time_field(f, sim);
+    time_field(f, snapshot);
     f.text(fmt::format("    </FieldData>\n    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" "
                        "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n",
                        2 * n, n));

@@ -33,14 +33,17 @@
 #include <utility>
 #include <vector>
 
+#include "io/snapshot_data.hpp"
 #include "tumble/sim/simulation.hpp"
 
 namespace tumble::io {
 
 // Writes the particles of `sim` to `file` (.vtu), or tumble::Error naming it.
+void write_vtu_snapshot(const std::filesystem::path& file, const SnapshotData& snapshot);
 void write_vtu_snapshot(const std::filesystem::path& file, const Simulation& sim);
 
 // Writes the contact network of `sim` to `file` (.vtp), or tumble::Error.
+void write_vtp_contact_network(const std::filesystem::path& file, const SnapshotData& snapshot);
 void write_vtp_contact_network(const std::filesystem::path& file, const Simulation& sim);
 
 // A ParaView collection file (.pvd) that indexes datasets by time. The

@@ -36,15 +36,19 @@ std::string cell(const Domain& d) {
 }  // namespace
 
 void write_xyz_snapshot(const std::filesystem::path& file, const Simulation& sim) {
-    const ParticleStore& p = sim.particles();
+    write_xyz_snapshot(file, snapshot_of(sim));
+}
+
+void write_xyz_snapshot(const std::filesystem::path& file, const SnapshotData& snapshot) {
+    const ParticleStore& p = snapshot.particles;
     std::vector<std::string> species;
-    for (const Material& m : sim.scenario().materials) species.push_back(word(m.name));
+    for (const std::string& name : snapshot.material_names) species.push_back(word(name));
 
     fmt::memory_buffer b;
     fmt::format_to(fmt::appender(b),
                    "{}\n{} Time={} step={} "
                    "Properties=species:S:1:pos:R:3:radius:R:1:id:I:1:velo:R:3:omega:R:3:tag:I:1:kinematic:I:1\n",
-                   p.size(), cell(sim.scenario().domain), sim.time(), sim.step_count());
+                   p.size(), cell(snapshot.domain), snapshot.time, snapshot.step);
     for (std::size_t i : order_by_id(p)) {
         const Vec3 &x = p.position[i], &v = p.velocity[i], &w = p.angular_velocity[i];
         fmt::format_to(fmt::appender(b), "{} {} {} {} {} {} {} {} {} {} {} {} {} {}\n",

@@ -18,11 +18,13 @@
 
 #include <filesystem>
 
+#include "io/snapshot_data.hpp"
 #include "tumble/sim/simulation.hpp"
 
 namespace tumble::io {
 
 // Writes the particles of `sim` to `file` (.xyz), or tumble::Error naming it.
+void write_xyz_snapshot(const std::filesystem::path& file, const SnapshotData& snapshot);
 void write_xyz_snapshot(const std::filesystem::path& file, const Simulation& sim);
 
 }  // namespace tumble::io

@@ -9,9 +9,19 @@
 #include "tumble/contact/geometry.hpp"
 #include "tumble/contact/hertz.hpp"
 #include "tumble/contact/kuwabara_kono.hpp"
+#include "tumble/core/mpi.hpp"
 #include "tumble/materials/pair_table.hpp"
 
 namespace tumble {
+
+namespace {
+// Shared among ranks, a pair of an own sphere and a ghost is in the lists of
+// both ranks: it counts on the rank of the lower id (as in observe()).
+bool counted_here(const Simulation& sim, std::uint32_t i, std::uint32_t j) {
+    const ParticleStore& p = sim.particles();
+    return j < sim.owned() || p.id[i] < p.id[j];
+}
+}  // namespace
 
 // The same pair test and geometry as the force loop (add_contact_forces in
 // simulation.cpp), then only the normal terms of contact_law(): those need
@@ -27,6 +37,7 @@ std::vector<ContactLink> contact_network(const Simulation& sim) {
     std::vector<ContactLink> links;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         std::uint32_t i = pairs.first[k], j = pairs.second[k];
+        if (!counted_here(sim, i, j)) continue;
         Vec3 d = p.position[i] - p.position[j] + images[pairs.image[k]];
         const double distance2 = norm2(d);
         const double reach = p.radius[i] + p.radius[j];
@@ -52,6 +63,16 @@ std::vector<ContactLink> contact_network(const Simulation& sim) {
 
         links.push_back({p.id[i], p.id[j], p.position[i] - g.lever_i * g.n, g.n, g.overlap, F_n, history});
     }
+    if (sim.shared()) {  // every rank's links on rank 0
+        const char* mine = reinterpret_cast<const char*>(links.data());
+        std::vector<ContactLink> all;
+        for (const mpi::Bytes& part : mpi::gather(mpi::Bytes(mine, mine + links.size() * sizeof(ContactLink)))) {
+            const std::size_t at = all.size();
+            all.resize(at + part.size() / sizeof(ContactLink));
+            std::copy(part.begin(), part.end(), reinterpret_cast<char*>(all.data() + at));
+        }
+        links = std::move(all);
+    }
     std::sort(links.begin(), links.end(), [](const ContactLink& x, const ContactLink& y) {
         return x.id_i != y.id_i ? x.id_i < y.id_i : x.id_j < y.id_j;
     });
@@ -62,13 +83,19 @@ std::vector<std::uint32_t> contact_counts(const Simulation& sim) {
     const ParticleStore& p = sim.particles();
     const PairList& pairs = sim.neighbors().pairs();
     const PeriodicImages& images = sim.neighbors().images();
-    std::vector<std::uint32_t> counts(p.size(), 0);
+    std::vector<std::uint32_t> counts(sim.scenario().particles.size(), 0);
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const std::uint32_t i = pairs.first[k], j = pairs.second[k];
+        if (!counted_here(sim, i, j)) continue;
         const double reach = p.radius[i] + p.radius[j];
         if (norm2(p.position[i] - p.position[j] + images[pairs.image[k]]) >= reach * reach) continue;
         ++counts[static_cast<std::size_t>(p.id[i])];
         ++counts[static_cast<std::size_t>(p.id[j])];
+    }
+    if (sim.shared()) {  // the sums of all ranks (exact: small integers in doubles)
+        std::vector<double> sums(counts.begin(), counts.end());
+        mpi::sum(sums);
+        std::transform(sums.begin(), sums.end(), counts.begin(), [](double c) { return static_cast<std::uint32_t>(c); });
     }
     return counts;
 }

@@ -36,11 +36,14 @@ struct ContactLink {
 };
 
 // Every touching pair of the neighbour list, sorted by (id_i, id_j).
-// Contacts with flat walls are not included (see above).
+// Contacts with flat walls are not included (see above). Shared among
+// ranks: collective, every rank's pairs on rank 0 (a pair of a rank's own
+// sphere and a ghost once, from the rank of the lower id), none elsewhere.
 std::vector<ContactLink> contact_network(const Simulation& sim);
 
 // Number of sphere-sphere contacts of each particle, indexed by global id
-// (ids are 0 .. N-1). Flat-wall contacts are not counted.
+// (ids are 0 .. N-1). Flat-wall contacts are not counted. Shared among
+// ranks: collective, the counts of all ranks on every rank.
 std::vector<std::uint32_t> contact_counts(const Simulation& sim);
 
 }  // namespace tumble
