@@ -137,9 +137,9 @@ Simulation settled_drum(const io::DrumSettings& d, const fs::path& cache, int th
     const std::int64_t check_every = std::max<std::int64_t>(1, std::llround(1e-3 / sim.dt()));
     const double fall_time = drum_fall_time(d);
     while (sim.time() < d.settle_max_time &&
-           (sim.time() < fall_time || rms_grain_speed(sim.particles()) >= d.settle_speed))
+           (sim.time() < fall_time || rms_grain_speed(sim) >= d.settle_speed))
         sim.advance(check_every);
-    if (rms_grain_speed(sim.particles()) >= d.settle_speed)
+    if (rms_grain_speed(sim) >= d.settle_speed)
         fmt::print(stderr, "tumble bench: warning: the bed did not settle within {} s\n", d.settle_max_time);
     fs::create_directories(cache);
     const fs::path part = file.string() + ".tmp";

@@ -5,6 +5,7 @@
 
 #include "cli/commands.hpp"
 #include "experiments/drum.hpp"
+#include "tumble/core/mpi.hpp"
 
 namespace tumble::cli {
 
@@ -13,7 +14,7 @@ namespace {
 // The figures are a convenience: a machine without matplotlib still has
 // every number in the run directory.
 int with_figures(const experiments::DrumOutcome& outcome, bool quiet) {
-    if (outcome.exit_code == 0 && outcome.plot &&
+    if (outcome.exit_code == 0 && outcome.plot && mpi::rank() == 0 &&
         plot_command("run", {outcome.directory.string()}, "", quiet) != 0)
         fmt::print(stderr, "tumble drum: warning: the figures could not be drawn (tumble plot {})\n",
                    outcome.directory.string());

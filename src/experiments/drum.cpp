@@ -25,6 +25,8 @@
 #include "tumble/analysis/drum_measure.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/isa.hpp"
+#include "tumble/core/mpi.hpp"
+#include "tumble/sim/particle_setup.hpp"
 #include "tumble/sim/simulation.hpp"
 
 namespace tumble::experiments {
@@ -33,11 +35,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<io::DrumComponent> components_of(const Simulation& sim, const std::string& mode) {
+// The grains of a drum (every rank's, when shared among ranks).
+std::size_t grains(const Scenario& s) {
+    return static_cast<std::size_t>(std::count_if(s.particles.begin(), s.particles.end(),
+                                                   [](const ParticleSpec& p) { return p.motion == free_motion; }));
+}
+
+// The two components, counted in every sphere of the drum (`p`).
+std::vector<io::DrumComponent> components_of(const ParticleStore& p, const std::string& mode) {
     std::vector<io::DrumComponent> out(2);
     out[0] = {mode == "self" ? "left" : "material-1", 0, 0.0, -1.0};
     out[1] = {mode == "self" ? "right" : "material-2", 0, 0.0, +1.0};
-    const ParticleStore& p = sim.particles();
     for (std::size_t i = 0; i < p.size(); ++i) {
         if (p.is_kinematic(i)) continue;
         io::DrumComponent& c = out.at(static_cast<std::size_t>(p.tag[i]));
@@ -122,8 +130,12 @@ public:
                                        band_samples_per_revolution)),
           frame_{plan_.info.inner_length, plan_.info.inner_radius, 2, plan_.info.profile_bins, plan_.info.omega},
           band_frame_{plan_.info.inner_length, plan_.info.band_bins, 1},
-          checkpoints_(dir_, with_revolutions(policy), drum_limits(sim.scenario())),
-          series_(dir_ / "time_series.csv", sim.scenario().materials, continuing) {
+          checkpoints_(dir_, with_revolutions(policy), drum_limits(sim.scenario())) {
+        if (!writer()) {
+            plan_.progress = progress_style(true, 0.0);
+            return;
+        }
+        series_.emplace(dir_ / "time_series.csv", sim.scenario().materials, continuing);
         if (continuing && plan_.rotating) drum_series_.emplace(dir_, plan_.info, true);
         if (continuing && plan_.rotating && plan_.info.band_bins > 0) band_profile_.emplace(dir_, plan_.info.band_bins, true);
     }
@@ -144,7 +156,19 @@ private:
         return finish();
     }
 
-    bool talk() const { return !plan_.quiet; }
+    // Shared among MPI ranks, rank 0 alone talks, measures and writes; the
+    // others step and join the collective calls (the gathering of the
+    // spheres, observe(), the snapshots, the checkpoints).
+    bool talk() const { return !plan_.quiet && writer(); }
+    static bool writer() { return mpi::rank() == 0; }
+
+    // Every sphere, for a measurement: on one rank the simulation's; shared
+    // among ranks gathered on rank 0 (collective; empty elsewhere).
+    const ParticleStore& all_spheres() {
+        if (!sim_.shared()) return sim_.particles();
+        gathered_ = sim_.gathered();
+        return gathered_;
+    }
 
     CheckpointPolicy with_revolutions(CheckpointPolicy policy) const {
         const double steps = plan_.checkpoint_revolutions * period_ / sim_.dt();
@@ -159,10 +183,10 @@ private:
     Checkpointer::Due settle() {
         const std::int64_t check_every = std::max<std::int64_t>(1, std::llround(1e-3 / sim_.dt()));
         Progress progress("settling", sim_.step_count(), 0, plan_.progress,
-                          {.particles = sim_.particles().free_count()});
+                          {.particles = grains(sim_.scenario())});
         while (sim_.time() < plan_.settle_max_time) {
             sim_.advance(check_every);
-            const double speed = rms_grain_speed(sim_.particles());
+            const double speed = rms_grain_speed(sim_);
             progress.update(sim_.step_count(),
                             fmt::format("t = {:.3f} s ({:.3g} to {:.3g} s), rms grain speed {:.2g} m/s, "
                                         "settled below {:.2g}",
@@ -187,18 +211,22 @@ private:
     void start_rotation() {
         io::DrumRunInfo& info = plan_.info;
         info.settle_time = sim_.time();
-        info.fill_fraction = analysis::measure_drum(sim_.particles(), frame_).fill_fraction;
+        const ParticleStore& all = all_spheres();
+        if (writer()) info.fill_fraction = analysis::measure_drum(all, frame_).fill_fraction;
+        const double speed = rms_grain_speed(sim_);
         if (talk())
             fmt::print("{} after {:.3g} s: rms grain speed {:.3g} m/s; fill fraction {:.3f}, solid fraction {:.3f}\n",
-                       info.settled ? "settled" : "warning: NOT settled", info.settle_time,
-                       rms_grain_speed(sim_.particles()), info.fill_fraction, info.solid_fraction);
+                       info.settled ? "settled" : "warning: NOT settled", info.settle_time, speed,
+                       info.fill_fraction, info.solid_fraction);
         sim_.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0},
                                        drum_angular_velocity(info.omega, info.spin_up_time, 0.0), {0.0, 0.0, 0.0}});
         plan_.rotating = true;
         plan_.rotation_start_step = sim_.step_count();
-        io::write_drum_run_info(dir_ / "drum_run.toml", info);
-        drum_series_.emplace(dir_, info);
-        if (info.band_bins > 0) band_profile_.emplace(dir_, info.band_bins);
+        if (writer()) {
+            io::write_drum_run_info(dir_ / "drum_run.toml", info);
+            drum_series_.emplace(dir_, info);
+            if (info.band_bins > 0) band_profile_.emplace(dir_, info.band_bins);
+        }
         if (snapshot_every_) snapshots_.emplace(dir_);
         if (talk()) {
             fmt::print("rotating at {:.4g} rad/s (Froude {:.3g}) for {} revolutions: {} steps, {} samples per revolution\n",
@@ -221,7 +249,7 @@ private:
         constexpr std::int64_t batch = 100;
         const std::int64_t done = sim_.step_count() - plan_.rotation_start_step;  // > 0 after a resume
         Progress progress("rotation", done, steps_, plan_.progress,
-                          {.particles = sim_.particles().free_count(), .steps_per_revolution = period_ / sim_.dt()});
+                          {.particles = grains(sim_.scenario()), .steps_per_revolution = period_ / sim_.dt()});
         for (std::int64_t k = done; k < steps_;) {
             std::int64_t next = std::min(steps_, (k / batch + 1) * batch);
             const auto at_multiple = [&](std::int64_t every) {
@@ -262,13 +290,16 @@ private:
     void sample() {
         const double start = static_cast<double>(plan_.rotation_start_step) * sim_.dt();
         const double revolutions = plan_.info.omega * (sim_.time() - start) / (2.0 * pi);
-        const analysis::DrumState state = analysis::measure_drum(sim_.particles(), frame_);
+        const ParticleStore& all = all_spheres();
+        const Observables observed = sim_.observe();  // collective
+        if (!writer()) return;
+        const analysis::DrumState state = analysis::measure_drum(all, frame_);
         drum_series_->write(revolutions, sim_.time(), state);
         // The band profile at every band_every_-th step of the rotation and at its end.
         const std::int64_t k = sim_.step_count() - plan_.rotation_start_step;
         if (band_profile_ && (k % band_every_ == 0 || k == steps_))
-            band_profile_->write(revolutions, analysis::measure_bands(sim_.particles(), band_frame_));
-        series_.write(sim_.observe());
+            band_profile_->write(revolutions, analysis::measure_bands(all, band_frame_));
+        series_->write(observed);
         if (on_sample_) on_sample_({revolutions, state, sim_});
     }
 
@@ -279,13 +310,16 @@ private:
         // again), then the results, then the checkpoint that says "finished".
         checkpoint(false, 0.0);
         if (steps_ % sample_every_ != 0) sample();  // always end with the final state
-        const double updates = static_cast<double>(sim_.particles().free_count()) * static_cast<double>(steps_);
+        const double updates = static_cast<double>(grains(sim_.scenario())) * static_cast<double>(steps_);
         info.grain_updates_per_second = info.wall_seconds > 0.0 ? updates / info.wall_seconds : 0.0;
-        io::write_drum_run_info(dir_ / "drum_run.toml", info);
-        if (talk())
-            fmt::print("rotation simulated in {:.1f} s: {:.3g} grain updates/s ({:.1f} s per revolution)\n\n",
-                       info.wall_seconds, info.grain_updates_per_second, info.wall_seconds / info.revolutions);
-        const std::string summary = io::analyze_drum_run(dir_);
+        std::string summary;
+        if (writer()) {
+            io::write_drum_run_info(dir_ / "drum_run.toml", info);
+            if (talk())
+                fmt::print("rotation simulated in {:.1f} s: {:.3g} grain updates/s ({:.1f} s per revolution)\n\n",
+                           info.wall_seconds, info.grain_updates_per_second, info.wall_seconds / info.revolutions);
+            summary = io::analyze_drum_run(dir_);
+        }
         checkpoint(true, 0.0);
         if (talk()) fmt::print("{}\nwritten to {}\n", summary, dir_.string());
         return 0;
@@ -300,7 +334,9 @@ private:
         save_policy(c.record, checkpoints_.policy());
         c.record.set("finished", std::int64_t{finished});
         c.record.set("snapshot_times", snapshots_ ? snapshots_->times() : std::vector<double>{});
-        io::record_file_lengths(c.record, dir_, {"time_series.csv", "drum_series.csv", "profiles.csv", "band_profile.csv"});
+        if (writer())
+            io::record_file_lengths(c.record, dir_,
+                                    {"time_series.csv", "drum_series.csv", "profiles.csv", "band_profile.csv"});
         checkpoints_.write(sim_, c);
     }
 
@@ -313,7 +349,8 @@ private:
     analysis::DrumFrame frame_;
     analysis::BandFrame band_frame_;
     Checkpointer checkpoints_;
-    io::TimeSeriesWriter series_;
+    ParticleStore gathered_;                      // shared among ranks: the spheres of the last measurement
+    std::optional<io::TimeSeriesWriter> series_;  // rank 0's, as the next two
     std::optional<io::DrumSeriesWriter> drum_series_;
     std::optional<io::BandProfileWriter> band_profile_;
     std::optional<io::SnapshotSeries> snapshots_;
@@ -334,7 +371,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
                  memory_limit_bytes(options.max_memory_gib), "command line");  // what the machine cannot do, first
     check_drum_size(s.geometry, static_cast<double>(s.grain_count()), options.large_drum, "command line");
     DrumSetup setup = build_drum(s, options.allow_unsafe_dt);
-    Simulation sim(std::move(setup.scenario), threads);
+    Simulation sim(std::move(setup.scenario), threads, mpi::size() > 1 ? Ranks::world : Ranks::one);
     check_drum_durations(s.revolutions, omega, s.samples_per_revolution, s.settle_max_time, sim.dt());
 
     DrumPlan plan;
@@ -360,10 +397,11 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     info.samples_per_revolution = s.samples_per_revolution;
     info.profile_bins = s.profile_bins;
     info.band_bins = s.band_bins > 0 ? s.band_bins : analysis::default_band_bins(info.inner_length);
-    info.components = components_of(sim, s.mode);
+    const ParticleStore all = make_particle_store(sim.scenario());  // every sphere as it starts (on every rank)
+    info.components = components_of(all, s.mode);
     double grain_volume = 0.0;
-    for (std::size_t i = 0; i < sim.particles().size(); ++i)
-        if (!sim.particles().is_kinematic(i)) grain_volume += 4.0 / 3.0 * pi * std::pow(sim.particles().radius[i], 3);
+    for (std::size_t i = 0; i < all.size(); ++i)
+        if (!all.is_kinematic(i)) grain_volume += 4.0 / 3.0 * pi * std::pow(all.radius[i], 3);
     info.solid_fraction = grain_volume / (pi * info.inner_radius * info.inner_radius * info.inner_length);
     plan.snapshots_per_revolution = s.snapshots_per_revolution;
     plan.settle_speed = s.settle_speed;
@@ -374,11 +412,12 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     plan.quiet = options.quiet;
     plan.progress = progress_style(options.quiet, options.progress_every);
 
-    const io::RunLock lock = io::prepare_output_directory(s.output, options.force);
-    if (!options.quiet) {
+    std::optional<io::RunLock> lock;  // rank 0's: the other ranks write only their checkpoints
+    if (mpi::rank() == 0) lock.emplace(io::prepare_output_directory(s.output, options.force));
+    if (!options.quiet && mpi::rank() == 0) {
         fmt::print("tumble drum: {} mode, {} grains ({} {}, {} {}), {} wall particles, inner radius {:.4g} m, "
                    "length {:.4g} m{}; dt = {:.3g} s; instruction set {}\n",
-                   s.mode, sim.particles().free_count(), info.components[0].grains, info.components[0].name,
+                   s.mode, grains(sim.scenario()), info.components[0].grains, info.components[0].name,
                    info.components[1].grains, info.components[1].name, info.wall_particles, info.inner_radius,
                    info.inner_length, s.geometry.periodic_axis ? " (periodic axis)" : "", sim.dt(), info.isa);
         fmt::print("start: {}\n", describe(s.fill));
@@ -403,7 +442,7 @@ DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool qui
         throw Error(checkpoint.record.source + ": its record does not fit its state: " + e.what());
     }
     Simulation sim = restore_simulation(checkpoint, dir);
-    if (!quiet)
+    if (!quiet && mpi::rank() == 0)
         fmt::print("tumble resume: drum run at step {} (t = {:.6g} s, {})\n", sim.step_count(), sim.time(),
                    plan.rotating ? fmt::format("{:.4g} revolutions",
                                                plan.info.omega * (sim.time() - plan.info.settle_time) / (2.0 * pi))

@@ -6,7 +6,9 @@
 #include <cmath>
 
 #include "io/drum_config.hpp"
+#include "tumble/core/mpi.hpp"
 #include "tumble/particles/particle_store.hpp"
+#include "tumble/sim/simulation.hpp"
 #include "tumble/setup/drum.hpp"
 
 namespace tumble::experiments {
@@ -22,16 +24,21 @@ inline DrumSetup build_drum(const io::DrumSettings& s, bool allow_unsafe_dt = fa
     return setup;
 }
 
-// Root mean square speed of the free particles (the grains), m/s.
-inline double rms_grain_speed(const ParticleStore& p) {
-    double sum = 0.0;
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < p.size(); ++i)
+// Root mean square speed of the free particles (the grains), m/s; shared
+// among ranks, of every rank's own grains (collective).
+inline double rms_grain_speed(const Simulation& sim) {
+    const ParticleStore& p = sim.particles();
+    double sum = 0.0, n = 0.0;
+    for (std::size_t i = 0; i < sim.owned(); ++i)
         if (!p.is_kinematic(i)) {
             sum += norm2(p.velocity[i]);
-            ++n;
+            n += 1.0;
         }
-    return n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+    if (sim.shared()) {
+        sum = mpi::sum(sum);
+        n = mpi::sum(n);
+    }
+    return n > 0.0 ? std::sqrt(sum / n) : 0.0;
 }
 
 // The bed settles at least this long, s: twice the time to fall the drum's diameter.

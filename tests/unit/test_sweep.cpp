@@ -773,10 +773,12 @@ TEST_F(Sweep, OtherCommandsRefuseSeveralRanks) {
     if (run("mpirun --version").exit_code != 0) GTEST_SKIP() << "no mpirun";
     if (!mpi::built_with_mpi()) GTEST_SKIP() << "built without MPI (TUMBLE_MPI=OFF)";
     const Result r = run("mpirun --allow-run-as-root --oversubscribe -np 2 " + tumble_binary() +
-                         " drum --grains 20 --revolutions 0.1 -o " + (dir_ / "drum").string());
+                         " bench --size 4 --steps 10 --export " + (dir_ / "bench").string());
     EXPECT_NE(r.exit_code, 0) << r.output;
-    EXPECT_NE(r.output.find("only tumble sweep (each rank a share of the points), run and resume"), std::string::npos) << r.output;
-    EXPECT_FALSE(fs::exists(dir_ / "drum"));
+    EXPECT_NE(r.output.find("only tumble sweep (each rank a share of the points), run, drum and resume"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "bench"));
 }
 
 }  // namespace
