@@ -7,6 +7,7 @@
 #include <ctime>
 #include <fstream>
 #include <iterator>
+#include <optional>
 
 #include <unistd.h>
 
@@ -24,6 +25,7 @@
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 #include "tumble/core/isa.hpp"
+#include "tumble/core/mpi.hpp"
 #include "tumble/setup/benchmark_cube.hpp"
 #include "tumble/setup/drum.hpp"
 #include "tumble/sim/simulation.hpp"
@@ -141,6 +143,8 @@ Simulation settled_drum(const io::DrumSettings& d, const fs::path& cache, int th
         sim.advance(check_every);
     if (rms_grain_speed(sim) >= d.settle_speed)
         fmt::print(stderr, "tumble bench: warning: the bed did not settle within {} s\n", d.settle_max_time);
+    made = true;
+    if (mpi::rank() != 0) return sim;  // under mpirun every rank settles the same bed; rank 0 stores it
     fs::create_directories(cache);
     const fs::path part = file.string() + ".tmp";
     {
@@ -149,7 +153,6 @@ Simulation settled_drum(const io::DrumSettings& d, const fs::path& cache, int th
         if (!out.flush()) throw Error(part.string() + ": cannot write the settled bed");
     }
     fs::rename(part, file);  // a run killed while writing leaves no partial bed under the real name
-    made = true;
     return sim;
 }
 
@@ -171,15 +174,23 @@ int long_drum_bench(const BenchOptions& options) {
     const double resident_before = resident_bytes();
     const fs::path cache = options.cache.empty() ? default_cache() : options.cache;
     bool made = false;
-    Simulation sim = settled_drum(d, cache, threads, made);
+    Simulation bed = settled_drum(d, cache, threads, made);
     if (!options.export_dir.empty()) {  // the start of a peer code's run on the same bed
-        const fs::path file = io::write_snapshot(options.export_dir, 0, sim);
+        const fs::path file = io::write_snapshot(options.export_dir, 0, bed);
         if (!options.json) fmt::print("tumble bench: the settled bed, before it turns, is in {}\n", file.string());
         return 0;
     }
-    const std::size_t n = sim.particles().size(), grains = sim.particles().free_count();
+    // Under mpirun the bed is shared out among the ranks, a slab each.
+    std::optional<Simulation> shared;
+    if (mpi::size() > 1) {
+        shared.emplace(bed.scenario(), threads, Ranks::world);
+        shared->restore(bed.capture());
+    }
+    Simulation& sim = shared ? *shared : bed;
+    const bool talk = mpi::rank() == 0;
+    const std::size_t n = sim.scenario().particles.size(), grains = sim.scenario().free_count();
     const double omega = d.omega();
-    if (!options.json)
+    if (!options.json && talk)
         fmt::print("tumble bench: long drum, length {} m, fill {}: {} grains, {} wall spheres, {} rad/s; settled bed {}\n",
                    d.geometry.length, d.fill_fraction, grains, n - grains, omega,
                    (made ? "made and stored in " : "read from ") + cache.string());
@@ -187,7 +198,10 @@ int long_drum_bench(const BenchOptions& options) {
     sim.advance(warmup);
     const std::int64_t builds_before = sim.neighbors().builds();
     double cpu = 0.0;
-    const double seconds = timed_advance(sim, steps, cpu);
+    mpi::any(false);  // shared among ranks: all start the clock together (a barrier)...
+    double seconds = timed_advance(sim, steps, cpu);
+    seconds = mpi::max(seconds);  // ...and the slowest stops it
+    cpu = mpi::sum(cpu);
     const std::int64_t builds = sim.neighbors().builds() - builds_before;
     // A peer on the same bed is checked against this (bench/compare_drum.sh).
     const Observables o = sim.observe();
@@ -199,6 +213,18 @@ int long_drum_bench(const BenchOptions& options) {
     const std::string limited_by = t.automatic ? t.recommended_by : "given (--dt of the stored bed)";
     const double bytes_per_particle = (resident_bytes() - resident_before) / static_cast<double>(n);
     const std::string machine = machine_description();
+    // Shared among ranks: the bytes each rank sent its neighbours per step
+    // (ghost updates; and, averaged over the steps, the rebuilds'
+    // migrations and ghost lists), the mean over the ranks; the ghosts it holds.
+    double update_bytes = 0.0, rebuild_bytes = 0.0, ghosts = 0.0;
+    if (shared) {
+        const Slabs::Traffic& t = sim.slabs()->traffic();
+        const auto ranks = static_cast<double>(mpi::size());
+        update_bytes = mpi::sum(static_cast<double>(t.update_bytes) / static_cast<double>(t.updates)) / ranks;
+        rebuild_bytes = mpi::sum(static_cast<double>(t.rebuild_bytes) / static_cast<double>(t.updates)) / ranks;
+        ghosts = mpi::sum(static_cast<double>(sim.particles().size() - sim.owned())) / ranks;
+    }
+    if (!talk) return 0;
 
     if (!options.json) {
         fmt::print("  steps              {} (after {} warm-up steps turning)\n", steps, warmup);
@@ -212,6 +238,10 @@ int long_drum_bench(const BenchOptions& options) {
         fmt::print("  kinetic energy     {:.4g} J translational, {:.4g} J rotational (grains, at the end)\n",
                    o.kinetic_translational, o.kinetic_rotational);
         fmt::print("  threads            {}\n", sim.threads());
+        if (shared)
+            fmt::print("  MPI ranks          {} (slabs along z): per rank and step {:.0f} bytes of ghost updates, {:.0f} of "
+                       "rebuilds, {:.0f} ghosts\n",
+                       mpi::size(), update_bytes, rebuild_bytes, ghosts);
         fmt::print("  instruction set    {}\n", isa_description());
         fmt::print("  memory             {:.0f} bytes per particle (grains and wall, resident, measured)\n",
                    bytes_per_particle);
@@ -240,6 +270,10 @@ int long_drum_bench(const BenchOptions& options) {
                                                   {"kinetic_rotational", o.kinetic_rotational},
                                                   {"contacts", o.contacts},
                                                   {"threads", sim.threads()},
+                                                  {"ranks", mpi::size()},
+                                                  {"ghost_update_bytes_per_step", update_bytes},
+                                                  {"rebuild_bytes_per_step", rebuild_bytes},
+                                                  {"ghosts_per_rank", ghosts},
                                                   {"bytes_per_particle", std::llround(bytes_per_particle)},
                                                   {"cpu_seconds", cpu},
                                                   {"machine", machine},

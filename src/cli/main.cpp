@@ -359,10 +359,10 @@ int main(int argc, char** argv) {
     try {
         mpi.emplace(argc, argv);
         if (tumble::mpi::size() > 1 && !sweep_cmd->parsed() && !run_cmd->parsed() && !drum_cmd->parsed() &&
-            !resume_cmd->parsed())
-            throw tumble::Error("only tumble sweep (each rank a share of the points), run, drum and resume (one "
-                                "simulation shared among the ranks) run on several MPI ranks; run this command "
-                                "without mpirun or srun");
+            !resume_cmd->parsed() && !(bench_cmd->parsed() && bench.bench_case == "long-drum"))
+            throw tumble::Error("only tumble sweep (each rank a share of the points), run, drum, resume and bench "
+                                "--case long-drum (one simulation shared among the ranks) run on several MPI ranks; "
+                                "run this command without mpirun or srun");
         if (run_cmd->parsed()) return run_command(run);
         if (bench_cmd->parsed()) {
             const bool drum_case = bench.bench_case == "long-drum";

@@ -21,18 +21,21 @@ int resume_command(const std::string& directory, bool quiet, double progress_eve
     std::optional<io::RunLock> lock;  // held until the run ends
     if (who.rank == 0) lock.emplace(directory);
     const bool talk = !quiet && who.rank == 0;
-    io::LoadedCheckpoint loaded;
-    try {
-        loaded = io::load_newest_checkpoint(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0)), who);
-    } catch (const Error& e) {
-        if (who.ranks == 1 && !io::checkpoint_files(directory, {0, 2}).empty())
-            throw Error(std::string(e.what()) + "\n  its checkpoints were written by a run on several MPI ranks "
-                                                "(NNNNNN.rR.tck): resume it with mpirun -np RANKS tumble resume");
-        throw;
-    }
+    // A run on one rank may go on on several (each rank reads the one file
+    // and keeps its slab); a run on several ranks only on as many.
+    const bool shared_files = !io::checkpoint_files(directory, {0, 2}).empty();
+    if (who.ranks == 1 && shared_files)
+        throw Error(directory + ": its newest checkpoints were written by a run on several MPI ranks "
+                                "(NNNNNN.rR.tck): resume it with mpirun -np RANKS tumble resume");
+    const io::CheckpointRank files = shared_files ? who : io::CheckpointRank{};
+    if (shared_files && io::checkpoint_files(directory, who).empty())
+        throw Error(directory + ": it ran on fewer MPI ranks than " + std::to_string(who.ranks) + " (rank " +
+                    std::to_string(who.rank) + " has no checkpoint): resume it on as many ranks as it ran on");
+    io::LoadedCheckpoint loaded =
+        io::load_newest_checkpoint(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0)), files);
     for (const std::string& why : loaded.rejected)
         fmt::print(stderr, "tumble resume: {}warning: {}; using the previous checkpoint\n", mpi::line_prefix(), why);
-    if (who.ranks > 1) {  // the ranks resume from checkpoints written together
+    if (files.ranks > 1) {  // the ranks resume from checkpoints written together
         const double number = std::stod(loaded.file.filename().string().substr(0, 6));
         if (mpi::max(number) != -mpi::max(-number))
             throw Error(directory + ": the ranks' newest intact checkpoints are not of the same moment (one was "

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 // tumble run FILE: read a scenario, simulate it, write the output directory;
 // checkpoints on the way, so that `tumble resume DIR` can continue it.
-#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -27,12 +26,6 @@ namespace {
 // Steps between two samples at the given interval (s); 0 if never.
 std::int64_t every(double interval, double dt) {
     return interval > 0.0 ? std::max<std::int64_t>(1, std::llround(std::min(interval / dt, max_steps))) : 0;
-}
-
-// The free particles of a scenario (of every rank when shared).
-std::size_t free_count(const Scenario& s) {
-    return static_cast<std::size_t>(std::count_if(s.particles.begin(), s.particles.end(),
-                                                   [](const ParticleSpec& p) { return p.motion == free_motion; }));
 }
 
 // What a run carries from one process to the next (kept in its checkpoints).
@@ -86,7 +79,7 @@ public:
         const bool talk = !plan_.quiet && mpi::rank() == 0;
         if (mpi::rank() != 0) plan_.progress = progress_style(true, 0.0);
         Progress progress("run", sim_.step_count(), plan_.steps, plan_.progress,
-                          {.particles = free_count(sim_.scenario()), .seconds_per_step = sim_.dt()});
+                          {.particles = sim_.scenario().free_count(), .seconds_per_step = sim_.dt()});
         while (sim_.step_count() < plan_.steps) {
             sim_.step();
             sample();
@@ -109,11 +102,11 @@ public:
         if (mpi::rank() == 0)
             io::write_run_json(dir_ / "run.json", sim_,
                                {plan_.scenario_file, plan_.seed, plan_.duration, plan_.steps, seconds,
-                                sim_.scenario().particles.size(), free_count(sim_.scenario())});
+                                sim_.scenario().particles.size(), sim_.scenario().free_count()});
         checkpoint(true, progress.elapsed_seconds());
         if (talk)
             fmt::print("done in {:.1f} s ({:.3g} particle updates/s); output in {}\n", seconds,
-                       seconds > 0 ? static_cast<double>(free_count(sim_.scenario())) * plan_.steps / seconds : 0.0,
+                       seconds > 0 ? static_cast<double>(sim_.scenario().free_count()) * plan_.steps / seconds : 0.0,
                        dir_.string());
         return 0;
     }
@@ -180,7 +173,7 @@ int run_command(const RunOptions& options) {
     if (!options.quiet && mpi::rank() == 0) {
         const TimeStepReport& t = sim.time_step_report();
         fmt::print("tumble run {}: {} particles ({} free), {} steps of {:.3g} s ({}; safe maximum {:.3g} s){}\n",
-                   options.scenario_file, sim.scenario().particles.size(), free_count(sim.scenario()), plan.steps, dt,
+                   options.scenario_file, sim.scenario().particles.size(), sim.scenario().free_count(), plan.steps, dt,
                    t.automatic ? "chosen automatically" : "given", t.maximum,
                    shared ? fmt::format(", shared among {} MPI ranks", mpi::size()) : "");
     }

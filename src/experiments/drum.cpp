@@ -35,12 +35,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The grains of a drum (every rank's, when shared among ranks).
-std::size_t grains(const Scenario& s) {
-    return static_cast<std::size_t>(std::count_if(s.particles.begin(), s.particles.end(),
-                                                   [](const ParticleSpec& p) { return p.motion == free_motion; }));
-}
-
 // The two components, counted in every sphere of the drum (`p`).
 std::vector<io::DrumComponent> components_of(const ParticleStore& p, const std::string& mode) {
     std::vector<io::DrumComponent> out(2);
@@ -183,7 +177,7 @@ private:
     Checkpointer::Due settle() {
         const std::int64_t check_every = std::max<std::int64_t>(1, std::llround(1e-3 / sim_.dt()));
         Progress progress("settling", sim_.step_count(), 0, plan_.progress,
-                          {.particles = grains(sim_.scenario())});
+                          {.particles = sim_.scenario().free_count()});
         while (sim_.time() < plan_.settle_max_time) {
             sim_.advance(check_every);
             const double speed = rms_grain_speed(sim_);
@@ -249,7 +243,7 @@ private:
         constexpr std::int64_t batch = 100;
         const std::int64_t done = sim_.step_count() - plan_.rotation_start_step;  // > 0 after a resume
         Progress progress("rotation", done, steps_, plan_.progress,
-                          {.particles = grains(sim_.scenario()), .steps_per_revolution = period_ / sim_.dt()});
+                          {.particles = sim_.scenario().free_count(), .steps_per_revolution = period_ / sim_.dt()});
         for (std::int64_t k = done; k < steps_;) {
             std::int64_t next = std::min(steps_, (k / batch + 1) * batch);
             const auto at_multiple = [&](std::int64_t every) {
@@ -310,7 +304,7 @@ private:
         // again), then the results, then the checkpoint that says "finished".
         checkpoint(false, 0.0);
         if (steps_ % sample_every_ != 0) sample();  // always end with the final state
-        const double updates = static_cast<double>(grains(sim_.scenario())) * static_cast<double>(steps_);
+        const double updates = static_cast<double>(sim_.scenario().free_count()) * static_cast<double>(steps_);
         info.grain_updates_per_second = info.wall_seconds > 0.0 ? updates / info.wall_seconds : 0.0;
         std::string summary;
         if (writer()) {
@@ -417,7 +411,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     if (!options.quiet && mpi::rank() == 0) {
         fmt::print("tumble drum: {} mode, {} grains ({} {}, {} {}), {} wall particles, inner radius {:.4g} m, "
                    "length {:.4g} m{}; dt = {:.3g} s; instruction set {}\n",
-                   s.mode, grains(sim.scenario()), info.components[0].grains, info.components[0].name,
+                   s.mode, sim.scenario().free_count(), info.components[0].grains, info.components[0].name,
                    info.components[1].grains, info.components[1].name, info.wall_particles, info.inner_radius,
                    info.inner_length, s.geometry.periodic_axis ? " (periodic axis)" : "", sim.dt(), info.isa);
         fmt::print("start: {}\n", describe(s.fill));

@@ -99,13 +99,12 @@ io::CheckpointRank checkpoint_rank(const Simulation& sim) {
 
 Simulation restore_simulation(io::Checkpoint& checkpoint, const std::filesystem::path& run_directory) {
     const std::int64_t ranks = checkpoint.record.has("ranks") ? checkpoint.record.integer("ranks") : 1;
-    if (ranks != mpi::size())
+    if (ranks != mpi::size() && ranks != 1)
         throw Error(checkpoint.record.source + ": written by a run on " + std::to_string(ranks) +
-                    " rank(s); resume it on as many (" +
-                    (ranks > 1 ? "mpirun -np " + std::to_string(ranks) + " tumble resume" : "tumble resume without mpirun") +
-                    "; another rank count is not supported yet)");
+                    " ranks; resume it on as many (mpirun -np " + std::to_string(ranks) +
+                    " tumble resume; a run on several ranks goes on only on as many, a run on one on any number)");
     Simulation sim(std::move(checkpoint.scenario), static_cast<int>(checkpoint.record.integer("threads")),
-                   ranks > 1 ? Ranks::world : Ranks::one);
+                   mpi::size() > 1 ? Ranks::world : Ranks::one);
     sim.restore(std::move(checkpoint.state));
     if (mpi::rank() == 0) io::truncate_to_recorded_lengths(checkpoint.record, run_directory);
     return sim;

@@ -81,8 +81,9 @@ io::Checkpoint checkpoint_of(const Simulation& sim);
 // among ranks.
 io::CheckpointRank checkpoint_rank(const Simulation& sim);
 
-// The simulation of a checkpoint, on the recorded thread count (and rank
-// count: tumble::Error if the world has another), in the recorded state; the run directory's output files are cut back to the
+// The simulation of a checkpoint, on the recorded thread count, in the
+// recorded state: one rank's on any number of ranks (shared out among
+// them), several ranks' on as many (tumble::Error otherwise); the run directory's output files are cut back to the
 // lengths they had when the checkpoint was written.
 Simulation restore_simulation(io::Checkpoint& checkpoint, const std::filesystem::path& run_directory);
 

@@ -176,6 +176,7 @@ void put_state(ByteWriter& w, const SimulationState& s) {
         w.put(static_cast<std::uint64_t>(s.slabs.receive_begin[static_cast<std::size_t>(side)]));
         w.put(static_cast<std::uint64_t>(s.slabs.receive_count[static_cast<std::size_t>(side)]));
     }
+    w.put(static_cast<std::int32_t>(s.ranks));
 }
 
 // The contact histories of a file of format `version`. Format 2 kept no
@@ -222,6 +223,8 @@ SimulationState get_state(ByteReader& r, std::uint32_t version) {
             s.slabs.receive_begin[sd] = static_cast<std::size_t>(r.get<std::uint64_t>("ghosts received"));
             s.slabs.receive_count[sd] = static_cast<std::size_t>(r.get<std::uint64_t>("ghosts received"));
         }
+        s.ranks = r.get<std::int32_t>("ranks");
+        if (s.ranks < 1) r.fail("ranks: fewer than one");
     }
     return s;
 }

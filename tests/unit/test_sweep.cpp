@@ -775,7 +775,7 @@ TEST_F(Sweep, OtherCommandsRefuseSeveralRanks) {
     const Result r = run("mpirun --allow-run-as-root --oversubscribe -np 2 " + tumble_binary() +
                          " bench --size 4 --steps 10 --export " + (dir_ / "bench").string());
     EXPECT_NE(r.exit_code, 0) << r.output;
-    EXPECT_NE(r.output.find("only tumble sweep (each rank a share of the points), run, drum and resume"),
+    EXPECT_NE(r.output.find("only tumble sweep (each rank a share of the points), run, drum, resume and bench"),
               std::string::npos)
         << r.output;
     EXPECT_FALSE(fs::exists(dir_ / "bench"));

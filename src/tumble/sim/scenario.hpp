@@ -60,6 +60,13 @@ struct Scenario {
     NeighborSettings neighbor;
     std::vector<RigidMotion> motions;
     std::vector<ParticleSpec> particles;
+
+    // The free particles (of every rank, when the run is shared among ranks).
+    std::size_t free_count() const {
+        std::size_t n = 0;
+        for (const ParticleSpec& p : particles) n += p.motion == free_motion;
+        return n;
+    }
 };
 
 // Reason why a scenario cannot be simulated, or empty if it can. Checks

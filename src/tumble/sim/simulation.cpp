@@ -77,13 +77,13 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
 // left the slab sent away and those that came taken in, the own spheres
 // sorted, the ghosts made anew, and the list found with the keyed histories.
 // The store's size changes, and with it the chunks' force arrays.
-void Simulation::rebuild(Team& team) {
+void Simulation::rebuild(Team& team, bool keep_histories) {
     if (!slabs_) {
         neighbors_.rebuild(particles_, team);
         return;
     }
     team.one([&] {
-        histories_ = keyed_histories(particles_, neighbors_.pairs());
+        if (!keep_histories) histories_ = keyed_histories(particles_, neighbors_.pairs());
         particles_.resize(owned_);
         slabs_->migrate(particles_, histories_, wall_history_);
         owned_ = particles_.size();
@@ -339,8 +339,8 @@ void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
 }
 
 SimulationState Simulation::capture() const {
-    return {particles_, neighbors_.state(), wall_history_, motions_, dt_,
-            time_,      step_,              owned_,        slabs_ ? slabs_->state() : SlabState{}};
+    return {particles_, neighbors_.state(), wall_history_, motions_, dt_, time_, step_, owned_,
+            slabs_ ? slabs_->state() : SlabState{}, slabs_ ? mpi::size() : 1};
 }
 
 ParticleStore Simulation::gathered() const { return slabs_ ? slabs_->gather_own(particles_, owned_) : particles_; }
@@ -407,7 +407,12 @@ std::string state_problem(const SimulationState& s, const ParticleStore& fresh, 
 }  // namespace
 
 void Simulation::restore(SimulationState state) {
-    std::string why = state_problem(state, make_particle_store(scenario_), slabs_ != nullptr);
+    const int ranks = slabs_ ? mpi::size() : 1;
+    const bool onto_ranks = slabs_ && state.ranks == 1;  // a one-rank state shared out among the ranks
+    std::string why = state.ranks != ranks && !onto_ranks
+                          ? "it was captured on " + std::to_string(state.ranks) + " ranks, this run has " +
+                                std::to_string(ranks) + " (a state of several ranks restores only on as many)"
+                          : state_problem(state, make_particle_store(scenario_), state.ranks > 1);
     if (why.empty() && state.dt != dt_) {
         std::ostringstream text;
         text.precision(17);
@@ -420,14 +425,26 @@ void Simulation::restore(SimulationState state) {
     if (!why.empty()) throw Error("restoring a simulation state: " + why);
     particles_ = std::move(state.particles);
     particles_.half_kick.assign(particles_.size(), Vec3{});  // 0 between steps
-    owned_ = state.owned;
-    if (slabs_) slabs_->restore(std::move(state.slabs));
-    neighbors_.restore(std::move(state.neighbors));
     wall_history_ = std::move(state.wall_history);
     motions_ = std::move(state.motions);
     for (std::size_t k = 0; k < motions_.size(); ++k) scenario_.motions[k] = motions_[k].motion;
     time_ = state.time;
     step_ = state.step;
+    if (onto_ranks) {  // the rank's slab of the whole state, its ghosts and list anew
+        histories_ = keyed_histories(particles_, state.neighbors.pairs);
+        slabs_->keep_own(particles_);
+        owned_ = particles_.size();
+        neighbors_.restore({{}, {}, state.neighbors.builds});
+        prepare_chunks();
+        run_in_team(chunks(), [&](Team& team) {
+            rebuild(team, true);
+            locate_kinds(team);
+        });
+        return;
+    }
+    owned_ = state.owned;
+    if (slabs_) slabs_->restore(std::move(state.slabs));
+    neighbors_.restore(std::move(state.neighbors));
     prepare_chunks();
     run_in_team(chunks(), [&](Team& team) { locate_kinds(team); });
 }

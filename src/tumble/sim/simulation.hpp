@@ -97,6 +97,11 @@ public:
     // exactly as the captured one did. restore() checks that the state fits
     // the scenario (particle count, ids, indices, time step) and throws
     // tumble::Error with the reason if not.
+    // Shared among ranks, each rank captures and restores its own part. A
+    // state captured on one rank may be restored into a simulation shared
+    // among ranks (every rank gets the whole state, keeps its slab and finds
+    // the ghosts; the histories go by global id): a run continued on more
+    // ranks. A state of several ranks restores only on as many.
     SimulationState capture() const;
     void restore(SimulationState state);
 
@@ -126,7 +131,9 @@ private:
     void move_kinematic(const std::vector<MotionNow>& now, IndexRange r);
     void locate_kinds(Team& team);
     // The neighbour list anew (shared among ranks: migration and ghosts too).
-    void rebuild(Team& team);
+    // `keep_histories`: histories_ already holds the histories (a state
+    // restored onto ranks), not the list.
+    void rebuild(Team& team, bool keep_histories = false);
     // The part of range r where free (kinematic) particles can be.
     IndexRange free_part(IndexRange r) const;
     IndexRange kinematic_part(IndexRange r) const;

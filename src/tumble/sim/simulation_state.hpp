@@ -38,6 +38,7 @@ struct SimulationState {
     // every particle and the slab state empty.
     std::size_t owned = 0;
     SlabState slabs;
+    int ranks = 1;  // the ranks of the run it was captured from (one state per rank)
 };
 
 }  // namespace tumble

@@ -117,7 +117,8 @@ void Slabs::keep_own(ParticleStore& p) const {
     p.keep(own);
 }
 
-void Slabs::migrate(ParticleStore& p, KeyedHistories& histories, std::vector<ContactHistory>& wall_history) const {
+void Slabs::migrate(ParticleStore& p, KeyedHistories& histories, std::vector<ContactHistory>& wall_history) {
+    ++traffic_.rebuilds;
     std::array<std::vector<std::uint32_t>, 2> leaving;
     std::vector<std::uint32_t> staying;
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -150,6 +151,8 @@ void Slabs::migrate(ParticleStore& p, KeyedHistories& histories, std::vector<Con
     p.keep(staying);
     // Upwards first (each rank sends above, hears from below), then downwards.
     for (int s : {1, 0}) {
+        if (side_[static_cast<std::size_t>(s)].rank != mpi::no_rank)
+            traffic_.rebuild_bytes += static_cast<std::int64_t>(out[static_cast<std::size_t>(s)].size());
         const mpi::Bytes in = mpi::exchange(side_[static_cast<std::size_t>(s)].rank, out[static_cast<std::size_t>(s)],
                                             side_[static_cast<std::size_t>(1 - s)].rank, migrate_tag + (1 - s));
         if (in.empty()) continue;
@@ -185,6 +188,7 @@ void Slabs::make_ghosts(ParticleStore& p) {
             put_particle(out, p, i);
             shift_particle(p, i, axis_, -side.shift);
         }
+        if (side.rank != mpi::no_rank) traffic_.rebuild_bytes += static_cast<std::int64_t>(out.size());
         const mpi::Bytes in =
             mpi::exchange(side.rank, out, side_[static_cast<std::size_t>(1 - s)].rank, ghost_tag + (1 - s));
         const std::size_t from = static_cast<std::size_t>(1 - s);  // received from below in the upward pass
@@ -195,7 +199,8 @@ void Slabs::make_ghosts(ParticleStore& p) {
     }
 }
 
-void Slabs::update_ghosts(ParticleStore& p, std::size_t owned) const {
+void Slabs::update_ghosts(ParticleStore& p, std::size_t owned) {
+    ++traffic_.updates;
     for (int s : {1, 0}) {
         const auto& side = side_[static_cast<std::size_t>(s)];
         mpi::Bytes out;
@@ -208,6 +213,7 @@ void Slabs::update_ghosts(ParticleStore& p, std::size_t owned) const {
             put(out, p.angular_velocity[i]);
             put(out, p.half_kick[i]);
         }
+        if (side.rank != mpi::no_rank) traffic_.update_bytes += static_cast<std::int64_t>(out.size());
         const mpi::Bytes in =
             mpi::exchange(side.rank, out, side_[static_cast<std::size_t>(1 - s)].rank, update_tag + (1 - s));
         const std::size_t from = static_cast<std::size_t>(1 - s);

@@ -60,13 +60,22 @@ public:
     // slab go to the neighbour with their histories (of pairs and of the
     // flat walls, at 6 id + face); those that arrive are appended, their
     // histories merged into `histories` and `wall_history`.
-    void migrate(ParticleStore& p, KeyedHistories& histories, std::vector<ContactHistory>& wall_history) const;
+    void migrate(ParticleStore& p, KeyedHistories& histories, std::vector<ContactHistory>& wall_history);
     // After the sort: copies of the own spheres within reach of each cut go
     // to the neighbours; theirs are appended as ghosts.
     void make_ghosts(ParticleStore& p);
     // Every step, after the drift: the ghosts' positions, velocities and
     // half kicks from their owners; their forces zero (never used).
-    void update_ghosts(ParticleStore& p, std::size_t owned) const;
+    void update_ghosts(ParticleStore& p, std::size_t owned);
+
+    // What this rank has sent, for the measurement of the communication
+    // (docs/BENCHMARKS.md): the ghost updates of the steps, and the
+    // migrations and ghost lists of the rebuilds.
+    struct Traffic {
+        std::int64_t updates = 0, update_bytes = 0;
+        std::int64_t rebuilds = 0, rebuild_bytes = 0;
+    };
+    const Traffic& traffic() const { return traffic_; }
 
     // Collective: the own spheres of every rank (the first `owned` of each
     // store), on rank 0 in the order of their global ids; empty elsewhere.
@@ -87,6 +96,7 @@ private:
     std::vector<double> cut_;       // ranks + 1
     std::array<Side, 2> side_{};    // 0: below, 1: above
     SlabState state_;
+    Traffic traffic_;
 };
 
 }  // namespace tumble
