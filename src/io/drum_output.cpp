@@ -849,7 +849,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     }
 
     analyze_bed_structure(dir, frames, info, options, text, summary);
-    analyze_band_run(dir, dir, info, text, summary);
+    analyze_band_run(dir, dir, info, text, summary, options.bands);
 
     // summary.json last: its presence marks a finished run (tumble sweep).
     // An undefined number (NaN) is null in it (json.hpp).

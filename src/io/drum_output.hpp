@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "tumble/analysis/axial_msd.hpp"
+#include "tumble/analysis/bands.hpp"
 #include "tumble/analysis/depth_mobility.hpp"
 #include "tumble/analysis/drum_measure.hpp"
 
@@ -105,6 +106,9 @@ struct AnalyzeOptions {
     // spins up and reaches its steady flow within the first revolution at
     // the default speed; more at high speed).
     double first_revolution = 1.0;
+    // The thresholds of the band segmentation (docs/BANDS.md; tumble analyze
+    // --band-z-enter ...), checked by analysis::check_band_options.
+    analysis::BandOptions bands;
 };
 
 // Fits D per component (grains' axial MSD, free-amplitude Hogg, drift), the
