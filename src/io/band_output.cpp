@@ -11,6 +11,7 @@
 #include "io/output.hpp"
 #include "io/png.hpp"
 #include "io/render/scene.hpp"
+#include "tumble/analysis/band_crossing.hpp"
 #include "tumble/core/error.hpp"
 
 namespace tumble::io {
@@ -145,6 +146,73 @@ Json radial_core_json(const std::vector<double>& revolutions, const std::vector<
                 {"blocks", blocks}};
 }
 
+// The small grains' crossing of the inner bands of large grains (bands
+// poor in the species counted with a band on each side), from the particle
+// snapshots of the rotation: at each snapshot the bands of the nearest band
+// sample; blocks of a tenth of the rotation (at least a frame spacing).
+analysis::CrossingEstimate crossing_of_run(const analysis::BandHistory& h, const analysis::BandField& field,
+                                           const std::vector<analysis::GrainFrame>& frames) {
+    analysis::CrossingEstimate e;
+    if (field.periodic) e.note = "a periodic axis: a band's two sides are one";
+    else if (frames.size() < 2 || h.samples.empty()) e.note = "fewer than two particle snapshots of the rotation";
+    if (!e.note.empty()) return e;
+    std::vector<std::vector<analysis::BandSpan>> spans;
+    bool any = false;
+    for (const analysis::GrainFrame& f : frames) {
+        const auto nearest = std::min_element(h.samples.begin(), h.samples.end(), [&](const auto& a, const auto& b) {
+            return std::abs(a.revolutions - f.revolutions) < std::abs(b.revolutions - f.revolutions);
+        });
+        spans.emplace_back();
+        for (std::size_t i = 1; i + 1 < nearest->bands.size(); ++i)
+            if (!nearest->bands[i].rich) spans.back().push_back({nearest->bands[i].lo, nearest->bands[i].hi});
+        any = any || !spans.back().empty();
+    }
+    if (!any) {
+        e.note = "no band of the other species between two bands of this one at any snapshot";
+        return e;
+    }
+    try {
+        const analysis::AxialTracks tracks = analysis::axial_tracks(frames, 1);  // tag 1: the species of the band field
+        const double spacing = frames[1].revolutions - frames[0].revolutions;
+        const double span = frames.back().revolutions - frames.front().revolutions;
+        return analysis::band_crossing_diffusion(tracks, spans, std::max(spacing, span / 10.0));
+    } catch (const Error& error) {  // snapshots unequally spaced: the count needs equal intervals
+        e.note = error.what();
+        return e;
+    }
+}
+
+// bands.json's "crossing": the estimate, what it rests on, and the MSD's D
+// of the same grains with the ratio (when given).
+Json crossing_json(const analysis::CrossingEstimate& e, const analysis::MsdEstimate* msd) {
+    Json j = estimate_json(e.D, e.interval, e.determined, e.note);
+    j["D_uncorrected"] = e.D_uncorrected;
+    j["crossings"] = e.crossings;
+    j["rate"] = e.rate;
+    j["band_density"] = e.band_density;
+    j["width"] = e.width;
+    j["band_revolutions"] = e.revolutions;
+    j["blocks"] = static_cast<std::int64_t>(e.blocks);
+    if (msd) {
+        j["msd"] = msd_json(*msd);
+        j["ratio_to_msd"] = e.D / msd->D;
+    }
+    return j;
+}
+
+std::string describe_crossing(const analysis::CrossingEstimate& e, const analysis::MsdEstimate* msd,
+                              const std::string& small, const std::string& large) {
+    if (!(e.revolutions > 0.0)) return fmt::format("crossing of the {} bands by {}: not measured ({})", large, small, e.note);
+    std::string s = fmt::format(
+        "crossing of the inner {} bands by {}: {:.1f} crossings in {:.4g} band-revolutions ({:.3g} per revolution; "
+        "{:.3g} grains per m inside, {:.3g} m wide): D_eff = {:.3e} m^2/rev, 95 % interval [{:.3e}, {:.3e}]",
+        large, small, e.crossings, e.revolutions, e.rate, e.band_density, e.width, e.D, e.interval.lo, e.interval.hi);
+    if (!e.determined) s += " (not determined: " + e.note + ")";
+    if (msd && std::isfinite(msd->D))
+        s += fmt::format("; the MSD's D of {} {:.3e} m^2/rev (ratio {:.2f})", small, msd->D, e.D / msd->D);
+    return s;
+}
+
 Json band_json(const analysis::Band& b, const std::string& rich, const std::string& poor) {
     return Json{{"species", b.rich ? rich : poor}, {"rich", b.rich},       {"lo", b.lo},
                 {"hi", b.hi},                      {"centre", b.centre},   {"small_fraction", b.small_fraction}};
@@ -153,7 +221,8 @@ Json band_json(const analysis::Band& b, const std::string& rich, const std::stri
 }  // namespace
 
 void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInfo& info, std::ostringstream& text,
-                      Json& summary, const analysis::BandOptions& options) {
+                      Json& summary, const analysis::BandOptions& options,
+                      const std::vector<analysis::GrainFrame>& frames, const analysis::MsdEstimate* small_msd) {
     if (info.band_bins <= 0 || !fs::exists(dir / "band_profile.csv")) {
         text << "  bands: not measured (no band_profile.csv: a run of tumble before the band analysis)\n";
         return;
@@ -220,6 +289,7 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
     for (const analysis::BandProfile& p : h.samples) most = std::max(most, p.bands.size());
     for (const analysis::BandEvent& e : h.events)
         if (e.kind == "onset" && !std::isfinite(onset)) onset = e.revolutions;
+    const analysis::CrossingEstimate crossing = crossing_of_run(h, field, frames);
     Json events = Json::array();
     std::size_t merges = 0;
     for (const analysis::BandEvent& e : h.events) {
@@ -248,6 +318,7 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
                                       return w;
                                   }()}}},
                {"radial_core", radial_core_json(field.revolutions, core, periphery, record.axis_samples)},
+               {"crossing", crossing_json(crossing, small_msd)},
                {"max_bands", static_cast<std::int64_t>(most)},
                {"onset_revolution", onset},
                {"merges", static_cast<std::int64_t>(merges)},
@@ -315,6 +386,7 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
                         "at N = {:.3g} ({:.3f}, {:.3f} at N = {:.3g})\n",
                         core.back(), periphery.back(), last.revolutions, core.front(), periphery.front(),
                         first.revolutions);
+    text << "    " << describe_crossing(crossing, small_msd, small, large) << "\n";
     if (record.axis_samples > 0)
         text << fmt::format("    radial core: {} of the {} samples of band_profile.csv were measured from the drum "
                             "axis by a tumble before 2026-11-30 (rows core_fraction, wall_fraction) and are left out "
@@ -333,7 +405,7 @@ std::string analyze_bands_so_far(const fs::path& dir, const analysis::BandOption
     text << "tumble analyze --so-far " << dir.string() << ": the bands of the revolutions written so far, into "
          << out.string() << "\n";
     Json summary = Json::object();
-    analyze_band_run(dir, out, info, text, summary, options);
+    analyze_band_run(dir, out, info, text, summary, options, read_rotation_frames(dir, info), nullptr);
     write_file_atomically(out / "summary.txt", text.str());
     return text.str();
 }

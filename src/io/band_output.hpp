@@ -62,10 +62,15 @@ BandRecord read_band_profile(const std::filesystem::path& file, const DrumRunInf
 // kymograph.png into `out` (the run directory itself, or its so_far/), adds
 // its lines to `text` and its section to `summary`. A run without
 // band_profile.csv (one from before it, info.band_bins == 0) gets a line
-// saying so.
+// saying so. frames: the particle snapshots of the rotation
+// (read_rotation_frames), from which the small grains' crossing of the
+// inner bands of large grains is counted (analysis/band_crossing.hpp);
+// small_msd: the small grains' D from their MSD, to compare it with
+// (nullptr: not compared).
 void analyze_band_run(const std::filesystem::path& directory, const std::filesystem::path& out,
                       const DrumRunInfo& info, std::ostringstream& text, Json& summary,
-                      const analysis::BandOptions& options = {});
+                      const analysis::BandOptions& options, const std::vector<analysis::GrainFrame>& frames,
+                      const analysis::MsdEstimate* small_msd);
 
 // The band analysis of the revolutions written so far, of a run stopped or
 // still unfinished (a long band study looked at between sittings): the

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "io/json.hpp"
 #include "tumble/analysis/axial_msd.hpp"
 #include "tumble/analysis/bands.hpp"
 #include "tumble/analysis/depth_mobility.hpp"
@@ -116,5 +117,12 @@ struct AnalyzeOptions {
 // summary.txt, axial_msd.csv and the other analysis files into `directory`
 // and returns the text.
 std::string analyze_drum_run(const std::filesystem::path& directory, const AnalyzeOptions& options = {});
+
+// An estimate of D (m^2/rev) in summary.json and bands.json: D, D_lo and
+// D_hi (its 95 % interval), determined, note.
+Json estimate_json(double D, const analysis::Interval& interval, bool determined, const std::string& note);
+
+// The grains' axial MSD estimate: estimate_json and the lags fitted, the blocks.
+Json msd_json(const analysis::MsdEstimate& m);
 
 }  // namespace tumble::io

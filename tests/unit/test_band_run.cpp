@@ -123,7 +123,7 @@ TEST_F(BandRun, BadBandThresholdsAreRefusedNamingTheOption) {
 // and leaves the run's files alone, and the run then resumes.
 TEST_F(BandRun, SoFarAnalysesAStoppedRunWithoutFinishingIt) {
     const fs::path out = dir_ / "stopped";
-    const auto r = tumble_run("drum -q --grains 300 --length 0.06 --omega 8 --revolutions 1 --samples 8 --snapshots 0 "
+    const auto r = tumble_run("drum -q --grains 300 --length 0.06 --omega 8 --revolutions 1 --samples 8 --snapshots 4 "
                               "--arrangement bands --bands 3 --ends small --no-plot --stop-at-step 16000 --out " +
                               out.string());
     ASSERT_EQ(r.exit_code, 4) << r.output;  // stopped with a checkpoint
@@ -137,9 +137,19 @@ TEST_F(BandRun, SoFarAnalysesAStoppedRunWithoutFinishingIt) {
     EXPECT_EQ(bands["initial"]["bands"], 3);  // small, large, small
     EXPECT_TRUE(fs::exists(out / "so_far" / "kymograph.png"));
     EXPECT_NE(read_file(out / "so_far" / "summary.txt").find("bands of material-2"), std::string::npos);
+    // The small grains crossing the middle band of large ones, from the
+    // snapshots so far (too few crossings in a revolution to determine D).
+    EXPECT_GT(bands["crossing"]["band_revolutions"].get<double>(), 0.0) << so_far.output;
+    EXPECT_FALSE(bands["crossing"]["determined"].get<bool>());
+    EXPECT_FALSE(bands["crossing"].contains("msd"));
     const auto resumed = tumble_run("resume -q " + out.string());
     ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
     EXPECT_TRUE(fs::exists(out / "summary.json"));
+    const tumble::io::Json crossing = tumble::io::parse_json(read_file(out / "summary.json"))["bands"]["crossing"];
+    EXPECT_GT(crossing["band_revolutions"].get<double>(), 0.5);  // four snapshots a revolution, the band there throughout
+    EXPECT_TRUE(crossing["msd"].contains("D"));  // with the MSD's D to compare (null: too short to fit)
+    EXPECT_NE(read_file(out / "summary.txt").find("crossing of the inner material-1 bands by material-2"),
+              std::string::npos);
 }
 
 TEST_F(BandRun, BadBandBinsIsRefusedBeforeAnyWork) {
