@@ -202,7 +202,8 @@ Json crossing_json(const analysis::CrossingEstimate& e, const analysis::MsdEstim
 
 std::string describe_crossing(const analysis::CrossingEstimate& e, const analysis::MsdEstimate* msd,
                               const std::string& small, const std::string& large) {
-    if (!(e.revolutions > 0.0)) return fmt::format("crossing of the {} bands by {}: not measured ({})", large, small, e.note);
+    if (!(e.revolutions > 0.0))
+        return fmt::format("crossing of the {} bands by {}: not measured ({})", large, small, e.note);
     std::string s = fmt::format(
         "crossing of the inner {} bands by {}: {:.1f} crossings in {:.4g} band-revolutions ({:.3g} per revolution; "
         "{:.3g} grains per m inside, {:.3g} m wide): D_eff = {:.3e} m^2/rev, 95 % interval [{:.3e}, {:.3e}]",
@@ -386,12 +387,12 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
                         "at N = {:.3g} ({:.3f}, {:.3f} at N = {:.3g})\n",
                         core.back(), periphery.back(), last.revolutions, core.front(), periphery.front(),
                         first.revolutions);
-    text << "    " << describe_crossing(crossing, small_msd, small, large) << "\n";
     if (record.axis_samples > 0)
         text << fmt::format("    radial core: {} of the {} samples of band_profile.csv were measured from the drum "
                             "axis by a tumble before 2026-11-30 (rows core_fraction, wall_fraction) and are left out "
                             "(NaN)\n",
                             record.axis_samples, samples);
+    text << "    " << describe_crossing(crossing, small_msd, small, large) << "\n";
 }
 
 
