@@ -674,32 +674,35 @@ def fig_bed_structure(run, w):
 
 
 def _band_rows(path):
-    """band_profile.csv as (N, {quantity: array [sample, bin]})."""
+    """band_profile.csv as ({quantity: N of its samples}, {quantity: array [sample, bin]})."""
     t = read_csv(path)
     bins = sorted((int(k[4:]) for k in t if k.startswith("bin_")))
     quantity = np.array(t["quantity"])
     table = np.column_stack([t[f"bin_{b}"] for b in bins]) if bins else np.zeros((len(quantity), 0))
     rows = {q: table[quantity == q] for q in set(quantity)}
-    return t["revolutions"][quantity == "small_fraction"], rows
+    return {q: t["revolutions"][quantity == q] for q in set(quantity)}, rows
 
 
 def fig_bands(run, w):
-    """Axial bands (docs/BANDS.md): the kymograph C(z, N) with the merges, the band
-    count against log N, the dominant wavelength, the contrast, the radial core and
+    """Axial bands (docs/BANDS.md): the kymograph C(z, N) with the merges, the radial
+    core per slice (phi in the inner minus the outer third about the bed's centre)
+    against z and N, the band count against log N, the dominant wavelength, the
+    contrast, the radial core of the whole bed per sample and per block of N, and
     the composition of the end bands (band_profile.csv, bands.csv, bands.json)."""
     name = "fig_bands"
     profile, series = run.path("band_profile.csv"), run.path("bands.csv")
     if not (os.path.isfile(profile) and os.path.isfile(series)):
         w.skip(name, f"no {profile} or {series} (a run from before the band analysis; tumble analyze)")
         return
-    n_rev, rows = _band_rows(profile)
+    n_of, rows = _band_rows(profile)
+    n_rev = n_of["small_fraction"]
     phi = rows["small_fraction"]
     t = read_csv(series)
     info = read_json(run.path("bands.json")) if os.path.isfile(run.path("bands.json")) else {}
     small = info.get("species", run.components[-1])
     large = info.get("other", run.components[0])
-    fig, axes = plt.subplots(2, 3, figsize=(15, 8.5))
-    kymo, count, wave, contrast, core, ends = axes.ravel()
+    fig, axes = plt.subplots(2, 4, figsize=(20, 8.5))
+    kymo, core_kymo, count, wave, contrast, core, blocks, ends = axes.ravel()
     from matplotlib.colors import LinearSegmentedColormap, TwoSlopeNorm
     cmap = LinearSegmentedColormap.from_list("species", [COLOURS[0], "#ffffff", COLOURS[1 % len(COLOURS)]])
     mean = float(np.nanmean(t["mean"])) if len(t["mean"]) and np.isfinite(t["mean"]).any() else 0.5
@@ -715,6 +718,21 @@ def fig_bands(run, w):
     kymo.set_xlabel("z (mm)")
     kymo.set_ylabel("revolutions N")
     kymo.set_title("kymograph C(z, N) (x: a band vanishes)", fontsize=9)
+    # Per slice, core minus periphery; the samples of an older tumble
+    # (core_fraction, wall_fraction: from the axis) are not shown.
+    if "bed_core_fraction" in rows and "bed_periphery_fraction" in rows:
+        n_core = n_of["bed_core_fraction"]
+        excess = rows["bed_core_fraction"] - rows["bed_periphery_fraction"]
+        edges_c = np.concatenate([n_core, [n_core[-1] + (n_core[-1] - n_core[-2] if len(n_core) > 1 else 1.0)]])
+        from matplotlib.colors import Normalize
+        mesh_c = core_kymo.pcolormesh(edges_z, edges_c, np.ma.masked_invalid(excess), cmap=cmap,
+                                      norm=Normalize(vmin=-1.0, vmax=1.0), shading="flat")
+        fig.colorbar(mesh_c, ax=core_kymo, label=f"core minus periphery, volume fraction of {small}")
+    core_kymo.set_xlim(edges_z[0], edges_z[-1])
+    core_kymo.set_ylim(edges_n[0], edges_n[-1])
+    core_kymo.set_xlabel("z (mm)")
+    core_kymo.set_ylabel("revolutions N")
+    core_kymo.set_title("radial core per slice: inner minus outer third about the bed's centre", fontsize=9)
     later = t["revolutions"] > 0
     count.step(t["revolutions"][later], t["bands"][later], where="post", color="0.2")
     count.set_xscale("log")
@@ -753,12 +771,33 @@ def fig_bands(run, w):
     contrast.set_title("band contrast", fontsize=9)
     contrast.legend(fontsize=7)
     core.plot(t["revolutions"], t["core_fraction"], "-", color=COLOURS[1 % len(COLOURS)],
-              label="inner third (near the axis)")
-    core.plot(t["revolutions"], t["wall_fraction"], "-", color=COLOURS[0], label="outer third (at the wall)")
+              label="inner third (the core)")
+    core.plot(t["revolutions"], t["periphery_fraction"], "-", color=COLOURS[0],
+              label="outer third (wall and surface)")
     core.set_xlabel("revolutions N")
     core.set_ylabel(f"volume fraction of {small}")
-    core.set_title("radial core: composition by distance from the axis", fontsize=9)
+    core.set_title("radial core: composition by distance from the bed's centre", fontsize=9)
     core.legend(fontsize=7)
+    radial = [b for b in info.get("radial_core", {}).get("blocks", []) if b.get("core_excess") is not None]
+    if radial:
+        mid = np.array([math.sqrt(max(b["from"], 0.5) * b["to"]) for b in radial])
+        value = np.array([b["core_excess"] for b in radial])
+        lo = np.array([b["core_excess_lo"] if b["core_excess_lo"] is not None else math.nan for b in radial])
+        hi = np.array([b["core_excess_hi"] if b["core_excess_hi"] is not None else math.nan for b in radial])
+        has = np.isfinite(lo) & np.isfinite(hi)
+        if has.any():
+            blocks.errorbar(mid[has], value[has], yerr=[value[has] - lo[has], hi[has] - value[has]], fmt="o", ms=4,
+                            color="0.2", capsize=3, label="95 % interval (revolutions as units)")
+        if (~has).any():
+            blocks.plot(mid[~has], value[~has], "o", ms=4, mfc="none", color="0.2", label="under 3 revolutions")
+        blocks.set_xscale("log")
+        blocks.xaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+        blocks.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        blocks.legend(fontsize=7)
+    blocks.axhline(0.0, color="0.6", lw=0.8)
+    blocks.set_xlabel("revolutions N (blocks [1, 2), [2, 4), ...)")
+    blocks.set_ylabel("core minus periphery")
+    blocks.set_title("radial core per block of N (bands.json)", fontsize=9)
     for column, marker, label in (("left_end_fraction", "<", "left end band"),
                                   ("right_end_fraction", ">", "right end band")):
         ends.plot(t["revolutions"], t[column], marker, ms=4, ls="none", color="0.3" if marker == "<" else "0.6",

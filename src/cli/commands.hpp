@@ -71,9 +71,10 @@ int resume_run(io::Checkpoint checkpoint, const std::filesystem::path& directory
 int resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet, double progress_every);
 
 // Re-analyse a drum run directory: summary.json, summary.txt.
-// first_revolution: the start-up left out of the fits (io::AnalyzeOptions).
-// so_far: the bands of an unfinished run (experiments::analyze_bands_so_far).
-int analyze_command(const std::string& directory, double first_revolution = 1.0, bool so_far = false);
+// options: the start-up left out of the fits and the band thresholds
+// (io::AnalyzeOptions); so_far: the bands of an unfinished run
+// (experiments::analyze_bands_so_far).
+int analyze_command(const std::string& directory, const io::AnalyzeOptions& options, bool so_far = false);
 
 // The figures (tools/plot_drum.py MODE INPUTS... [--out OUT]); mode "run"
 // (a drum run directory), "compare" (several) or "sweep" (a sweep table).

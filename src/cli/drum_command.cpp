@@ -29,9 +29,9 @@ int resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& director
     return with_figures(experiments::resume_drum(std::move(checkpoint), directory, quiet, progress_every), quiet);
 }
 
-int analyze_command(const std::string& directory, double first_revolution, bool so_far) {
-    fmt::print("{}", so_far ? experiments::analyze_bands_so_far(directory)
-                            : experiments::analyze_drum(directory, first_revolution));
+int analyze_command(const std::string& directory, const io::AnalyzeOptions& options, bool so_far) {
+    fmt::print("{}", so_far ? experiments::analyze_bands_so_far(directory, options.bands)
+                            : experiments::analyze_drum(directory, options));
     return 0;
 }
 

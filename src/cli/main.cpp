@@ -304,6 +304,20 @@ int main(int argc, char** argv) {
                           "The bands of the revolutions written so far, of a run stopped or unfinished, into DIR/so_far/ "
                           "(docs/BANDS.md); the run's own files untouched")
         ->excludes(first_revolution_opt);
+    // The band segmentation's thresholds (analysis::BandOptions; docs/BANDS.md);
+    // checked, naming the option, before anything is read.
+    tumble::analysis::BandOptions band_options;
+    analyze_cmd->add_option("--band-z-enter", band_options.z_enter,
+                            "A new band's mean deviation in standard errors of a random mix (default 4)");
+    analyze_cmd->add_option("--band-z-leave", band_options.z_leave,
+                            "The same for a band to stay, at most --band-z-enter (default 2)");
+    analyze_cmd->add_option("--band-min-contrast", band_options.min_contrast,
+                            "A new band's least mean deviation in volume fraction (default 0.05)");
+    analyze_cmd->add_option("--band-min-contrast-leave", band_options.min_contrast_leave,
+                            "The same for a band to stay, at most --band-min-contrast (default 0.025)");
+    analyze_cmd->add_option("--band-smoothing", band_options.smoothing,
+                            "Bins of the running mean that decides the sign of the deviation (default 3)");
+    analyze_cmd->add_option("--band-min-width", band_options.min_width, "A band's least width in bins (default 2)");
 
     std::vector<std::string> plot_inputs;
     std::string plot_out;
@@ -371,7 +385,14 @@ int main(int argc, char** argv) {
                     throw tumble::Error("bench: " + option->get_name() + " does not apply to --case " + bench.bench_case);
             return bench_command(bench);
         }
-        if (analyze_cmd->parsed()) return analyze_command(analyze_dir, first_revolution, so_far);
+        if (analyze_cmd->parsed()) {
+            tumble::analysis::check_band_options(band_options, [](const std::string& field) {
+                std::string option = "--band-" + field;
+                std::replace(option.begin(), option.end(), '_', '-');
+                return option;
+            });
+            return analyze_command(analyze_dir, {first_revolution, band_options}, so_far);
+        }
         if (plot_cmd->parsed()) return plot_command(plot_compare ? "compare" : "run", plot_inputs, plot_out);
         if (sweep_cmd->parsed()) return sweep_command(sweep);
         if (render_cmd->parsed()) return render_command(render);

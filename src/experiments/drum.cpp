@@ -445,19 +445,21 @@ DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool qui
     return loop.run(checkpoint.record.numbers("snapshot_times"));
 }
 
-std::string analyze_drum(const std::string& directory, double first_revolution) {
+std::string analyze_drum(const std::string& directory, const io::AnalyzeOptions& options) {
+    analysis::check_band_options(options.bands);
     const io::RunLock lock(directory);
     // A stopped or interrupted run: its series end early, and a summary of
     // them would look like that of a finished run (tumble sweep takes it so).
     if (io::resumable(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0))))
         throw Error(directory + ": the run is unfinished (its newest checkpoint is not at its end); finish it with "
                                 "tumble resume " + directory + ", which analyses it");
-    return io::analyze_drum_run(directory, {first_revolution});
+    return io::analyze_drum_run(directory, options);
 }
 
-std::string analyze_bands_so_far(const std::string& directory) {
+std::string analyze_bands_so_far(const std::string& directory, const analysis::BandOptions& options) {
+    analysis::check_band_options(options);
     const io::RunLock lock(directory);  // not while the run goes on
-    return io::analyze_bands_so_far(directory);
+    return io::analyze_bands_so_far(directory, options);
 }
 
 }  // namespace tumble::experiments

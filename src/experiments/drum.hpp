@@ -13,6 +13,7 @@
 #include "experiments/run_control.hpp"
 #include "io/checkpoint.hpp"
 #include "io/drum_config.hpp"
+#include "io/drum_output.hpp"
 #include "tumble/analysis/drum_measure.hpp"
 #include "tumble/sim/simulation.hpp"
 
@@ -63,12 +64,13 @@ DrumOutcome resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& 
                         double progress_every = default_progress_every);
 
 // The analysis of a finished run directory again (summary.json,
-// summary.txt), returned as text; first_revolution: the start-up left out
-// of the fits. Refuses a run in use or unfinished.
-std::string analyze_drum(const std::string& directory, double first_revolution = 1.0);
+// summary.txt), returned as text; options: the start-up left out of the
+// fits, the band thresholds. Refuses bad band thresholds (before anything
+// is read; analysis::check_band_options), a run in use or unfinished.
+std::string analyze_drum(const std::string& directory, const io::AnalyzeOptions& options = {});
 
 // The bands of a run so far (io::analyze_bands_so_far), finished or not:
-// into DIR/so_far/. Refuses a run in use.
-std::string analyze_bands_so_far(const std::string& directory);
+// into DIR/so_far/. Refuses bad thresholds, a run in use.
+std::string analyze_bands_so_far(const std::string& directory, const analysis::BandOptions& options = {});
 
 }  // namespace tumble::experiments

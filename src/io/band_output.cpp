@@ -11,6 +11,7 @@
 #include "io/output.hpp"
 #include "io/png.hpp"
 #include "io/render/scene.hpp"
+#include "tumble/analysis/band_crossing.hpp"
 #include "tumble/core/error.hpp"
 
 namespace tumble::io {
@@ -19,9 +20,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The rows of one band sample, in this order.
-constexpr std::array<const char*, 5> quantities{"small_fraction", "grains", "small_grains", "core_fraction",
-                                                "wall_fraction"};
+// The rows of one band sample, in this order. The radial rows are named
+// for their reference: bed_core_fraction and bed_periphery_fraction are
+// ranked from the bed's centre (analysis::bed_centre); a tumble before
+// 2026-11-30 wrote core_fraction and wall_fraction, ranked from the drum
+// axis, in their place, which are read back as NaN (BandRecord).
+constexpr std::array<const char*, 5> quantities{"small_fraction", "grains", "small_grains", "bed_core_fraction",
+                                                "bed_periphery_fraction"};
+constexpr std::array<const char*, 2> axis_quantities{"core_fraction", "wall_fraction"};
 
 }  // namespace
 
@@ -35,16 +41,12 @@ BandProfileWriter::BandProfileWriter(const fs::path& directory, int bins, bool c
 }
 
 void BandProfileWriter::write(double revolutions, const analysis::BandSample& s) {
-    for (const char* q : quantities) {
-        const std::string name = q;
-        const std::vector<double>& row = name == "small_fraction" ? s.small_fraction
-                                         : name == "grains"       ? s.grains
-                                         : name == "small_grains" ? s.small_grains
-                                         : name == "core_fraction" ? s.core_fraction
-                                                                   : s.wall_fraction;
-        out_ << fmt::format("{},{}", revolutions, name);
+    const std::array<const std::vector<double>*, quantities.size()> rows{
+        &s.small_fraction, &s.grains, &s.small_grains, &s.core_fraction, &s.periphery_fraction};
+    for (std::size_t q = 0; q < quantities.size(); ++q) {
+        out_ << fmt::format("{},{}", revolutions, quantities[q]);
         // Four digits: the noise of a bin of tens of grains is in the second.
-        for (double v : row) out_ << fmt::format(",{:.4g}", v);
+        for (double v : *rows[q]) out_ << fmt::format(",{:.4g}", v);
         out_ << '\n';
     }
     check_written(out_, path_);
@@ -66,19 +68,24 @@ BandRecord read_band_profile(const fs::path& file, const DrumRunInfo& info) {
     if (N.size() % quantities.size() != 0)
         throw Error(file.string() + ": " + std::to_string(N.size()) + " rows, not a multiple of " +
                     std::to_string(quantities.size()) + " (one per quantity and sample)");
+    bool axis = false;  // this sample's radial rows are from the drum axis
     for (std::size_t row = 0; row < N.size(); ++row) {
         const std::size_t q = row % quantities.size();
-        if (csv.rows[row][quantity] != quantities[q])
-            throw Error(fmt::format("{}: row {}: quantity {} expected, found {}", file.string(), row + 2, quantities[q],
-                                    csv.rows[row][quantity]));
+        const std::string& name = csv.rows[row][quantity];
+        if (q == 3) axis = name == axis_quantities[0];
+        const bool known = name == quantities[q] || (q >= 3 && axis && name == axis_quantities[q - 3]);
+        if (!known)
+            throw Error(fmt::format("{}: row {}: quantity {} expected, found {}", file.string(), row + 2,
+                                    q == 4 && axis ? axis_quantities[1] : quantities[q], name));
         std::vector<double> values(bins);
-        for (std::size_t b = 0; b < bins; ++b) values[b] = columns[b][row];
+        for (std::size_t b = 0; b < bins; ++b) values[b] = axis && q >= 3 ? std::nan("") : columns[b][row];
         if (q == 0) r.field.revolutions.push_back(N[row]);
+        if (q == 3) r.axis_samples += axis;
         auto& target = q == 0 ? r.field.small_fraction
                        : q == 1 ? r.field.grains
                        : q == 2 ? r.field.small_grains
                        : q == 3 ? r.core_fraction
-                                : r.wall_fraction;
+                                : r.periphery_fraction;
         target.push_back(std::move(values));
     }
     return r;
@@ -120,6 +127,93 @@ void write_kymograph(const fs::path& file, const analysis::BandField& f, double 
     write_png(file, image);
 }
 
+// bands.json's "radial_core": the reference and the blocks of
+// analysis::radial_core_blocks.
+Json radial_core_json(const std::vector<double>& revolutions, const std::vector<double>& core,
+                      const std::vector<double>& periphery, std::size_t axis_samples) {
+    Json blocks = Json::array();
+    for (const analysis::CoreBlock& b : analysis::radial_core_blocks(revolutions, core, periphery))
+        blocks.push_back(Json{{"from", b.from},
+                              {"to", b.to},
+                              {"revolutions", static_cast<std::int64_t>(b.revolutions)},
+                              {"core_fraction", b.core},
+                              {"periphery_fraction", b.periphery},
+                              {"core_excess", b.excess},
+                              {"core_excess_lo", b.excess_interval.lo},
+                              {"core_excess_hi", b.excess_interval.hi}});
+    return Json{{"reference", "bed centroid"},
+                {"axis_samples", static_cast<std::int64_t>(axis_samples)},
+                {"blocks", blocks}};
+}
+
+// The small grains' crossing of the inner bands of large grains (bands
+// poor in the species counted with a band on each side), from the particle
+// snapshots of the rotation: at each snapshot the bands of the nearest band
+// sample; blocks of a tenth of the rotation (at least a frame spacing).
+analysis::CrossingEstimate crossing_of_run(const analysis::BandHistory& h, const analysis::BandField& field,
+                                           const std::vector<analysis::GrainFrame>& frames) {
+    analysis::CrossingEstimate e;
+    if (field.periodic) e.note = "a periodic axis: a band's two sides are one";
+    else if (frames.size() < 2 || h.samples.empty()) e.note = "fewer than two particle snapshots of the rotation";
+    if (!e.note.empty()) return e;
+    std::vector<std::vector<analysis::BandSpan>> spans;
+    bool any = false;
+    for (const analysis::GrainFrame& f : frames) {
+        const auto nearest = std::min_element(h.samples.begin(), h.samples.end(), [&](const auto& a, const auto& b) {
+            return std::abs(a.revolutions - f.revolutions) < std::abs(b.revolutions - f.revolutions);
+        });
+        spans.emplace_back();
+        for (std::size_t i = 1; i + 1 < nearest->bands.size(); ++i)
+            if (!nearest->bands[i].rich) spans.back().push_back({nearest->bands[i].lo, nearest->bands[i].hi});
+        any = any || !spans.back().empty();
+    }
+    if (!any) {
+        e.note = "no band of the other species between two bands of this one at any snapshot";
+        return e;
+    }
+    try {
+        const analysis::AxialTracks tracks = analysis::axial_tracks(frames, 1);  // tag 1: the species of the band field
+        const double spacing = frames[1].revolutions - frames[0].revolutions;
+        const double span = frames.back().revolutions - frames.front().revolutions;
+        return analysis::band_crossing_diffusion(tracks, spans, std::max(spacing, span / 10.0));
+    } catch (const Error& error) {  // snapshots unequally spaced: the count needs equal intervals
+        e.note = error.what();
+        return e;
+    }
+}
+
+// bands.json's "crossing": the estimate, what it rests on, and the MSD's D
+// of the same grains with the ratio (when given).
+Json crossing_json(const analysis::CrossingEstimate& e, const analysis::MsdEstimate* msd) {
+    Json j = estimate_json(e.D, e.interval, e.determined, e.note);
+    j["D_uncorrected"] = e.D_uncorrected;
+    j["crossings"] = e.crossings;
+    j["rate"] = e.rate;
+    j["band_density"] = e.band_density;
+    j["width"] = e.width;
+    j["band_revolutions"] = e.revolutions;
+    j["blocks"] = static_cast<std::int64_t>(e.blocks);
+    if (msd) {
+        j["msd"] = msd_json(*msd);
+        j["ratio_to_msd"] = e.D / msd->D;
+    }
+    return j;
+}
+
+std::string describe_crossing(const analysis::CrossingEstimate& e, const analysis::MsdEstimate* msd,
+                              const std::string& small, const std::string& large) {
+    if (!(e.revolutions > 0.0))
+        return fmt::format("crossing of the {} bands by {}: not measured ({})", large, small, e.note);
+    std::string s = fmt::format(
+        "crossing of the inner {} bands by {}: {:.1f} crossings in {:.4g} band-revolutions ({:.3g} per revolution; "
+        "{:.3g} grains per m inside, {:.3g} m wide): D_eff = {:.3e} m^2/rev, 95 % interval [{:.3e}, {:.3e}]",
+        large, small, e.crossings, e.revolutions, e.rate, e.band_density, e.width, e.D, e.interval.lo, e.interval.hi);
+    if (!e.determined) s += " (not determined: " + e.note + ")";
+    if (msd && std::isfinite(msd->D))
+        s += fmt::format("; the MSD's D of {} {:.3e} m^2/rev (ratio {:.2f})", small, msd->D, e.D / msd->D);
+    return s;
+}
+
 Json band_json(const analysis::Band& b, const std::string& rich, const std::string& poor) {
     return Json{{"species", b.rich ? rich : poor}, {"rich", b.rich},       {"lo", b.lo},
                 {"hi", b.hi},                      {"centre", b.centre},   {"small_fraction", b.small_fraction}};
@@ -128,7 +222,8 @@ Json band_json(const analysis::Band& b, const std::string& rich, const std::stri
 }  // namespace
 
 void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInfo& info, std::ostringstream& text,
-                      Json& summary, const analysis::BandOptions& options) {
+                      Json& summary, const analysis::BandOptions& options,
+                      const std::vector<analysis::GrainFrame>& frames, const analysis::MsdEstimate* small_msd) {
     if (info.band_bins <= 0 || !fs::exists(dir / "band_profile.csv")) {
         text << "  bands: not measured (no band_profile.csv: a run of tumble before the band analysis)\n";
         return;
@@ -144,7 +239,7 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
     std::ofstream series = open_for_writing(out / "bands.csv");
     std::ofstream positions = open_for_writing(out / "band_positions.csv");
     series << "revolutions,bands,rich_bands,mean,contrast,band_contrast,dominant_wavelength,dominant_share,"
-              "core_fraction,wall_fraction,core_excess,left_end_rich,left_end_fraction,right_end_rich,"
+              "core_fraction,periphery_fraction,core_excess,left_end_rich,left_end_fraction,right_end_rich,"
               "right_end_fraction\n";
     positions << "revolutions,band,rich,lo,hi,centre,small_fraction,grains\n";
     std::ofstream spectrum = open_for_writing(out / "band_spectrum.csv");
@@ -152,11 +247,11 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
     const std::size_t modes = samples ? h.samples.front().power.size() : 0;
     for (std::size_t m = 1; m <= modes; ++m) spectrum << ",wavelength_" << m;
     spectrum << '\n';
-    std::vector<double> core(samples), wall(samples);
+    std::vector<double> core(samples), periphery(samples);
     for (std::size_t k = 0; k < samples; ++k) {
         const analysis::BandProfile& p = h.samples[k];
         core[k] = pooled(record.core_fraction[k], field.grains[k]);
-        wall[k] = pooled(record.wall_fraction[k], field.grains[k]);
+        periphery[k] = pooled(record.periphery_fraction[k], field.grains[k]);
         const std::size_t rich =
             static_cast<std::size_t>(std::count_if(p.bands.begin(), p.bands.end(), [](const auto& b) { return b.rich; }));
         const double nan = std::nan("");
@@ -167,7 +262,7 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
         };
         series << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", p.revolutions, p.bands.size(), rich,
                               p.mean, p.contrast, p.band_contrast, p.dominant_wavelength, p.dominant_share, core[k],
-                              wall[k], core[k] - wall[k], end(false).first, end(false).second, end(true).first,
+                              periphery[k], core[k] - periphery[k], end(false).first, end(false).second, end(true).first,
                               end(true).second);
         spectrum << fmt::format("{}", p.revolutions);
         for (double power : p.power) spectrum << fmt::format(",{:.4g}", power);
@@ -195,6 +290,7 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
     for (const analysis::BandProfile& p : h.samples) most = std::max(most, p.bands.size());
     for (const analysis::BandEvent& e : h.events)
         if (e.kind == "onset" && !std::isfinite(onset)) onset = e.revolutions;
+    const analysis::CrossingEstimate crossing = crossing_of_run(h, field, frames);
     Json events = Json::array();
     std::size_t merges = 0;
     for (const analysis::BandEvent& e : h.events) {
@@ -222,6 +318,8 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
                                                       static_cast<double>(m));
                                       return w;
                                   }()}}},
+               {"radial_core", radial_core_json(field.revolutions, core, periphery, record.axis_samples)},
+               {"crossing", crossing_json(crossing, small_msd)},
                {"max_bands", static_cast<std::int64_t>(most)},
                {"onset_revolution", onset},
                {"merges", static_cast<std::int64_t>(merges)},
@@ -241,14 +339,14 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
                               {"dominant_wavelength", last.dominant_wavelength},
                               {"dominant_share", last.dominant_share},
                               {"core_fraction", core.back()},
-                              {"wall_fraction", wall.back()},
+                              {"periphery_fraction", periphery.back()},
                               {"list", list},
                               {"ends", ends}};
         bands["initial"] = Json{{"revolutions", h.samples.front().revolutions},
                                 {"bands", static_cast<std::int64_t>(h.samples.front().bands.size())},
                                 {"contrast", h.samples.front().contrast},
                                 {"core_fraction", core.front()},
-                                {"wall_fraction", wall.front()}};
+                                {"periphery_fraction", periphery.front()}};
     }
     write_json_file(out / "bands.json", bands);
     summary["bands"] = bands;
@@ -285,13 +383,20 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
         text << fmt::format("    at most {} bands; {} events ({} merges; bands.json){}\n", most, h.events.size(), merges,
                             std::isfinite(onset) ? fmt::format("; bands appear in the mixed bed at N = {:.3g}", onset)
                                                  : std::string());
-    text << fmt::format("    radial core: phi near the axis {:.3f}, at the wall {:.3f} at N = {:.3g} ({:.3f}, {:.3f} at "
-                        "N = {:.3g})\n",
-                        core.back(), wall.back(), last.revolutions, core.front(), wall.front(), first.revolutions);
+    text << fmt::format("    radial core (phi in the inner and outer third about the bed's centre): {:.3f}, {:.3f} "
+                        "at N = {:.3g} ({:.3f}, {:.3f} at N = {:.3g})\n",
+                        core.back(), periphery.back(), last.revolutions, core.front(), periphery.front(),
+                        first.revolutions);
+    if (record.axis_samples > 0)
+        text << fmt::format("    radial core: {} of the {} samples of band_profile.csv were measured from the drum "
+                            "axis by a tumble before 2026-11-30 (rows core_fraction, wall_fraction) and are left out "
+                            "(NaN)\n",
+                            record.axis_samples, samples);
+    text << "    " << describe_crossing(crossing, small_msd, small, large) << "\n";
 }
 
 
-std::string analyze_bands_so_far(const fs::path& dir) {
+std::string analyze_bands_so_far(const fs::path& dir, const analysis::BandOptions& options) {
     const DrumRunInfo info = read_drum_run_info(dir / "drum_run.toml");
     const fs::path out = dir / "so_far";
     std::error_code ec;
@@ -301,7 +406,7 @@ std::string analyze_bands_so_far(const fs::path& dir) {
     text << "tumble analyze --so-far " << dir.string() << ": the bands of the revolutions written so far, into "
          << out.string() << "\n";
     Json summary = Json::object();
-    analyze_band_run(dir, out, info, text, summary);
+    analyze_band_run(dir, out, info, text, summary, options, read_rotation_frames(dir, info), nullptr);
     write_file_atomically(out / "summary.txt", text.str());
     return text.str();
 }

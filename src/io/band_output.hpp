@@ -4,7 +4,10 @@
 //                       revolution and the last), five rows, one per
 //                       quantity, each with one column per axial bin
 //                       (bin_0 at z = -L/2): small_fraction (phi), grains,
-//                       small_grains, core_fraction, wall_fraction
+//                       small_grains, bed_core_fraction,
+//                       bed_periphery_fraction (the radial core about the
+//                       bed's centre; core_fraction and wall_fraction, about
+//                       the drum axis, in files of a tumble before 2026-11-30)
 //   bands.csv           per band sample: the band count, contrast,
 //                       dominant wavelength, radial core, end bands
 //   band_positions.csv  per band sample, one row per band: species, edges, phi
@@ -42,10 +45,15 @@ private:
 };
 
 // band_profile.csv read back: the field C(z, N) with its grain counts, and
-// the core and wall fractions [sample][bin].
+// the core and periphery fractions [sample][bin]. A sample whose radial
+// rows were measured from the drum axis (core_fraction, wall_fraction: a
+// tumble before 2026-11-30, or a run begun with it and resumed with a later
+// one) has NaN core and periphery fractions: the two references differ
+// (analysis::bed_centre), and are not mixed in one series.
 struct BandRecord {
     analysis::BandField field;
-    std::vector<std::vector<double>> core_fraction, wall_fraction;
+    std::vector<std::vector<double>> core_fraction, periphery_fraction;
+    std::size_t axis_samples = 0;  // samples measured from the drum axis
 };
 BandRecord read_band_profile(const std::filesystem::path& file, const DrumRunInfo& info);
 
@@ -54,16 +62,21 @@ BandRecord read_band_profile(const std::filesystem::path& file, const DrumRunInf
 // kymograph.png into `out` (the run directory itself, or its so_far/), adds
 // its lines to `text` and its section to `summary`. A run without
 // band_profile.csv (one from before it, info.band_bins == 0) gets a line
-// saying so.
+// saying so. frames: the particle snapshots of the rotation
+// (read_rotation_frames), from which the small grains' crossing of the
+// inner bands of large grains is counted (analysis/band_crossing.hpp);
+// small_msd: the small grains' D from their MSD, to compare it with
+// (nullptr: not compared).
 void analyze_band_run(const std::filesystem::path& directory, const std::filesystem::path& out,
                       const DrumRunInfo& info, std::ostringstream& text, Json& summary,
-                      const analysis::BandOptions& options = {});
+                      const analysis::BandOptions& options, const std::vector<analysis::GrainFrame>& frames,
+                      const analysis::MsdEstimate* small_msd);
 
 // The band analysis of the revolutions written so far, of a run stopped or
 // still unfinished (a long band study looked at between sittings): the
 // files of analyze_band_run and summary.txt in DIR/so_far/, the run's own
 // files untouched (no summary.json: a sweep does not take the run for
 // finished). Returns the text.
-std::string analyze_bands_so_far(const std::filesystem::path& directory);
+std::string analyze_bands_so_far(const std::filesystem::path& directory, const analysis::BandOptions& options = {});
 
 }  // namespace tumble::io

@@ -398,17 +398,6 @@ std::string describe_hogg(const analysis::HoggFit& f) {
                        f.D_stderr, f.D - 1.96 * f.D_stderr, f.D + 1.96 * f.D_stderr, f.amplitude);
 }
 
-Json msd_json(const analysis::MsdEstimate& m) {
-    return Json{{"D", m.D},
-                {"D_lo", m.interval.lo},
-                {"D_hi", m.interval.hi},
-                {"determined", m.determined},
-                {"note", m.note},
-                {"fit_lag_lo", m.fit_lo},
-                {"fit_lag_hi", m.fit_hi},
-                {"blocks", static_cast<std::int64_t>(m.blocks)}};
-}
-
 // The 95 % interval of a Hogg fit: +-1.96 standard errors.
 Json hogg_json(const analysis::HoggFit& f, double first_revolution) {
     return Json{{"D", f.D},
@@ -849,13 +838,25 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     }
 
     analyze_bed_structure(dir, frames, info, options, text, summary);
-    analyze_band_run(dir, dir, info, text, summary);
+    analyze_band_run(dir, dir, info, text, summary, options.bands, frames, msd.size() > 1 ? &msd[1] : nullptr);
 
     // summary.json last: its presence marks a finished run (tumble sweep).
     // An undefined number (NaN) is null in it (json.hpp).
     write_file_atomically(dir / "summary.txt", text.str());
     write_json_file(dir / "summary.json", summary);
     return text.str();
+}
+
+Json estimate_json(double D, const analysis::Interval& interval, bool determined, const std::string& note) {
+    return Json{{"D", D}, {"D_lo", interval.lo}, {"D_hi", interval.hi}, {"determined", determined}, {"note", note}};
+}
+
+Json msd_json(const analysis::MsdEstimate& m) {
+    Json j = estimate_json(m.D, m.interval, m.determined, m.note);
+    j["fit_lag_lo"] = m.fit_lo;
+    j["fit_lag_hi"] = m.fit_hi;
+    j["blocks"] = static_cast<std::int64_t>(m.blocks);
+    return j;
 }
 
 }  // namespace tumble::io

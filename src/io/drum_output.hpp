@@ -16,7 +16,9 @@
 #include <string>
 #include <vector>
 
+#include "io/json.hpp"
 #include "tumble/analysis/axial_msd.hpp"
+#include "tumble/analysis/bands.hpp"
 #include "tumble/analysis/depth_mobility.hpp"
 #include "tumble/analysis/drum_measure.hpp"
 
@@ -105,6 +107,9 @@ struct AnalyzeOptions {
     // spins up and reaches its steady flow within the first revolution at
     // the default speed; more at high speed).
     double first_revolution = 1.0;
+    // The thresholds of the band segmentation (docs/BANDS.md; tumble analyze
+    // --band-z-enter ...), checked by analysis::check_band_options.
+    analysis::BandOptions bands;
 };
 
 // Fits D per component (grains' axial MSD, free-amplitude Hogg, drift), the
@@ -112,5 +117,12 @@ struct AnalyzeOptions {
 // summary.txt, axial_msd.csv and the other analysis files into `directory`
 // and returns the text.
 std::string analyze_drum_run(const std::filesystem::path& directory, const AnalyzeOptions& options = {});
+
+// An estimate of D (m^2/rev) in summary.json and bands.json: D, D_lo and
+// D_hi (its 95 % interval), determined, note.
+Json estimate_json(double D, const analysis::Interval& interval, bool determined, const std::string& note);
+
+// The grains' axial MSD estimate: estimate_json and the lags fitted, the blocks.
+Json msd_json(const analysis::MsdEstimate& m);
 
 }  // namespace tumble::io

@@ -121,8 +121,23 @@ void bind_drum(py::module_& m) {
         "The drum protocol (experiments/drum.hpp) into settings.output; on_sample(sample) after every sample. "
         "Returns (exit code, directory)");
 
-    m.def("analyze_drum", &experiments::analyze_drum, py::arg("directory"), py::arg("first_revolution") = 1.0,
-          "Analyses a finished drum run again (summary.json, summary.txt); returns the summary text");
+    const analysis::BandOptions band_defaults;
+    m.def(
+        "analyze_drum",
+        [](const std::string& directory, double first_revolution, double band_z_enter, double band_z_leave,
+           double band_min_contrast, double band_min_contrast_leave, int band_smoothing, int band_min_width) {
+            io::AnalyzeOptions options{first_revolution,
+                                       {band_smoothing, band_z_enter, band_z_leave, band_min_contrast,
+                                        band_min_contrast_leave, band_min_width}};
+            analysis::check_band_options(options.bands, [](const std::string& field) { return "band_" + field; });
+            return experiments::analyze_drum(directory, options);
+        },
+        py::arg("directory"), py::arg("first_revolution") = 1.0, py::arg("band_z_enter") = band_defaults.z_enter,
+        py::arg("band_z_leave") = band_defaults.z_leave, py::arg("band_min_contrast") = band_defaults.min_contrast,
+        py::arg("band_min_contrast_leave") = band_defaults.min_contrast_leave,
+        py::arg("band_smoothing") = band_defaults.smoothing, py::arg("band_min_width") = band_defaults.min_width,
+        "Analyses a finished drum run again (summary.json, summary.txt), with the band thresholds of tumble analyze's "
+        "--band-* options (docs/BANDS.md); returns the summary text");
 }
 
 }  // namespace tumble::python

@@ -2,6 +2,8 @@
 """Run directories read into numpy and pandas, and the analysis of
 src/tumble/analysis called on what was read."""
 
+import shutil
+
 import numpy as np
 import pytest
 
@@ -37,6 +39,22 @@ def test_band_files_of_a_run(tiny_drum):
     assert len(run.bands) == len(N) and "dominant_wavelength" in run.bands.columns
     assert run.band_summary["species"] == "right" and run.band_summary["samples"] == len(N)
     assert run.summary["bands"]["bins"] == 8
+    _, core = run.band_profile("bed_core_fraction")
+    assert core.shape == phi.shape
+    assert run.band_summary["radial_core"]["reference"] == "bed centroid"
+    with pytest.raises(KeyError, match="bed_periphery_fraction"):
+        run.band_profile("wall_fraction")  # the axis-referenced rows of an older tumble
+
+
+def test_band_thresholds_of_analyze_drum(tiny_drum, tmp_path):
+    directory, _ = tiny_drum
+    copy = tmp_path / "run"
+    shutil.copytree(directory, copy)
+    tumble.analyze_drum(str(copy), band_z_enter=3.0, band_min_width=3)
+    thresholds = tumble.io.Run(copy).band_summary["thresholds"]
+    assert thresholds["z_enter"] == 3.0 and thresholds["min_width_bins"] == 3 and thresholds["z_leave"] == 2.0
+    with pytest.raises(tumble.Error, match="band_z_leave must lie in 0 .. band_z_enter"):
+        tumble.analyze_drum(str(copy), band_z_leave=5.0)
 
 
 def test_tracks_hogg_and_msd_of_a_run(tiny_drum):

@@ -115,19 +115,24 @@ class Figures(unittest.TestCase):
         run = tiny_run(self.dir, [(2.0e-7, 1.0e-7), (2.5e-7, 1.2e-7)])
         bins, header = 4, "revolutions,quantity,bin_0,bin_1,bin_2,bin_3"
         rows = [header]
-        for n, phi in ((0.0, "1,0,1,0"), (0.25, "1,1,1,0")):
+        # The first sample from a tumble before the radial core about the
+        # bed's centre (core and wall from the axis): not in the core's map.
+        for n, phi, core, outer in ((0.0, "1,0,1,0", "core_fraction", "wall_fraction"),
+                                    (0.25, "1,1,1,0", "bed_core_fraction", "bed_periphery_fraction")):
             rows += [f"{n},small_fraction,{phi}", f"{n},grains,5,5,5,5", f"{n},small_grains,5,0,5,0",
-                     f"{n},core_fraction,{phi}", f"{n},wall_fraction,{phi}"]
+                     f"{n},{core},{phi}", f"{n},{outer},0,0,1,0"]
         write(os.path.join(self.dir, "band_profile.csv"), "\n".join(rows) + "\n")
         write(os.path.join(self.dir, "bands.csv"),
               "revolutions,bands,rich_bands,mean,contrast,band_contrast,dominant_wavelength,dominant_share,"
-              "core_fraction,wall_fraction,core_excess,left_end_rich,left_end_fraction,right_end_rich,"
+              "core_fraction,periphery_fraction,core_excess,left_end_rich,left_end_fraction,right_end_rich,"
               "right_end_fraction\n"
               "0,4,2,0.5,0.5,1,0.06,0.9,0.5,0.5,0,1,1,0,0\n"
               "0.25,2,1,0.75,0.37,1,0.12,0.8,0.75,0.75,0,1,1,0,0\n")
         write(os.path.join(self.dir, "bands.json"),
               '{"species": "material-2", "other": "material-1", "events": '
-              '[{"revolutions": 0.25, "kind": "merge", "z": -0.015}]}')
+              '[{"revolutions": 0.25, "kind": "merge", "z": -0.015}], "radial_core": {"blocks": '
+              '[{"from": 0, "to": 1, "revolutions": 1, "core_excess": 0.1, "core_excess_lo": null, '
+              '"core_excess_hi": null}]}}')
         w = Capture()
         plot_drum.fig_bands(run, w)
         kymo = w.figures["fig_bands"].axes[0]
@@ -138,7 +143,10 @@ class Figures(unittest.TestCase):
         self.assertEqual(colour(mesh.cmap(0.0)), plot_drum.COLOURS[0])
         merges = [line for line in kymo.get_lines() if line.get_marker() == "x"]
         self.assertEqual(len(merges), 1)
-        self.assertEqual(w.figures["fig_bands"].axes[1].get_xscale(), "log")
+        core = w.figures["fig_bands"].axes[1].collections[0].get_array()
+        self.assertEqual(core.size, bins)  # the one sample measured about the bed's centre
+        self.assertEqual(list(core), [1, 1, 0, 0])
+        self.assertEqual(w.figures["fig_bands"].axes[2].get_xscale(), "log")  # the band count
 
     def test_sweep_draws_undetermined_d_apart(self):
         table = os.path.join(self.dir, "sweep.csv")

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "io/band_output.hpp"
@@ -28,22 +29,19 @@ class BandRun : public tumble::test_support::ScratchTest {};
 
 TEST_F(BandRun, SmallDrumWritesTheKymographAndBandCounts) {
     // 300 grains in a drum 6 cm long (15 band bins of 4 mm), 1 revolution at
-    // 8 rad/s, 8 samples per revolution: band samples at N = 0, 0.25, ...,
-    // the last of them a few steps short of 1 (the samples fall on whole
-    // steps), and at the end, N = 1.
+    // 8 rad/s, 8 samples per revolution, a step of 1/20000 revolution (just
+    // below the automatic one): band samples at N = 0, 0.25, 0.5, 0.75 and 1,
+    // the end of the run falling on a band sample, written once.
     const fs::path out = dir_ / "drum";
     const auto r = tumble_run("drum -q --grains 300 --length 0.06 --omega 8 --revolutions 1 --samples 8 "
-                              "--snapshots 0 --no-plot --out " + out.string());
+                              "--dt 3.926990816987241e-05 --snapshots 0 --no-plot --out " + out.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
     const tumble::io::DrumRunInfo info = tumble::io::read_drum_run_info(out / "drum_run.toml");
     EXPECT_EQ(info.band_bins, 15);
     const tumble::io::BandRecord record = tumble::io::read_band_profile(out / "band_profile.csv", info);
     const std::size_t samples = record.field.revolutions.size();
-    // N = 0, 0.25, 0.5, 0.75, then the last regular sample and the end,
-    // which fall on the same step or a few steps apart as the step rounds.
-    ASSERT_TRUE(samples == 5u || samples == 6u) << samples;
-    EXPECT_DOUBLE_EQ(record.field.revolutions.front(), 0.0);
-    EXPECT_NEAR(record.field.revolutions.back(), 1.0, 1e-4);  // the run's whole steps: a step is 1e-5 revolutions
+    ASSERT_EQ(samples, 5u);
+    for (std::size_t k = 0; k < samples; ++k) EXPECT_NEAR(record.field.revolutions[k], 0.25 * k, 1e-9);
     double grains = 0.0;
     for (double n : record.field.grains.back()) grains += n;
     EXPECT_DOUBLE_EQ(grains, 300.0);
@@ -75,6 +73,49 @@ TEST_F(BandRun, SmallDrumWritesTheKymographAndBandCounts) {
     EXPECT_EQ(read_file(out / "bands.json"), json);
     EXPECT_EQ(read_file(out / "bands.csv"), csv);
     EXPECT_TRUE(fs::exists(out / "kymograph.png"));
+
+    // The radial core about the bed's centre, per block of revolutions.
+    EXPECT_NE(read_file(out / "band_profile.csv").find(",bed_periphery_fraction,"), std::string::npos);
+    EXPECT_EQ(summary["bands"]["radial_core"]["reference"], "bed centroid");
+    EXPECT_EQ(summary["bands"]["radial_core"]["blocks"].size(), 2u);  // [0, 1) and [1, 2): the end, N = 1
+    EXPECT_EQ(bands.numbers("periphery_fraction").size(), samples);
+
+    // Thresholds from the command line, recorded.
+    const auto loose = tumble_run("analyze --band-z-enter 3 --band-min-contrast 0.04 --band-min-width 3 " + out.string());
+    ASSERT_EQ(loose.exit_code, 0) << loose.output;
+    const tumble::io::Json thresholds = tumble::io::parse_json(read_file(out / "bands.json"))["thresholds"];
+    EXPECT_EQ(thresholds["z_enter"], 3.0);
+    EXPECT_EQ(thresholds["min_contrast"], 0.04);
+    EXPECT_EQ(thresholds["min_width_bins"], 3);
+    EXPECT_EQ(thresholds["z_leave"], 2.0);
+
+    // A band_profile.csv begun by a tumble before the radial core about the
+    // bed's centre (rows core_fraction and wall_fraction, from the axis) and
+    // continued by this one: read, those samples' core left out, and said.
+    std::string old = read_file(out / "band_profile.csv");
+    for (int k = 0; k < 2; ++k)
+        for (auto [from, to] : {std::pair{",bed_core_fraction,", ",core_fraction,"},
+                                std::pair{",bed_periphery_fraction,", ",wall_fraction,"}})
+            old.replace(old.find(from), std::string(from).size(), to);
+    write("drum/band_profile.csv", old);
+    const auto mixed = tumble_run("analyze " + out.string());
+    ASSERT_EQ(mixed.exit_code, 0) << mixed.output;
+    EXPECT_NE(mixed.output.find("2 of the " + std::to_string(samples) + " samples of band_profile.csv were measured "
+                                "from the drum axis"),
+              std::string::npos)
+        << mixed.output;
+    const std::vector<double> core = tumble::io::read_csv_table(out / "bands.csv").numbers("core_fraction");
+    EXPECT_TRUE(std::isnan(core[0]) && std::isnan(core[1]) && std::isfinite(core[2]));
+}
+
+TEST_F(BandRun, BadBandThresholdsAreRefusedNamingTheOption) {
+    // Before any work: the directory is not even looked at.
+    const auto r = tumble_run("analyze --band-z-leave 5 " + (dir_ / "none").string());
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.output.find("--band-z-leave must lie in 0 .. --band-z-enter (4), got 5"), std::string::npos) << r.output;
+    const auto width = tumble_run("analyze --so-far --band-min-width 0 " + (dir_ / "none").string());
+    EXPECT_NE(width.exit_code, 0);
+    EXPECT_NE(width.output.find("--band-min-width must be at least 1"), std::string::npos) << width.output;
 }
 
 // A run stopped part way (a long band study between sittings): tumble
@@ -82,7 +123,7 @@ TEST_F(BandRun, SmallDrumWritesTheKymographAndBandCounts) {
 // and leaves the run's files alone, and the run then resumes.
 TEST_F(BandRun, SoFarAnalysesAStoppedRunWithoutFinishingIt) {
     const fs::path out = dir_ / "stopped";
-    const auto r = tumble_run("drum -q --grains 300 --length 0.06 --omega 8 --revolutions 1 --samples 8 --snapshots 0 "
+    const auto r = tumble_run("drum -q --grains 300 --length 0.06 --omega 8 --revolutions 1 --samples 8 --snapshots 4 "
                               "--arrangement bands --bands 3 --ends small --no-plot --stop-at-step 16000 --out " +
                               out.string());
     ASSERT_EQ(r.exit_code, 4) << r.output;  // stopped with a checkpoint
@@ -96,9 +137,19 @@ TEST_F(BandRun, SoFarAnalysesAStoppedRunWithoutFinishingIt) {
     EXPECT_EQ(bands["initial"]["bands"], 3);  // small, large, small
     EXPECT_TRUE(fs::exists(out / "so_far" / "kymograph.png"));
     EXPECT_NE(read_file(out / "so_far" / "summary.txt").find("bands of material-2"), std::string::npos);
+    // The small grains crossing the middle band of large ones, from the
+    // snapshots so far (too few crossings in a revolution to determine D).
+    EXPECT_GT(bands["crossing"]["band_revolutions"].get<double>(), 0.0) << so_far.output;
+    EXPECT_FALSE(bands["crossing"]["determined"].get<bool>());
+    EXPECT_FALSE(bands["crossing"].contains("msd"));
     const auto resumed = tumble_run("resume -q " + out.string());
     ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
     EXPECT_TRUE(fs::exists(out / "summary.json"));
+    const tumble::io::Json crossing = tumble::io::parse_json(read_file(out / "summary.json"))["bands"]["crossing"];
+    EXPECT_GT(crossing["band_revolutions"].get<double>(), 0.5);  // four snapshots a revolution, the band there throughout
+    EXPECT_TRUE(crossing["msd"].contains("D"));  // with the MSD's D to compare (null: too short to fit)
+    EXPECT_NE(read_file(out / "summary.txt").find("crossing of the inner material-1 bands by material-2"),
+              std::string::npos);
 }
 
 TEST_F(BandRun, BadBandBinsIsRefusedBeforeAnyWork) {

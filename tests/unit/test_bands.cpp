@@ -11,6 +11,7 @@
 
 #include "tumble/analysis/bands.hpp"
 #include "tumble/core/constants.hpp"
+#include "tumble/core/error.hpp"
 
 namespace tumble::analysis {
 namespace {
@@ -206,33 +207,124 @@ TEST(Bands, UniformAndEmptyRowsHaveNoBands) {
     EXPECT_TRUE(one.bands.empty());  // one species only
 }
 
-TEST(Bands, MeasuredFromGrainsWithTheirRadialCore) {
-    // Two slices: in the left, small grains (tag 1) near the axis and large
-    // ones at the wall; the right holds large grains only.
+// A store of free grains, for the measurement from grains.
+struct Grains {
     ParticleStore p;
-    auto add = [&](double r, double z, double radius, int tag) {
+    void add(double x, double y, double z, double radius, int tag) {
         p.id.push_back(static_cast<std::int64_t>(p.id.size()));
-        p.position.push_back({r, 0.0, z});
+        p.position.push_back({x, y, z});
         p.radius.push_back(radius);
         p.motion.push_back(free_motion);
         p.tag.push_back(tag);
-    };
-    for (int i = 0; i < 6; ++i) add(0.005 + 0.001 * i, -0.03, 0.0012, 1);
-    for (int i = 0; i < 2; ++i) add(0.035 + 0.001 * i, -0.03, 0.0018, 0);
-    for (int i = 0; i < 3; ++i) add(0.02 + 0.005 * i, 0.03, 0.0018, 0);
-    add(0.039, 0.0, 0.003, 0);
-    p.motion.back() = 0;  // a wall particle: not counted
-    const BandSample s = measure_bands(p, {L, 2, 1});
+    }
+};
+
+TEST(Bands, MeasuredFromGrains) {
+    // Two slices: the left holds small grains (tag 1) and large ones, the
+    // right large grains only; a wall particle is not counted.
+    Grains g;
+    for (int i = 0; i < 6; ++i) g.add(0.005 + 0.001 * i, 0.0, -0.03, 0.0012, 1);
+    for (int i = 0; i < 2; ++i) g.add(0.035 + 0.001 * i, 0.0, -0.03, 0.0018, 0);
+    for (int i = 0; i < 3; ++i) g.add(0.02 + 0.005 * i, 0.0, 0.03, 0.0018, 0);
+    g.add(0.039, 0.0, 0.0, 0.003, 0);
+    g.p.motion.back() = 0;  // a wall particle: not counted
+    const BandSample s = measure_bands(g.p, {L, 2, 1});
     const double vs = 6 * std::pow(0.0012, 3), vl = 2 * std::pow(0.0018, 3);
     EXPECT_NEAR(s.small_fraction[0], vs / (vs + vl), 1e-12);
     EXPECT_DOUBLE_EQ(s.small_fraction[1], 0.0);
     EXPECT_DOUBLE_EQ(s.grains[0], 8.0);
     EXPECT_DOUBLE_EQ(s.small_grains[0], 6.0);
-    EXPECT_DOUBLE_EQ(s.core_fraction[0], 1.0);  // the inner third of the volume: small grains only
-    EXPECT_DOUBLE_EQ(s.wall_fraction[0], 0.0);  // the outer third: the large ones
     EXPECT_DOUBLE_EQ(s.core_fraction[1], 0.0);
     EXPECT_EQ(default_band_bins(0.12), 30);
     EXPECT_EQ(default_band_bins(0.64), 160);
+}
+
+// The radial core is ranked from the bed's centre, not the drum axis. A bed
+// of the paper's fill 0.3 in a drum of radius R = 4 cm: a circular segment
+// of half angle a = 71.36 degrees (0.3 = (2a - sin 2a) / 2 pi), its flat
+// surface 0.32 R from the axis, tilted by 40 degrees as at the angle of
+// repose, filled with grains on a 2 mm square lattice (one slice, equal
+// sizes, so phi is a number fraction). Small grains placed around the
+// segment's centroid are the core; placed in the surface layer, the grains
+// nearest the axis, they are not (the axis-referenced measure of before put
+// 20 % of the core there, against 7 % now: the middle of the surface layer
+// lies 0.28 R from the centroid, just inside the inner third's radius of
+// 0.32 R).
+TEST(Bands, RadialCoreAboutTheBedsCentreNotTheAxis) {
+    constexpr double R = 0.04, spacing = 0.002, radius = 0.001, tilt = 40.0 * pi / 180.0;
+    const double a = 71.3557 * pi / 180.0, surface = R * std::cos(a);
+    const double centroid = 4.0 * R * std::pow(std::sin(a), 3) / (3.0 * (2.0 * a - std::sin(2.0 * a)));
+    // Lattice points of the untilted segment (y < -surface), then turned.
+    const auto bed = [&](auto small) {
+        Grains g;
+        for (double x = -R + 0.5 * spacing; x < R; x += spacing)
+            for (double y = -R + 0.5 * spacing; y < -surface - 0.5 * spacing; y += spacing) {
+                if (std::hypot(x, y) > R - radius) continue;
+                const double c = std::cos(tilt), s = std::sin(tilt);
+                g.add(c * x - s * y, s * x + c * y, 0.0, radius, small(x, y) ? 1 : 0);
+            }
+        return g;
+    };
+    const Grains around = bed([&](double x, double y) { return std::hypot(x, y + centroid) < 0.3 * R; });
+    // The centre: the segment's centroid, on the line through the axis
+    // perpendicular to the surface (turned with it), to within the lattice's
+    // cut of the segment's edges (0.15 mm here; 0.5 mm allowed).
+    const auto [cx, cy] = bed_centre(around.p);
+    EXPECT_NEAR(cx, centroid * std::sin(tilt), 5e-4);
+    EXPECT_NEAR(cy, -centroid * std::cos(tilt), 5e-4);
+    const BandSample core = measure_bands(around.p, {L, 1, 1});
+    EXPECT_GT(core.core_fraction[0], 0.95);  // a disc of 0.3 R holds nearly all of the inner third (0.32 R)
+    EXPECT_DOUBLE_EQ(core.periphery_fraction[0], 0.0);
+    // The surface layer, 1.5 lattice spacings deep.
+    const Grains top = bed([&](double, double y) { return y > -surface - 1.5 * spacing; });
+    const BandSample surface_layer = measure_bands(top.p, {L, 1, 1});
+    EXPECT_LT(surface_layer.core_fraction[0], 0.1);
+    EXPECT_GT(surface_layer.periphery_fraction[0], surface_layer.core_fraction[0]);
+}
+
+// The radial core per block of revolutions: blocks [0, 1), [1, 2), [2, 4),
+// [4, 8); revolution means; the interval needs 3 revolutions.
+TEST(Bands, RadialCoreInBlocksOfRevolutions) {
+    std::vector<double> N, core, periphery;
+    for (int k = 0; k <= 28; ++k) {  // 4 samples per revolution, N = 0 .. 7
+        N.push_back(0.25 * k);
+        const bool late = N.back() >= 4.0;
+        core.push_back(late ? 0.6 + 0.01 * (k % 3) : 0.5);
+        periphery.push_back(0.4);
+    }
+    core[1] = std::nan("");  // an empty core: left out
+    const std::vector<CoreBlock> blocks = radial_core_blocks(N, core, periphery);
+    ASSERT_EQ(blocks.size(), 4u);
+    EXPECT_DOUBLE_EQ(blocks[2].from, 2.0);
+    EXPECT_DOUBLE_EQ(blocks[2].to, 4.0);
+    EXPECT_EQ(blocks[0].revolutions, 1u);
+    EXPECT_NEAR(blocks[0].excess, 0.1, 1e-12);
+    EXPECT_TRUE(std::isnan(blocks[1].excess_interval.lo));  // one revolution: no interval
+    EXPECT_EQ(blocks[3].revolutions, 4u);                   // 4, 5, 6 and the last sample, N = 7
+    EXPECT_GT(blocks[3].excess, 0.2);
+    EXPECT_LE(blocks[3].excess_interval.lo, blocks[3].excess);
+    EXPECT_GE(blocks[3].excess_interval.hi, blocks[3].excess);
+    EXPECT_GT(blocks[3].excess_interval.lo, 0.19);
+}
+
+// Bad thresholds are refused naming the setting as the caller spells it.
+TEST(Bands, BadOptionsNamed) {
+    BandOptions o;
+    o.z_leave = 5.0;
+    try {
+        check_band_options(o, [](const std::string& f) { return "--band-" + f; });
+        FAIL() << "z_leave > z_enter accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("--band-z_leave must lie in 0 .. --band-z_enter"), std::string::npos)
+            << e.what();
+    }
+    o = {};
+    o.min_width = 0;
+    EXPECT_THROW(check_band_options(o), Error);
+    o = {};
+    o.min_contrast = std::nan("");
+    EXPECT_THROW(check_band_options(o), Error);
+    EXPECT_NO_THROW(check_band_options(BandOptions{}));
 }
 
 }  // namespace

@@ -95,18 +95,24 @@ class Run:
     def band_profile(self, quantity="small_fraction"):
         """(N, values[sample, bin]) of band_profile.csv, numpy arrays: the
         quantity small_fraction (phi, the kymograph C(z, N)), grains,
-        small_grains, core_fraction or wall_fraction per axial bin
-        (docs/BANDS.md); bin b is centred at z = -L/2 + (b + 1/2) L / bins."""
+        small_grains, bed_core_fraction or bed_periphery_fraction (phi in the
+        inner and outer third about the bed's centre) per axial bin
+        (docs/BANDS.md); bin b is centred at z = -L/2 + (b + 1/2) L / bins.
+        Samples written by a tumble before 2026-11-30 have core_fraction and
+        wall_fraction instead, ranked from the drum axis: each quantity has
+        the samples that hold it."""
         frame = self.table("band_profile.csv")
         rows = frame[frame["quantity"] == quantity]
         if rows.empty:
-            raise KeyError(f"band_profile.csv has no quantity {quantity!r}")
+            present = ", ".join(sorted(set(frame["quantity"])))
+            raise KeyError(f"band_profile.csv has no quantity {quantity!r} (it has {present})")
         columns = [c for c in frame.columns if c.startswith("bin_")]
         return rows["revolutions"].to_numpy(), rows[columns].to_numpy(dtype=float)
 
     @property
     def bands(self):
-        """bands.csv: per band sample the band count, contrast, dominant wavelength, radial core, end bands."""
+        """bands.csv: per band sample the band count, contrast, dominant wavelength, radial core (core and
+        periphery about the bed's centre), end bands."""
         return self.table("bands.csv")
 
     @property
@@ -116,7 +122,7 @@ class Run:
 
     @property
     def band_summary(self):
-        """bands.json: the thresholds, the final bands, the events (merges)."""
+        """bands.json: the thresholds, the final bands, the events (merges), the radial core per block of N."""
         return json.loads((self.directory / "bands.json").read_text())
 
     @property

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <sstream>
 
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
@@ -19,6 +20,16 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 int default_band_bins(double inner_length) { return std::max(2, static_cast<int>(std::lround(inner_length / 0.004))); }
 
+std::pair<double, double> bed_centre(const ParticleStore& p) {
+    double volume = 0.0, x = 0.0, y = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        if (p.is_kinematic(i)) continue;
+        const double v = p.radius[i] * p.radius[i] * p.radius[i];  // the volume up to 4 pi / 3
+        volume += v, x += v * p.position[i].x, y += v * p.position[i].y;
+    }
+    return volume > 0.0 ? std::pair{x / volume, y / volume} : std::pair{0.0, 0.0};
+}
+
 BandSample measure_bands(const ParticleStore& p, const BandFrame& frame) {
     if (frame.bins < 1 || !(frame.inner_length > 0.0))
         throw Error("band measurement: need at least one bin and a positive length");
@@ -30,14 +41,17 @@ BandSample measure_bands(const ParticleStore& p, const BandFrame& frame) {
         members[static_cast<std::size_t>(std::clamp(relative * static_cast<double>(bins), 0.0, bins - 1.0))].push_back(i);
     }
     BandSample s;
-    for (auto* v : {&s.small_fraction, &s.grains, &s.small_grains, &s.core_fraction, &s.wall_fraction}) v->resize(bins);
+    for (auto* v : {&s.small_fraction, &s.grains, &s.small_grains, &s.core_fraction, &s.periphery_fraction})
+        v->resize(bins);
     const auto volume = [&](std::size_t i) { return 4.0 / 3.0 * pi * p.radius[i] * p.radius[i] * p.radius[i]; };
     const auto counted = [&](std::size_t i) { return p.tag[i] == frame.species_tag; };
+    const auto [cx, cy] = bed_centre(p);
+    const auto distance = [&](std::size_t i) { return std::hypot(p.position[i].x - cx, p.position[i].y - cy); };
     for (std::size_t b = 0; b < bins; ++b) {
         std::vector<std::size_t>& m = members[b];
-        // Outward from the axis; ties by id, so the order does not depend on the array order.
+        // Outward from the bed's centre; ties by id, so the order does not depend on the array order.
         std::sort(m.begin(), m.end(), [&](std::size_t i, std::size_t j) {
-            const double ri = std::hypot(p.position[i].x, p.position[i].y), rj = std::hypot(p.position[j].x, p.position[j].y);
+            const double ri = distance(i), rj = distance(j);
             return ri != rj ? ri < rj : p.id[i] < p.id[j];
         });
         double total = 0.0, species = 0.0, small = 0.0;
@@ -48,17 +62,17 @@ BandSample measure_bands(const ParticleStore& p, const BandFrame& frame) {
         s.grains[b] = static_cast<double>(m.size());
         s.small_grains[b] = small;
         s.small_fraction[b] = total > 0.0 ? species / total : nan;
-        // A grain belongs to the core (the wall) when the middle of its
+        // A grain belongs to the core (the periphery) when the middle of its
         // volume lies in the inner (outer) third of the bin's volume.
-        double before = 0.0, core = 0.0, core_species = 0.0, wall = 0.0, wall_species = 0.0;
+        double before = 0.0, core = 0.0, core_species = 0.0, outer = 0.0, outer_species = 0.0;
         for (std::size_t i : m) {
             const double v = volume(i), middle = before + 0.5 * v;
             if (middle < total / 3.0) core += v, core_species += counted(i) ? v : 0.0;
-            if (middle > 2.0 * total / 3.0) wall += v, wall_species += counted(i) ? v : 0.0;
+            if (middle > 2.0 * total / 3.0) outer += v, outer_species += counted(i) ? v : 0.0;
             before += v;
         }
         s.core_fraction[b] = core > 0.0 ? core_species / core : nan;
-        s.wall_fraction[b] = wall > 0.0 ? wall_species / wall : nan;
+        s.periphery_fraction[b] = outer > 0.0 ? outer_species / outer : nan;
     }
     return s;
 }
@@ -346,6 +360,28 @@ void add_events(const BandProfile& before, const BandProfile& after, double L, b
 
 }  // namespace
 
+void check_band_options(const BandOptions& o, const std::function<std::string(const std::string&)>& name) {
+    const auto fail = [&](const std::string& field, const std::string& why) {
+        throw Error("band analysis: " + name(field) + " " + why);
+    };
+    const auto number = [](double v) {
+        std::ostringstream text;
+        text << v;  // 6 significant digits, as %g
+        return text.str();
+    };
+    if (o.smoothing < 1) fail("smoothing", "must be at least 1 bin, got " + std::to_string(o.smoothing));
+    if (o.min_width < 1) fail("min_width", "must be at least 1 bin, got " + std::to_string(o.min_width));
+    if (!(std::isfinite(o.z_enter) && o.z_enter > 0.0)) fail("z_enter", "must be positive, got " + number(o.z_enter));
+    if (!(std::isfinite(o.z_leave) && o.z_leave >= 0.0 && o.z_leave <= o.z_enter))
+        fail("z_leave", "must lie in 0 .. " + name("z_enter") + " (" + number(o.z_enter) + "), got " +
+                            number(o.z_leave));
+    if (!(o.min_contrast >= 0.0 && o.min_contrast <= 1.0))
+        fail("min_contrast", "must lie in 0 .. 1 (a volume fraction), got " + number(o.min_contrast));
+    if (!(o.min_contrast_leave >= 0.0 && o.min_contrast_leave <= o.min_contrast))
+        fail("min_contrast_leave", "must lie in 0 .. " + name("min_contrast") + " (" + number(o.min_contrast) +
+                                       "), got " + number(o.min_contrast_leave));
+}
+
 BandHistory analyze_band_field(const BandField& field, const BandOptions& options) {
     const std::size_t samples = field.revolutions.size();
     if (field.small_fraction.size() != samples || field.grains.size() != samples ||
@@ -358,9 +394,7 @@ BandHistory analyze_band_field(const BandField& field, const BandOptions& option
                         " bins");
     if (samples > 0 && (field.bins() < 2 || !(field.inner_length > 0.0)))
         throw Error("band analysis: need at least 2 bins and a positive length");
-    if (options.smoothing < 1 || options.min_width < 1 || !(options.z_leave <= options.z_enter) ||
-        !(options.min_contrast_leave <= options.min_contrast))
-        throw Error("band analysis: smoothing and min_width >= 1, and the thresholds to stay at most those to enter");
+    check_band_options(options);
     BandHistory h;
     const RowSegmenter segmenter(field, options);
     for (std::size_t k = 0; k < samples; ++k) {
@@ -368,6 +402,43 @@ BandHistory analyze_band_field(const BandField& field, const BandOptions& option
         if (k) add_events(h.samples[k - 1], h.samples[k], field.inner_length, field.periodic, h.events);
     }
     return h;
+}
+
+std::vector<CoreBlock> radial_core_blocks(const std::vector<double>& revolutions, const std::vector<double>& core,
+                                          const std::vector<double>& periphery) {
+    if (core.size() != revolutions.size() || periphery.size() != revolutions.size())
+        throw Error("radial core blocks: as many core and periphery values as samples expected");
+    // Per whole revolution: the sums of the finite samples.
+    struct Turn {
+        double core = 0.0, periphery = 0.0, count = 0.0;
+    };
+    std::vector<Turn> turns;
+    for (std::size_t k = 0; k < revolutions.size(); ++k) {
+        if (!(std::isfinite(core[k]) && std::isfinite(periphery[k]) && revolutions[k] >= 0.0)) continue;
+        const auto r = static_cast<std::size_t>(revolutions[k] + 1e-9);  // a sample time rounded just below N
+        if (turns.size() <= r) turns.resize(r + 1);
+        turns[r].core += core[k], turns[r].periphery += periphery[k], turns[r].count += 1.0;
+    }
+    std::vector<CoreBlock> blocks;
+    for (std::size_t from = 0, to = 1; from < turns.size(); from = to, to *= 2) {
+        CoreBlock b;
+        b.from = static_cast<double>(from), b.to = static_cast<double>(to);
+        std::vector<double> excess;
+        for (std::size_t r = from; r < std::min(to, turns.size()); ++r) {
+            const Turn& t = turns[r];
+            if (!(t.count > 0.0)) continue;
+            b.core += t.core / t.count, b.periphery += t.periphery / t.count;
+            excess.push_back((t.core - t.periphery) / t.count);
+        }
+        b.revolutions = excess.size();
+        const double n = static_cast<double>(excess.size());
+        b.core = n > 0.0 ? b.core / n : nan;
+        b.periphery = n > 0.0 ? b.periphery / n : nan;
+        b.excess = b.core - b.periphery;
+        b.excess_interval = bootstrap_mean_interval(excess);
+        blocks.push_back(b);
+    }
+    return blocks;
 }
 
 }  // namespace tumble::analysis

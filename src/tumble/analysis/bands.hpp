@@ -35,9 +35,12 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "tumble/analysis/bootstrap.hpp"
 #include "tumble/particles/particle_store.hpp"
 
 namespace tumble::analysis {
@@ -55,16 +58,42 @@ struct BandFrame {
 int default_band_bins(double inner_length);
 
 // One sample of the composition along the axis, per bin (NaN where a bin,
-// or its core or wall, holds no grains).
+// or its core or periphery, holds no grains).
 struct BandSample {
     std::vector<double> small_fraction;  // phi = V_species / V_all in the bin
     std::vector<double> grains;          // grains in the bin
     std::vector<double> small_grains;    // grains of the species in the bin
     // The radial core: in each bin the grains are ranked by their distance
-    // from the drum axis; the inner third of the bin's grain volume is the
-    // core, the outer third lies at the wall; phi of each.
-    std::vector<double> core_fraction, wall_fraction;
+    // in the cross-section from the bed's centre (bed_centre); the inner
+    // third of the bin's grain volume is the core, the outer third the
+    // periphery (the wall and the free surface); phi of each.
+    std::vector<double> core_fraction, periphery_fraction;
 };
+
+// The centre of the bed's cross-section from which the radial core is
+// measured: the volume-weighted centroid (x, y) of all free grains of the
+// drum (z ignored). Why this point: a radial core of small grains forms
+// around the bed's centre of circulation (Khakhar, McCarthy & Ottino 1997),
+// the point about which the grains circulate, carried up in solid rotation
+// and back down the flowing layer, not around the drum axis. A bed of
+// fill f, its surface flat at the dynamic angle of repose, is a circular
+// segment of half angle a (f = (2a - sin 2a) / 2 pi), symmetric about the
+// line through the axis perpendicular to the free surface. On that line lie
+// the centre of circulation, where the flowing layer meets the bed in solid
+// rotation (the velocity changes sign there), R cos a + delta from the axis
+// (delta the layer's depth), and the segment's centroid, at
+// 4 R sin^3(a) / (3 (2a - sin 2a)). At the paper's fill of 0.3 (a = 71
+// degrees) the surface is 0.32 R from the axis and the centroid 0.60 R, so
+// the two points coincide when the layer is 0.28 R deep (11 mm in the 8 cm
+// drum, two or three grains) and lie a grain apart otherwise; the axis is
+// 0.6 R (24 mm, three large grains) from the centroid, and the grains
+// nearest it are those of the free surface, the periphery of the flow
+// (docs/BANDS.md). The centroid needs no velocities and no surface fit.
+// It is pooled over the whole drum, not taken per bin: the ~40 grains of a
+// bin would place it only to about 2.5 mm (the bed's spread over
+// sqrt(40)), half a small grain; the price is the bed's tilt within a grain
+// diameter or two of an end cap. x, y in m; (0, 0) without free grains.
+std::pair<double, double> bed_centre(const ParticleStore& p);
 
 BandSample measure_bands(const ParticleStore& p, const BandFrame& frame);
 
@@ -96,6 +125,15 @@ struct BandOptions {
     double min_contrast = 0.05, min_contrast_leave = 0.025;
     int min_width = 2;  // bins: a band is at least about one large grain diameter wide (8 mm at the default bins)
 };
+
+// Throws tumble::Error unless smoothing and min_width >= 1, z_enter > 0,
+// 0 <= z_leave <= z_enter, 0 <= min_contrast <= 1 and 0 <= min_contrast_leave
+// <= min_contrast (all finite); the message names the setting by
+// name(field), field as in BandOptions ("z_enter"): a command line passes
+// its option's name.
+void check_band_options(const BandOptions& options,
+                        const std::function<std::string(const std::string& field)>& name =
+                            [](const std::string& field) { return field; });
 
 struct Band {
     bool rich = false;          // rich in the species counted (phi above phi0)
@@ -142,5 +180,23 @@ struct BandHistory {
 };
 
 BandHistory analyze_band_field(const BandField& field, const BandOptions& options = {});
+
+// The radial core over the run, in blocks of revolutions doubling in
+// length, [0, 1), [1, 2), [2, 4), [4, 8), ... (log N, as banding is read),
+// the last ending past the last sample. Each sample gives phi_core and
+// phi_periphery pooled over the bins; the samples of each whole revolution
+// are averaged first, and those revolution means are the independent units
+// of the block (the bed turns over in about a revolution: a grain passes
+// the flowing layer once or twice a turn). excess = phi_core -
+// phi_periphery, its 95 % interval the bootstrap of the revolution means
+// (NaN with fewer than 3 revolutions; bootstrap.hpp).
+struct CoreBlock {
+    double from = 0.0, to = 0.0;        // revolutions, [from, to)
+    std::size_t revolutions = 0;        // whole revolutions with a finite sample
+    double core = 0.0, periphery = 0.0, excess = 0.0;  // means of the revolution means
+    Interval excess_interval;
+};
+std::vector<CoreBlock> radial_core_blocks(const std::vector<double>& revolutions, const std::vector<double>& core,
+                                          const std::vector<double>& periphery);
 
 }  // namespace tumble::analysis
