@@ -175,7 +175,9 @@ int run_command(const RunOptions& options) {
         fmt::print("tumble run {}: {} particles ({} free), {} steps of {:.3g} s ({}; safe maximum {:.3g} s){}\n",
                    options.scenario_file, sim.scenario().particles.size(), sim.scenario().free_count(), plan.steps, dt,
                    t.automatic ? "chosen automatically" : "given", t.maximum,
-                   shared ? fmt::format(", shared among {} MPI ranks", mpi::size()) : "");
+                   shared ? fmt::format(", shared among {} MPI ranks (slabs along {})", mpi::size(),
+                                        "xyz"[sim.slabs()->axis()])
+                          : "");
     }
     RunLoop loop(sim, plan, dir, options.checkpoints, false, {});
     loop.sample();

@@ -414,6 +414,9 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
                    s.mode, sim.scenario().free_count(), info.components[0].grains, info.components[0].name,
                    info.components[1].grains, info.components[1].name, info.wall_particles, info.inner_radius,
                    info.inner_length, s.geometry.periodic_axis ? " (periodic axis)" : "", sim.dt(), info.isa);
+        if (sim.shared())
+            fmt::print("shared among {} MPI ranks, slabs along {} (docs/PARALLEL.md)\n", mpi::size(),
+                       "xyz"[sim.slabs()->axis()]);
         fmt::print("start: {}\n", describe(s.fill));
         fmt::print("settling (rms grain speed below {} m/s, at most {} s)\n", s.settle_speed, s.settle_max_time);
     }

@@ -6,7 +6,12 @@ material's axial self-diffusion D from the grains' mean-squared displacement
 (summary.json). Seeds are the independent samples: mean, standard error
 s/sqrt(n) and a 95 % Student interval per step; the two steps are compared
 by Welch's test. Writes results.md beside this file; run with /usr/bin/python3
-(numpy, scipy)."""
+(numpy, scipy).
+
+Any two sets of drum runs NAME_seedS in one folder compare the same way:
+compare.py --out DIR --a NAME --b NAME --title TEXT --setup TEXT (issue 17's
+studies/mpi_drum: one process against 2 MPI ranks)."""
+import argparse
 import csv
 import json
 import pathlib
@@ -17,7 +22,6 @@ import numpy as np
 from scipy import stats
 
 HERE = pathlib.Path(__file__).resolve().parent
-OUT = HERE / "out"
 
 
 def column_name(name):
@@ -38,8 +42,8 @@ def observables(run):
     return values
 
 
-def runs(step):
-    found = sorted((d for d in OUT.glob(f"{step}_seed*") if (d / "summary.json").exists()),
+def runs(out, name):
+    found = sorted((d for d in out.glob(f"{name}_seed*") if (d / "summary.json").exists()),
                    key=lambda d: int(d.name.split("seed")[1]))
     return found, [observables(d) for d in found]
 
@@ -52,20 +56,29 @@ def interval(x):
 
 
 def main():
-    (auto_dirs, auto), (quarter_dirs, quarter) = runs("auto"), runs("quarter")
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", default=str(HERE / "out"), help="folder of the runs NAME_seedS")
+    parser.add_argument("--a", default="auto", help="name of the first set (default: auto)")
+    parser.add_argument("--b", default="quarter", help="name of the second set, the reference (default: quarter)")
+    parser.add_argument("--title", default="The drum's observables at the automatic step and at a quarter of it")
+    parser.add_argument("--setup", default="", help="what the runs are (default: the time-step study's)")
+    parser.add_argument("--results", default=str(HERE / "results.md"), help="file to write")
+    args = parser.parse_args()
+    out = pathlib.Path(args.out)
+    (auto_dirs, auto), (quarter_dirs, quarter) = runs(out, args.a), runs(out, args.b)
     if len(auto) < 2 or len(quarter) < 2:
-        sys.exit(f"need at least 2 finished runs at each step; have {len(auto)} and {len(quarter)}")
-    steps = (OUT / "steps.txt").read_text().strip()
+        sys.exit(f"need at least 2 finished runs of each set; have {len(auto)} and {len(quarter)}")
+    setup = args.setup or (out / "steps.txt").read_text().strip()
     lines = [
-        "# The drum's observables at the automatic step and at a quarter of it",
+        f"# {args.title}",
         "",
-        f"Made by `studies/time_step/compare.py` from {len(auto)} runs at the step and {len(quarter)} at a quarter"
-        f" ({steps}; seeds {', '.join(d.name.split('seed')[1] for d in auto_dirs)} and"
+        f"Made by `studies/time_step/compare.py` from {len(auto)} runs `{args.a}` and {len(quarter)} `{args.b}`"
+        f" ({setup}; seeds {', '.join(d.name.split('seed')[1] for d in auto_dirs)} and"
         f" {', '.join(d.name.split('seed')[1] for d in quarter_dirs)}). Each run: the default drum (two components,"
         " 1000 grains, 5 rad/s), 6 revolutions after settling; means over N >= 1. +- is the 95 % Student"
         " interval over seeds; the difference's interval and p are Welch's (p: two-sided test of equal means).",
         "",
-        "| observable | at the step | at a quarter | difference [95 % interval], of the quarter's mean | p |",
+        f"| observable | {args.a} | {args.b} | difference [95 % interval], of {args.b}'s mean | p |",
         "|---|---|---|---|---|",
     ]
     verdicts = []
@@ -85,7 +98,7 @@ def main():
         lines.append(f"| {d.name} | " + " | ".join(f"{x:.4g}" for x in v.values()) + " |")
     significant = [k for k, p in verdicts if p < 0.05]
     lines += ["", "Differences significant at 5 %: " + (", ".join(significant) if significant else "none") + "."]
-    (HERE / "results.md").write_text("\n".join(lines) + "\n")
+    pathlib.Path(args.results).write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 
 
