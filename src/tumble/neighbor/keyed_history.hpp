@@ -3,10 +3,9 @@
 // neighbour list whose spheres change between builds (one simulation shared
 // among ranks, sim/slabs.hpp: spheres arrive from and leave for other
 // ranks, ghosts come and go). Within one rank VerletList carries the history
-// over by array index, which is faster and needs no table.
+// over by array index, which needs no table.
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -20,43 +19,49 @@ namespace tumble {
 struct KeyedHistory {
     std::int64_t lo = 0, hi = 0;
     ContactHistory history;
-    bool operator<(const KeyedHistory& o) const { return lo != o.lo ? lo < o.lo : hi < o.hi; }
 };
 
-// Sorted by (lo, hi), each key once.
-using KeyedHistories = std::vector<KeyedHistory>;
-
-// The non-zero histories of a list over the spheres of p.
-inline KeyedHistories keyed_histories(const ParticleStore& p, const PairList& pairs) {
-    KeyedHistories all;
+// The non-zero histories of a list over the spheres of p, in list order.
+inline std::vector<KeyedHistory> keyed_histories(const ParticleStore& p, const PairList& pairs) {
+    std::vector<KeyedHistory> all;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const ContactHistory h = pairs.history(k);
         if (h.is_zero()) continue;
         const std::int64_t a = p.id[pairs.first[k]], b = p.id[pairs.second[k]];
         all.push_back(a < b ? KeyedHistory{a, b, h} : KeyedHistory{b, a, h.swapped()});
     }
-    std::sort(all.begin(), all.end());
-    all.erase(std::unique(all.begin(), all.end(),
-                          [](const KeyedHistory& x, const KeyedHistory& y) { return x.lo == y.lo && x.hi == y.hi; }),
-              all.end());
     return all;
 }
 
-// Records of `more` whose key `into` lacks join it (those it has are kept
-// as they are); `into` stays sorted.
-inline void merge_histories(KeyedHistories& into, const KeyedHistories& more) {
-    const std::size_t had = into.size();
-    for (const KeyedHistory& r : more)
-        if (!std::binary_search(into.begin(), into.begin() + static_cast<std::ptrdiff_t>(had), r)) into.push_back(r);
-    std::sort(into.begin(), into.end());
-}
+// Histories looked up by the two global ids: the records grouped by their
+// lower id (a counting sort over the ids 0 .. ids-1, which the global ids
+// are), each group scanned for the higher id. A sphere has a dozen contacts
+// at most, so a lookup reads a few records; building the table is linear in
+// the records and the ids, where a sort of the records was the dearest part
+// of a rebuild across ranks.
+class HistoryTable {
+public:
+    // Of two records of one pair, the earlier in `records` is kept.
+    void build(const std::vector<KeyedHistory>& records, std::size_t ids) {
+        start_.assign(ids + 1, 0);
+        for (const KeyedHistory& r : records) ++start_[static_cast<std::size_t>(r.lo) + 1];
+        for (std::size_t i = 0; i < ids; ++i) start_[i + 1] += start_[i];
+        grouped_.resize(records.size());
+        std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
+        for (const KeyedHistory& r : records) grouped_[next[static_cast<std::size_t>(r.lo)]++] = r;
+    }
+    // The history of spheres a and b (global ids) seen from a; zero if none.
+    ContactHistory find(std::int64_t a, std::int64_t b) const {
+        const std::int64_t lo = a < b ? a : b, hi = a < b ? b : a;
+        const auto l = static_cast<std::size_t>(lo);
+        for (std::uint32_t k = start_[l]; k < start_[l + 1]; ++k)
+            if (grouped_[k].hi == hi) return a < b ? grouped_[k].history : grouped_[k].history.swapped();
+        return {};
+    }
 
-// The history of spheres a and b (global ids) seen from a; zero if none.
-inline ContactHistory find_history(const KeyedHistories& all, std::int64_t a, std::int64_t b) {
-    const KeyedHistory key{std::min(a, b), std::max(a, b), {}};
-    const auto found = std::lower_bound(all.begin(), all.end(), key);
-    if (found == all.end() || found->lo != key.lo || found->hi != key.hi) return {};
-    return a < b ? found->history : found->history.swapped();
-}
+private:
+    std::vector<std::uint32_t> start_;   // per lower id: its first record in grouped_
+    std::vector<KeyedHistory> grouped_;  // the records by lower id, in their order within a group
+};
 
 }  // namespace tumble

@@ -116,7 +116,7 @@ void VerletList::arrange(ParticleStore& p, Team& team) { wrap_and_sort(p, team);
 // The ghosts lie after the own spheres, and every list is sorted by its
 // first sphere with the second after it: the pairs of two ghosts are the
 // end of the list.
-void VerletList::find_pairs(ParticleStore& p, std::size_t owned, const KeyedHistories& histories, Team& team) {
+void VerletList::find_pairs(ParticleStore& p, std::size_t owned, const HistoryTable& histories, Team& team) {
     search_.find_pairs(p, domain_, skin_, team, pairs_);
     team.one([&] {
         const auto own_end = std::lower_bound(pairs_.first.begin(), pairs_.first.end(), owned);
@@ -126,7 +126,7 @@ void VerletList::find_pairs(ParticleStore& p, std::size_t owned, const KeyedHist
     team.each([&](int c) {
         const IndexRange r = team.range(c, pairs_.size());
         for (std::size_t k = r.begin; k < r.end; ++k)
-            pairs_.set_history(k, find_history(histories, p.id[pairs_.first[k]], p.id[pairs_.second[k]]));
+            pairs_.set_history(k, histories.find(p.id[pairs_.first[k]], p.id[pairs_.second[k]]));
         finish_build(p, team, c);
     });
 }

@@ -52,7 +52,7 @@ public:
     // the first `owned` spheres and between them and the ghosts (none
     // between two ghosts), each with its history from `histories`.
     void arrange(ParticleStore& p, Team& team);
-    void find_pairs(ParticleStore& p, std::size_t owned, const KeyedHistories& histories, Team& team);
+    void find_pairs(ParticleStore& p, std::size_t owned, const HistoryTable& histories, Team& team);
 
     PairList& pairs() { return pairs_; }
     const PairList& pairs() const { return pairs_; }

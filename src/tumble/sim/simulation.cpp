@@ -86,6 +86,7 @@ void Simulation::rebuild(Team& team, bool keep_histories) {
         if (!keep_histories) histories_ = keyed_histories(particles_, neighbors_.pairs());
         particles_.resize(owned_);
         slabs_->migrate(particles_, histories_, wall_history_);
+        history_table_.build(histories_, scenario_.particles.size());
         owned_ = particles_.size();
     });
     neighbors_.arrange(particles_, team);
@@ -93,7 +94,7 @@ void Simulation::rebuild(Team& team, bool keep_histories) {
         slabs_->make_ghosts(particles_);
         prepare_chunks();
     });
-    neighbors_.find_pairs(particles_, owned_, histories_, team);
+    neighbors_.find_pairs(particles_, owned_, history_table_, team);
 }
 
 // Where the free and the kinematic particles lie in the store, after a

@@ -174,7 +174,8 @@ private:
     // a rebuild, and whether a sphere of any rank moved far enough for one.
     std::unique_ptr<Slabs> slabs_;
     std::size_t owned_ = 0;
-    KeyedHistories histories_;
+    std::vector<KeyedHistory> histories_;
+    HistoryTable history_table_;
     bool rebuild_now_ = false;
 };
 

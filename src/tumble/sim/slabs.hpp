@@ -38,10 +38,10 @@ struct SlabState {
 
 class Slabs {
 public:
-    // Cuts along `axis` placed at the quantiles of the free spheres'
-    // coordinates in `all` (the whole scenario, the same on every rank), so
-    // that every slab starts with as many grains as can be (wall spheres
-    // cost little: docs/PARALLEL.md "Load balance"). The end slabs reach to
+    // Cuts along `axis` placed at the quantiles of the spheres' coordinates
+    // in `all` (the whole scenario, the same on every rank), a grain
+    // weighing 1 and a kinematic sphere 0.2 (what it costs, measured), so
+    // that every slab starts with as much work as can be. The end slabs reach to
     // infinity on an open axis and to the box on a periodic one. Throws
     // tumble::Error if a slab with two cuts would be narrower than `reach`.
     Slabs(const Domain& domain, int axis, const ParticleStore& all, double reach);
@@ -59,8 +59,9 @@ public:
     // At a rebuild, on the own spheres (no ghosts in p): those that left the
     // slab go to the neighbour with their histories (of pairs and of the
     // flat walls, at 6 id + face); those that arrive are appended, their
-    // histories merged into `histories` and `wall_history`.
-    void migrate(ParticleStore& p, KeyedHistories& histories, std::vector<ContactHistory>& wall_history);
+    // histories to `histories` (after the rank's own: a pair it computed
+    // itself keeps its record, HistoryTable) and into `wall_history`.
+    void migrate(ParticleStore& p, std::vector<KeyedHistory>& histories, std::vector<ContactHistory>& wall_history);
     // After the sort: copies of the own spheres within reach of each cut go
     // to the neighbours; theirs are appended as ghosts.
     void make_ghosts(ParticleStore& p);
