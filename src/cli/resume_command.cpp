@@ -14,6 +14,13 @@
 
 namespace tumble::cli {
 
+namespace {
+// The ranks the newest checkpoint of a run shared among ranks was written on.
+std::int64_t load_newest_ranks(const std::string& directory, std::uintmax_t max_bytes) {
+    return io::load_newest_checkpoint(directory, max_bytes, {0, 2}).checkpoint.record.integer("ranks");
+}
+}  // namespace
+
 int resume_command(const std::string& directory, bool quiet, double progress_every) {
     // Under mpirun every rank reads its own checkpoint file (a run shared
     // among ranks, io/checkpoint.hpp); rank 0 holds the lock and talks.
@@ -21,18 +28,16 @@ int resume_command(const std::string& directory, bool quiet, double progress_eve
     std::optional<io::RunLock> lock;  // held until the run ends
     if (who.rank == 0) lock.emplace(directory);
     const bool talk = !quiet && who.rank == 0;
-    // A run on one rank may go on on several (each rank reads the one file
-    // and keeps its slab); a run on several ranks only on as many.
+    // A run goes on on any number of ranks: on as many as it ran on, each
+    // rank reads its own file; a run of one process, every rank reads the
+    // one file and keeps its slab; a run of another number of ranks, every
+    // rank reads every rank's file (the whole state) and keeps its slab.
+    const auto max_bytes = static_cast<std::uintmax_t>(memory_limit_bytes(0.0));
     const bool shared_files = !io::checkpoint_files(directory, {0, 2}).empty();
-    if (who.ranks == 1 && shared_files)
-        throw Error(directory + ": its newest checkpoints were written by a run on several MPI ranks "
-                                "(NNNNNN.rR.tck): resume it with mpirun -np RANKS tumble resume");
-    const io::CheckpointRank files = shared_files ? who : io::CheckpointRank{};
-    if (shared_files && io::checkpoint_files(directory, who).empty())
-        throw Error(directory + ": it ran on fewer MPI ranks than " + std::to_string(who.ranks) + " (rank " +
-                    std::to_string(who.rank) + " has no checkpoint): resume it on as many ranks as it ran on");
-    io::LoadedCheckpoint loaded =
-        io::load_newest_checkpoint(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0)), files);
+    const bool as_many = shared_files && load_newest_ranks(directory, max_bytes) == who.ranks;
+    const io::CheckpointRank files = as_many ? who : io::CheckpointRank{};
+    io::LoadedCheckpoint loaded = shared_files && !as_many ? io::load_whole_checkpoint(directory, max_bytes)
+                                                           : io::load_newest_checkpoint(directory, max_bytes, files);
     for (const std::string& why : loaded.rejected)
         fmt::print(stderr, "tumble resume: {}warning: {}; using the previous checkpoint\n", mpi::line_prefix(), why);
     if (files.ranks > 1) {  // the ranks resume from checkpoints written together

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "io/checkpoint.hpp"
 
+#include "tumble/sim/simulation.hpp"
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -203,6 +205,7 @@ SimulationState get_state(ByteReader& r, std::uint32_t version) {
     for (auto* field : {&p.material, &p.motion, &p.tag}) *field = r.get_array<std::int32_t>("particle indices");
     p.reference_position = r.get_array<Vec3>("reference positions");
     p.image_shift = r.get_array<Vec3>("image shifts");
+    p.half_kick.assign(p.id.size(), Vec3{});  // not kept: 0 between steps
     s.neighbors.pairs.first = r.get_array<std::uint32_t>("neighbour pairs");
     s.neighbors.pairs.second = r.get_array<std::uint32_t>("neighbour pairs");
     s.neighbors.pairs.image = r.get_array<std::uint8_t>("neighbour pair images");
@@ -325,13 +328,19 @@ std::vector<fs::path> checkpoint_files(const fs::path& run_directory, Checkpoint
     return files;
 }
 
-fs::path write_checkpoint(const fs::path& run_directory, const Checkpoint& checkpoint, CheckpointRank who) {
+long next_checkpoint_number(const fs::path& run_directory, CheckpointRank who) {
+    const std::vector<fs::path> old = checkpoint_files(run_directory, who);
+    return old.empty() ? 1 : checkpoint_number(old.back(), who) + 1;
+}
+
+fs::path write_checkpoint(const fs::path& run_directory, const Checkpoint& checkpoint, CheckpointRank who,
+                          long number) {
     const fs::path folder = run_directory / "checkpoints";
     std::error_code ec;
     fs::create_directories(folder, ec);
     if (ec) throw Error(folder.string() + ": cannot create the checkpoint folder: " + ec.message());
     std::vector<fs::path> old = checkpoint_files(run_directory, who);
-    const long number = old.empty() ? 1 : checkpoint_number(old.back(), who) + 1;
+    if (number <= 0) number = old.empty() ? 1 : checkpoint_number(old.back(), who) + 1;
     const fs::path file = folder / fmt::format("{:06d}{}", number, rank_suffix(who));
     write_file_atomically(file, encode_checkpoint(checkpoint));
     old.push_back(file);
@@ -393,6 +402,23 @@ LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory, std::uint
                                        : "no intact checkpoint";
     for (const std::string& why : loaded.rejected) reason += "\n  " + why;
     throw Error(run_directory.string() + ": cannot resume: " + reason);
+}
+
+LoadedCheckpoint load_whole_checkpoint(const fs::path& run_directory, std::uintmax_t max_bytes) {
+    LoadedCheckpoint first = load_newest_checkpoint(run_directory, max_bytes, {0, 2});
+    const std::int64_t ranks = first.checkpoint.record.integer("ranks");
+    const std::string number = first.file.filename().string().substr(0, 6);
+    if (ranks < 2 || ranks > 1'000'000)
+        throw Error(first.file.string() + ": record key \"ranks\" is " + std::to_string(ranks) +
+                    ", not the rank count of a run on several ranks");
+    std::vector<SimulationState> parts{std::move(first.checkpoint.state)};
+    for (std::int64_t r = 1; r < ranks; ++r) {
+        const fs::path file = run_directory / "checkpoints" / (number + ".r" + std::to_string(r) + ".tck");
+        parts.push_back(decode_checkpoint(read_checkpoint_file(file, max_bytes), file.string()).state);
+    }
+    first.checkpoint.state = whole_state(parts);
+    first.checkpoint.record.set("ranks", std::int64_t{1});  // a whole state now, for any number of ranks
+    return first;
 }
 
 bool resumable(const fs::path& run_directory, std::uintmax_t max_bytes) {

@@ -87,8 +87,11 @@ std::vector<std::filesystem::path> checkpoint_files(const std::filesystem::path&
 // Writes the next checkpoint of the run (see above) and removes all but the
 // newest two. Returns its path; tumble::Error naming the file on failure
 // (disk full, no permission), with no partial file left under a valid name.
+// `number`: NNNNNN, by default the next after the rank's newest
+// (next_checkpoint_number()); the ranks of a shared run agree on one.
 std::filesystem::path write_checkpoint(const std::filesystem::path& run_directory, const Checkpoint& checkpoint,
-                                       CheckpointRank who = {});
+                                       CheckpointRank who = {}, long number = 0);
+long next_checkpoint_number(const std::filesystem::path& run_directory, CheckpointRank who = {});
 
 // The newest checkpoint that reads back intact and whose output files are at
 // least as long as it recorded; `rejected` gets a message for each newer one
@@ -102,6 +105,15 @@ struct LoadedCheckpoint {
 LoadedCheckpoint load_newest_checkpoint(const std::filesystem::path& run_directory,
                                         std::uintmax_t max_bytes = std::numeric_limits<std::uintmax_t>::max(),
                                         CheckpointRank who = {});
+
+// The newest checkpoint of a run shared among ranks as one whole state
+// (tumble/sim/simulation.hpp, whole_state()): rank 0's newest intact file,
+// then the files of the other ranks of that moment, merged; its record is
+// rank 0's, with "ranks" 1. For a resume on another number of ranks (every
+// rank reading every file: the whole state in memory meanwhile).
+// tumble::Error if a file is missing or damaged.
+LoadedCheckpoint load_whole_checkpoint(const std::filesystem::path& run_directory,
+                                       std::uintmax_t max_bytes = std::numeric_limits<std::uintmax_t>::max());
 
 // True if the run stopped before its end and has an intact checkpoint to go
 // on from (its record's "finished" is 0).

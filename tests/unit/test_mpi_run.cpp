@@ -54,12 +54,6 @@ TEST_F(MpiRun, TwoRanksRunStopAndResumeBitwise) {
     ASSERT_EQ(r.exit_code, 4) << r.output;
     ASSERT_TRUE(fs::exists(stopped / "checkpoints" / "000001.r0.tck"));
     ASSERT_TRUE(fs::exists(stopped / "checkpoints" / "000001.r1.tck"));
-    // On one process or 3 ranks it is refused, naming the way out; nothing is changed.
-    r = run_command(std::string(TUMBLE_BINARY) + " resume " + stopped.string());
-    EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_NE(r.output.find("resume it with mpirun -np RANKS"), std::string::npos) << r.output;
-    r = run_command(mpirun(3, "resume " + stopped.string()));
-    EXPECT_NE(r.exit_code, 0) << r.output;
     r = run_command(mpirun(2, "resume " + stopped.string()));
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_EQ(read_file(a / "time_series.csv"), read_file(stopped / "time_series.csv"));
@@ -68,7 +62,7 @@ TEST_F(MpiRun, TwoRanksRunStopAndResumeBitwise) {
 // A run stopped on one process goes on on 2 ranks (each keeps its slab of
 // the one checkpoint): the series up to the stop is the same, the rest
 // differs from the one-process run only by round-off grown in the flow;
-// from then on the run is one of 2 ranks, refused on one.
+// from then on the run is one of 2 ranks.
 TEST_F(MpiRun, OneProcessRunGoesOnOnTwoRanks) {
     const fs::path whole = dir_ / "whole", moved = dir_ / "moved";
     ASSERT_EQ(run_command(std::string(TUMBLE_BINARY) + " run -q " + scenario_ + " -o " + whole.string()).exit_code, 0);
@@ -84,9 +78,36 @@ TEST_F(MpiRun, OneProcessRunGoesOnOnTwoRanks) {
     EXPECT_EQ(a.substr(0, at), b.substr(0, at));
     EXPECT_EQ(std::count(a.begin(), a.end(), '\n'), std::count(b.begin(), b.end(), '\n'));
     EXPECT_TRUE(fs::exists(moved / "checkpoints" / "000001.r1.tck"));
-    r = run_command(std::string(TUMBLE_BINARY) + " resume " + moved.string());
-    EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_NE(r.output.find("resume it with mpirun -np RANKS"), std::string::npos) << r.output;
+}
+
+// A run of 2 ranks goes on on one process and on 3 ranks: every rank reads
+// every rank's file (the whole state, whole_state()) and keeps its part.
+// The series up to the stop is the same; the ranks' files of the
+// continuation are numbered as one.
+TEST_F(MpiRun, TwoRankRunGoesOnOnOneProcessAndOnThreeRanks) {
+    const fs::path whole = dir_ / "whole";
+    ASSERT_EQ(run_command(mpirun(2, "run -q " + scenario_ + " -o " + whole.string())).exit_code, 0);
+    const std::string a = read_file(whole / "time_series.csv");
+    for (int ranks : {1, 3}) {
+        const fs::path dir = dir_ / ("on" + std::to_string(ranks));
+        auto r = run_command(mpirun(2, "run -q " + scenario_ + " -o " + dir.string() + " --stop-at-step 1000"));
+        ASSERT_EQ(r.exit_code, 4) << r.output;
+        r = run_command(ranks == 1 ? std::string(TUMBLE_BINARY) + " resume -q " + dir.string()
+                                   : mpirun(ranks, "resume -q " + dir.string()));
+        ASSERT_EQ(r.exit_code, 0) << ranks << " ranks: " << r.output;
+        const std::string b = read_file(dir / "time_series.csv");
+        const std::size_t rows_to_stop = 1 + 1000 / 126 + 1;
+        std::size_t at = 0;
+        for (std::size_t k = 0; k < rows_to_stop; ++k) at = a.find('\n', at) + 1;
+        EXPECT_EQ(a.substr(0, at), b.substr(0, at)) << ranks << " ranks";
+        EXPECT_EQ(std::count(a.begin(), a.end(), '\n'), std::count(b.begin(), b.end(), '\n')) << ranks << " ranks";
+        if (ranks == 3) {
+            EXPECT_TRUE(fs::exists(dir / "checkpoints" / "000003.r2.tck"));  // numbered on from the 2 ranks' 000001
+            EXPECT_FALSE(fs::exists(dir / "checkpoints" / "000001.r2.tck"));
+        } else {
+            EXPECT_TRUE(fs::exists(dir / "checkpoints" / "000002.tck"));  // a run of one process from then on
+        }
+    }
 }
 
 // Snapshots of a shared run are gathered on rank 0 into the files a run on

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 #include "tumble/core/error.hpp"
@@ -78,20 +79,20 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
 // sorted, the ghosts made anew, and the list found with the keyed histories.
 // The store's size changes, and with it the chunks' force arrays.
 void Simulation::rebuild(Team& team, bool keep_histories) {
-    if (!slabs_) {
+    if (!slabs_ && !keep_histories) {
         neighbors_.rebuild(particles_, team);
         return;
     }
     team.one([&] {
         if (!keep_histories) histories_ = keyed_histories(particles_, neighbors_.pairs());
         particles_.resize(owned_);
-        slabs_->migrate(particles_, histories_, wall_history_);
+        if (slabs_) slabs_->migrate(particles_, histories_, wall_history_);
         history_table_.build(histories_, scenario_.particles.size());
         owned_ = particles_.size();
     });
     neighbors_.arrange(particles_, team);
     team.one([&] {
-        slabs_->make_ghosts(particles_);
+        if (slabs_) slabs_->make_ghosts(particles_);
         prepare_chunks();
     });
     neighbors_.find_pairs(particles_, owned_, history_table_, team);
@@ -409,7 +410,9 @@ std::string state_problem(const SimulationState& s, const ParticleStore& fresh, 
 
 void Simulation::restore(SimulationState state) {
     const int ranks = slabs_ ? mpi::size() : 1;
-    const bool onto_ranks = slabs_ && state.ranks == 1;  // a one-rank state shared out among the ranks
+    // A one-rank state shared out among the ranks, or the whole state made
+    // of several ranks' (whole_state()): the list is found anew.
+    const bool onto_ranks = (slabs_ && state.ranks == 1) || state.list_from_histories;
     std::string why = state.ranks != ranks && !onto_ranks
                           ? "it was captured on " + std::to_string(state.ranks) + " ranks, this run has " +
                                 std::to_string(ranks) + " (a state of several ranks restores only on as many)"
@@ -433,7 +436,7 @@ void Simulation::restore(SimulationState state) {
     step_ = state.step;
     if (onto_ranks) {  // the rank's slab of the whole state, its ghosts and list anew
         histories_ = keyed_histories(particles_, state.neighbors.pairs);
-        slabs_->keep_own(particles_);
+        if (slabs_) slabs_->keep_own(particles_);
         owned_ = particles_.size();
         neighbors_.restore({{}, {}, state.neighbors.builds});
         prepare_chunks();
@@ -448,6 +451,66 @@ void Simulation::restore(SimulationState state) {
     neighbors_.restore(std::move(state.neighbors));
     prepare_chunks();
     run_in_team(chunks(), [&](Team& team) { locate_kinds(team); });
+}
+
+SimulationState whole_state(const std::vector<SimulationState>& ranks) {
+    if (ranks.empty()) throw Error("whole_state: no states");
+    const SimulationState& first = ranks.front();
+    SimulationState whole;
+    whole.dt = first.dt;
+    whole.time = first.time;
+    whole.step = first.step;
+    whole.motions = first.motions;
+    whole.neighbors.builds = first.neighbors.builds;
+    whole.wall_history.assign(first.wall_history.size(), ContactHistory{});
+    whole.list_from_histories = true;
+    // Every rank's own spheres, by global id.
+    std::vector<std::pair<std::int64_t, std::pair<std::size_t, std::size_t>>> own;  // id, (rank, index)
+    for (std::size_t r = 0; r < ranks.size(); ++r) {
+        const SimulationState& s = ranks[r];
+        if (s.step != first.step || s.dt != first.dt || s.wall_history.size() != first.wall_history.size() ||
+            s.owned > s.particles.size())
+            throw Error("whole_state: the ranks' states are not of one run at one step");
+        for (std::size_t i = 0; i < s.owned; ++i) own.push_back({s.particles.id[i], {r, i}});
+    }
+    std::sort(own.begin(), own.end());
+    std::int64_t largest = -1;  // ids are 0 .. N-1; own.size() below marks an id no rank owns
+    for (const auto& [id, where] : own) largest = std::max(largest, id);
+    std::vector<std::size_t> index_of_id(static_cast<std::size_t>(largest + 1), own.size());
+    for (const auto& [id, where] : own) {
+        const auto [r, i] = where;
+        if (index_of_id[static_cast<std::size_t>(id)] != own.size())
+            throw Error("whole_state: sphere " + std::to_string(id) + " is owned by two ranks");
+        index_of_id[static_cast<std::size_t>(id)] = whole.particles.size();
+        whole.particles.append(ranks[r].particles, i);
+        if (!whole.wall_history.empty())
+            for (std::size_t f = 6 * static_cast<std::size_t>(id); f < 6 * static_cast<std::size_t>(id) + 6; ++f)
+                whole.wall_history[f] = ranks[r].wall_history[f];
+    }
+    whole.owned = whole.particles.size();
+    whole.neighbors.position_at_build = whole.particles.position;
+    // The histories of the touching pairs (a pair across a cut is in two
+    // ranks' lists: the first rank's record is kept), as pairs of the whole.
+    std::vector<std::tuple<std::uint32_t, std::uint32_t, ContactHistory>> pairs;
+    for (const SimulationState& s : ranks)
+        for (const KeyedHistory& h : keyed_histories(s.particles, s.neighbors.pairs)) {
+            const auto lo = static_cast<std::size_t>(h.lo), hi = static_cast<std::size_t>(h.hi);
+            if (hi >= index_of_id.size() || index_of_id[lo] == own.size() || index_of_id[hi] == own.size())
+                throw Error("whole_state: a contact of sphere " + std::to_string(h.lo) + " with a sphere no rank owns");
+            const std::size_t a = index_of_id[lo], b = index_of_id[hi];
+            pairs.emplace_back(static_cast<std::uint32_t>(std::min(a, b)), static_cast<std::uint32_t>(std::max(a, b)),
+                               a < b ? h.history : h.history.swapped());
+        }
+    std::stable_sort(pairs.begin(), pairs.end(), [](const auto& x, const auto& y) {
+        return std::get<0>(x) != std::get<0>(y) ? std::get<0>(x) < std::get<0>(y) : std::get<1>(x) < std::get<1>(y);
+    });
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const auto& [i, j, h] = pairs[k];
+        if (k > 0 && std::get<0>(pairs[k - 1]) == i && std::get<1>(pairs[k - 1]) == j) continue;  // the same pair again
+        whole.neighbors.pairs.add(i, j, 0);
+        whole.neighbors.pairs.set_history(whole.neighbors.pairs.size() - 1, h);
+    }
+    return whole;
 }
 
 Observables Simulation::observe() const {

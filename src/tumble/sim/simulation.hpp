@@ -132,7 +132,8 @@ private:
     void locate_kinds(Team& team);
     // The neighbour list anew (shared among ranks: migration and ghosts too).
     // `keep_histories`: histories_ already holds the histories (a state
-    // restored onto ranks), not the list.
+    // restored onto ranks, or made of several ranks'), not the list; the
+    // list is then found with them by global id, on one rank too.
     void rebuild(Team& team, bool keep_histories = false);
     // The part of range r where free (kinematic) particles can be.
     IndexRange free_part(IndexRange r) const;
@@ -178,5 +179,12 @@ private:
     HistoryTable history_table_;
     bool rebuild_now_ = false;
 };
+
+// The whole state of a run shared among ranks, from the states its ranks
+// captured at one step (each rank's, in rank order): every rank's own spheres
+// in the order of their global ids, their flat-wall histories, and the
+// histories of every pair; the list is left to be found anew when it is
+// restored (list_from_histories), on any number of ranks.
+SimulationState whole_state(const std::vector<SimulationState>& ranks);
 
 }  // namespace tumble

@@ -39,6 +39,10 @@ struct SimulationState {
     std::size_t owned = 0;
     SlabState slabs;
     int ranks = 1;  // the ranks of the run it was captured from (one state per rank)
+    // Made by whole_state() from several ranks' states: the pairs hold the
+    // histories of the touching pairs only, not the Verlet list of a run,
+    // which restore() finds anew. Not kept in checkpoint files.
+    bool list_from_histories = false;
 };
 
 }  // namespace tumble
