@@ -35,20 +35,9 @@ double largest_difference(const Simulation& shared, const Simulation& alone,
     return tumble::mpi::max(worst);
 }
 
-// The short drum of test_threads.cpp: the paper's cross-section and wall
-// spheres, end caps, 300 grains thrown at up to 1 m/s while it turns at
-// 5 rad/s. 6 cm long and 8 cm across: cut across the rotation axis (along x,
-// its longest), so grains and wall spheres both migrate.
-tumble::Scenario short_drum() {
-    tumble::DrumGeometry g;
-    g.length = 0.06;
-    tumble::Scenario s = tumble::build_drum_scenario(g, "two-component", 300, 5).scenario;
-    s.motions[0].angular_velocity = 5.0;
-    std::mt19937_64 rng(13);
-    for (tumble::ParticleSpec& grain : s.particles)
-        if (grain.motion == tumble::free_motion) grain.velocity = random_vector(rng);
-    return s;
-}
+// The short drum (physics_helpers.hpp), 6 cm long and 8 cm across: cut
+// across the rotation axis (along x, its longest), so grains and wall
+// spheres both migrate.
 
 // The tolerance of test_threads.cpp's ShortDrumOneAndTwoThreadsAgreeOverARun
 // and its reason: the shared run adds each sphere's contact forces in

@@ -123,24 +123,6 @@ TEST(Threads, OneAndTwoThreadsAgreeOverARun) {
 namespace physics_test {
 namespace {
 
-// The long drum of issue 13 (docs/BENCHMARKS.md) at reduced size: the
-// paper's cross-section and wall spheres, end caps, two components, but 6 cm
-// long with 300 grains, and turning at 5 rad/s from the start while the
-// grains, placed at random and thrown with velocity components up to 1 m/s,
-// collide with each other and the wall. Grains and wall spheres move,
-// contacts begin and end, and the list is rebuilt and re-sorted (its
-// history carried over) every few tens of steps.
-tumble::Scenario short_drum() {
-    tumble::DrumGeometry g;
-    g.length = 0.06;
-    tumble::Scenario s = tumble::build_drum_scenario(g, "two-component", 300, 5).scenario;
-    s.motions[0].angular_velocity = 5.0;
-    std::mt19937_64 rng(13);
-    for (tumble::ParticleSpec& grain : s.particles)
-        if (grain.motion == tumble::free_motion) grain.velocity = random_vector(rng);
-    return s;
-}
-
 TEST(Threads, ShortDrumSameThreadCountIsBitwiseIdentical) {
     const tumble::Scenario s = short_drum();
     tumble::Simulation a(s, 2), b(s, 2);
