@@ -173,6 +173,7 @@ void put_state(ByteWriter& w, const SimulationState& s) {
     w.put(s.time);
     w.put(s.step);
     w.put(static_cast<std::uint64_t>(s.owned));
+    w.put_array(s.slabs.cuts);
     for (int side = 0; side < 2; ++side) {
         w.put_array(s.slabs.send[static_cast<std::size_t>(side)]);
         w.put(static_cast<std::uint64_t>(s.slabs.receive_begin[static_cast<std::size_t>(side)]));
@@ -220,6 +221,7 @@ SimulationState get_state(ByteReader& r, std::uint32_t version) {
     s.owned = p.id.size();  // formats 2 and 3: one rank, every sphere its own
     if (version >= 4) {
         s.owned = static_cast<std::size_t>(r.get<std::uint64_t>("own spheres"));
+        s.slabs.cuts = r.get_array<double>("slab cuts");
         for (int side = 0; side < 2; ++side) {
             const auto sd = static_cast<std::size_t>(side);
             s.slabs.send[sd] = r.get_array<std::uint32_t>("ghosts sent");

@@ -86,6 +86,8 @@ void Simulation::rebuild(Team& team, bool keep_histories) {
     team.one([&] {
         if (!keep_histories) histories_ = keyed_histories(particles_, neighbors_.pairs());
         particles_.resize(owned_);
+        if (slabs_ && neighbors_.builds() % Slabs::rebalance_every == 0 && neighbors_.builds() > 0)
+            slabs_->rebalance(particles_, owned_);  // the cuts where the work now is, before the spheres migrate
         if (slabs_) slabs_->migrate(particles_, histories_, wall_history_);
         history_table_.build(histories_, scenario_.particles.size());
         owned_ = particles_.size();
@@ -394,6 +396,9 @@ std::string state_problem(const SimulationState& s, const ParticleStore& fresh, 
         else if (pairs.first[k] >= pairs.second[k] || (k > 0 && pairs.first[k] < pairs.first[k - 1]))
             return "neighbour pair " + std::to_string(k) + " is out of order (lower index first, sorted by it)";
     if (s.neighbors.position_at_build.size() != held) return "the positions at the last neighbour build do not match";
+    if (shared && (s.slabs.cuts.size() != static_cast<std::size_t>(s.ranks) + 1 ||
+                   !std::is_sorted(s.slabs.cuts.begin(), s.slabs.cuts.end())))
+        return "its slab cuts are missing or out of order";
     for (int side = 0; side < 2; ++side) {
         const auto sd = static_cast<std::size_t>(side);
         for (std::uint32_t i : s.slabs.send[sd])

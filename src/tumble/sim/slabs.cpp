@@ -92,23 +92,23 @@ Slabs::Slabs(const Domain& domain, int axis, const ParticleStore& all, double re
     std::sort(x.begin(), x.end());
     const auto n = static_cast<std::size_t>(ranks_);
     const double infinity = std::numeric_limits<double>::infinity();
-    cut_.assign(n + 1, 0.0);
-    cut_[0] = periodic ? domain.lo[axis] : -infinity;
-    cut_[n] = periodic ? domain.hi[axis] : infinity;
+    state_.cuts.assign(n + 1, 0.0);
+    state_.cuts[0] = periodic ? domain.lo[axis] : -infinity;
+    state_.cuts[n] = periodic ? domain.hi[axis] : infinity;
     double below = 0.0;  // the weight of the spheres before x[k]
     std::size_t k = 0;
     for (std::size_t r = 1; r < n; ++r) {  // cut r before the first sphere whose weight below reaches r/n of all
         while (k < x.size() && below + x[k].second <= total * static_cast<double>(r) / static_cast<double>(n))
             below += x[k++].second;
-        cut_[r] = x.empty()        ? domain.lo[axis] + length * static_cast<double>(r) / static_cast<double>(n)
+        state_.cuts[r] = x.empty()        ? domain.lo[axis] + length * static_cast<double>(r) / static_cast<double>(n)
                   : k == 0         ? x[0].first
                   : k == x.size() ? x.back().first
                                    : 0.5 * (x[k - 1].first + x[k].first);
     }
     for (std::size_t r = 0; r < n; ++r)
-        if (std::isfinite(cut_[r]) && std::isfinite(cut_[r + 1]) && cut_[r + 1] - cut_[r] < reach)
+        if (std::isfinite(state_.cuts[r]) && std::isfinite(state_.cuts[r + 1]) && state_.cuts[r + 1] - state_.cuts[r] < reach)
             throw Error("domain decomposition: slab " + std::to_string(r) + " of " + std::to_string(n) + " along " +
-                        std::string(1, "xyz"[axis]) + " would be " + std::to_string(cut_[r + 1] - cut_[r]) +
+                        std::string(1, "xyz"[axis]) + " would be " + std::to_string(state_.cuts[r + 1] - state_.cuts[r]) +
                         " m wide, less than the reach of a contact plus the skin (" + std::to_string(reach) +
                         " m): run on fewer ranks");
     side_[0] = {rank_ > 0 ? rank_ - 1 : periodic ? ranks_ - 1 : mpi::no_rank, rank_ == 0 && periodic ? length : 0.0};
@@ -245,6 +245,56 @@ void Slabs::update_ghosts(ParticleStore& p, std::size_t owned) {
         }
     }
     for (std::size_t g = owned; g < p.size(); ++g) p.force[g] = p.torque[g] = Vec3{};
+}
+
+bool Slabs::rebalance(const ParticleStore& p, std::size_t owned) {
+    const auto n = static_cast<std::size_t>(ranks_);
+    std::vector<double>& cut = state_.cuts;
+    // The range of the histogram: the box on a periodic axis, else where the spheres are.
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (std::size_t i = 0; i < owned; ++i) {
+        low = std::min(low, p.position[i][axis_]);
+        high = std::max(high, p.position[i][axis_]);
+    }
+    low = domain_.periodic[axis_] ? domain_.lo[axis_] : -mpi::max(-low);
+    high = domain_.periodic[axis_] ? domain_.hi[axis_] : mpi::max(high);
+    constexpr std::size_t bins = 1024;
+    const double width = (high - low) / static_cast<double>(bins);
+    if (!(width > 0.0)) return false;
+    // Whole counts per bin, grains and kinematic spheres apart: their sums
+    // over the ranks are exact, whatever the order of the additions.
+    std::vector<double> count(2 * bins, 0.0);
+    double mine = 0.0;
+    for (std::size_t i = 0; i < owned; ++i) {
+        const double x = (p.position[i][axis_] - low) / width;
+        const auto b = static_cast<std::size_t>(std::clamp(x, 0.0, static_cast<double>(bins - 1)));
+        count[2 * b + (p.is_kinematic(i) ? 1 : 0)] += 1.0;
+        mine += p.is_kinematic(i) ? wall_sphere_weight : 1.0;
+    }
+    mpi::sum(count);
+    std::vector<double> weight(bins);
+    double total = 0.0;
+    for (std::size_t b = 0; b < bins; ++b) total += weight[b] = count[2 * b] + wall_sphere_weight * count[2 * b + 1];
+    if (mpi::max(mine) <= 1.05 * total / static_cast<double>(n)) return false;
+    std::vector<double> wanted = cut;
+    double below = 0.0;
+    std::size_t b = 0;
+    for (std::size_t r = 1; r < n; ++r) {  // where the weight below reaches r/n of all, within its bin by proportion
+        const double target = total * static_cast<double>(r) / static_cast<double>(n);
+        while (b + 1 < bins && below + weight[b] < target) below += weight[b++];
+        const double within = weight[b] > 0.0 ? std::clamp((target - below) / weight[b], 0.0, 1.0) : 0.0;
+        wanted[r] = low + (static_cast<double>(b) + within) * width;
+    }
+    bool moved = false;
+    for (std::size_t r = 1; r < n; ++r) {  // in order: each slab's lower cut is already final
+        const double left = cut[r] - cut[r - 1], right = cut[r + 1] - cut[r];
+        const double step = 0.5 * std::min(std::isfinite(left) ? left : right, std::isfinite(right) ? right : left);
+        const double to = std::clamp(wanted[r], cut[r] - step, cut[r] + step);
+        if (to - cut[r - 1] < reach_ || cut[r + 1] - to < reach_) continue;  // a slab too narrow: this cut stays
+        moved = moved || to != cut[r];
+        cut[r] = to;
+    }
+    return moved;
 }
 
 ParticleStore Slabs::gather_own(const ParticleStore& p, std::size_t owned) const {

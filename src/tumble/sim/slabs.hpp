@@ -29,9 +29,11 @@
 
 namespace tumble {
 
-// What a checkpoint of one rank keeps of its slab: the ghosts it sends each
-// step and where those it receives lie in its store (below, above).
+// What a checkpoint of one rank keeps of its slab: the cuts (they move, see
+// rebalance()), the ghosts it sends each step and where those it receives
+// lie in its store (below, above).
 struct SlabState {
+    std::vector<double> cuts;  // ranks + 1, m
     std::array<std::vector<std::uint32_t>, 2> send;
     std::array<std::size_t, 2> receive_begin{}, receive_count{};
 };
@@ -47,9 +49,21 @@ public:
     Slabs(const Domain& domain, int axis, const ParticleStore& all, double reach);
 
     int axis() const { return axis_; }
-    const std::vector<double>& cuts() const { return cut_; }
-    double lo() const { return cut_[static_cast<std::size_t>(rank_)]; }
-    double hi() const { return cut_[static_cast<std::size_t>(rank_) + 1]; }
+    const std::vector<double>& cuts() const { return state_.cuts; }
+    double lo() const { return state_.cuts[static_cast<std::size_t>(rank_)]; }
+    double hi() const { return state_.cuts[static_cast<std::size_t>(rank_) + 1]; }
+
+    // Collective, at a rebuild before migrate(): if the heaviest slab (a
+    // grain weighing 1, a kinematic sphere 0.2) is more than 5 % above the
+    // mean, the inner cuts move to the quantiles of the spheres' present
+    // coordinates (a histogram of 1,024 bins summed over the ranks, in
+    // whole counts, so that every rank finds the same cuts), each by at most
+    // half the narrower slab beside it (a sphere then changes owner only to
+    // a neighbour) and never to a slab narrower than the reach. Returns
+    // whether the cuts moved. The simulation calls it every
+    // `rebalance_every` rebuilds.
+    static constexpr int rebalance_every = 50;
+    bool rebalance(const ParticleStore& p, std::size_t owned);
     // The domain a rank's neighbour search sees: not periodic along the
     // axis (ghosts carry their image).
     Domain local_domain() const;
@@ -94,7 +108,6 @@ private:
     int axis_ = 2;
     double reach_ = 0.0;
     int rank_ = 0, ranks_ = 1;
-    std::vector<double> cut_;       // ranks + 1
     std::array<Side, 2> side_{};    // 0: below, 1: above
     SlabState state_;
     Traffic traffic_;
