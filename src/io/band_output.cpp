@@ -127,23 +127,44 @@ void write_kymograph(const fs::path& file, const analysis::BandField& f, double 
     write_png(file, image);
 }
 
-// bands.json's "radial_core": the reference and the blocks of
-// analysis::radial_core_blocks.
+// The blocks of analysis::difference_blocks as JSON, the two quantities and
+// their difference under the given names.
+Json difference_blocks_json(const std::vector<analysis::DifferenceBlock>& blocks, const char* a, const char* b,
+                            const std::string& difference) {
+    Json list = Json::array();
+    for (const analysis::DifferenceBlock& block : blocks)
+        list.push_back(Json{{"from", block.from},
+                            {"to", block.to},
+                            {"revolutions", static_cast<std::int64_t>(block.revolutions)},
+                            {a, block.a},
+                            {b, block.b},
+                            {difference, block.difference},
+                            {difference + "_lo", block.interval.lo},
+                            {difference + "_hi", block.interval.hi}});
+    return list;
+}
+
+// bands.json's "radial_core": the reference and the blocks.
 Json radial_core_json(const std::vector<double>& revolutions, const std::vector<double>& core,
                       const std::vector<double>& periphery, std::size_t axis_samples) {
-    Json blocks = Json::array();
-    for (const analysis::CoreBlock& b : analysis::radial_core_blocks(revolutions, core, periphery))
-        blocks.push_back(Json{{"from", b.from},
-                              {"to", b.to},
-                              {"revolutions", static_cast<std::int64_t>(b.revolutions)},
-                              {"core_fraction", b.core},
-                              {"periphery_fraction", b.periphery},
-                              {"core_excess", b.excess},
-                              {"core_excess_lo", b.excess_interval.lo},
-                              {"core_excess_hi", b.excess_interval.hi}});
     return Json{{"reference", "bed centroid"},
                 {"axis_samples", static_cast<std::int64_t>(axis_samples)},
-                {"blocks", blocks}};
+                {"blocks", difference_blocks_json(analysis::difference_blocks(revolutions, core, periphery),
+                                                  "core_fraction", "periphery_fraction", "core_excess")}};
+}
+
+// The layers next to the caps: 2 cm (five bins of the default 4 mm; at
+// least one bin), phi there against the row's phi0, in blocks of N.
+constexpr double end_layer_width = 0.02;  // m
+
+Json end_layers_json(const analysis::BandField& field, std::size_t bins, double width) {
+    const analysis::EndLayers layers = analysis::end_layers(field, bins);
+    return Json{{"width", width},
+                {"bins", static_cast<std::int64_t>(bins)},
+                {"left", difference_blocks_json(analysis::difference_blocks(field.revolutions, layers.left, layers.mean),
+                                                "layer_fraction", "mean_fraction", "excess")},
+                {"right", difference_blocks_json(analysis::difference_blocks(field.revolutions, layers.right, layers.mean),
+                                                 "layer_fraction", "mean_fraction", "excess")}};
 }
 
 // The small grains' crossing of the inner bands of large grains (bands
@@ -284,6 +305,10 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
                 mean += field.grains[k][b] * field.small_fraction[k][b], total += field.grains[k][b];
     if (samples > 0) write_kymograph(out / "kymograph.png", field, total > 0.0 ? mean / total : 0.5);
 
+    const auto layer_bins = static_cast<std::size_t>(
+        std::max(1L, std::lround(end_layer_width / (info.inner_length / info.band_bins))));
+    const double layer_width = static_cast<double>(layer_bins) * info.inner_length / info.band_bins;
+
     // bands.json: the thresholds, the counts, the last sample's bands and the events.
     std::size_t most = 0;
     double onset = std::nan("");
@@ -319,6 +344,7 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
                                       return w;
                                   }()}}},
                {"radial_core", radial_core_json(field.revolutions, core, periphery, record.axis_samples)},
+               {"end_layers", field.periodic ? Json(nullptr) : end_layers_json(field, layer_bins, layer_width)},
                {"crossing", crossing_json(crossing, small_msd)},
                {"max_bands", static_cast<std::int64_t>(most)},
                {"onset_revolution", onset},
@@ -389,9 +415,21 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
                         first.revolutions);
     if (record.axis_samples > 0)
         text << fmt::format("    radial core: {} of the {} samples of band_profile.csv were measured from the drum "
-                            "axis by a tumble before 2026-11-30 (rows core_fraction, wall_fraction) and are left out "
+                            "axis by an earlier tumble (rows core_fraction, wall_fraction) and are left out "
                             "(NaN)\n",
                             record.axis_samples, samples);
+    if (!field.periodic) {  // the layers next to the caps, over the last block of N
+        const analysis::EndLayers layers = analysis::end_layers(field, layer_bins);
+        const auto left = analysis::difference_blocks(field.revolutions, layers.left, layers.mean);
+        const auto right = analysis::difference_blocks(field.revolutions, layers.right, layers.mean);
+        if (!left.empty() && !right.empty())
+            text << fmt::format("    end layers ({:.3g} cm at each cap), phi - phi0 over N = {:.3g} to {:.3g}: left "
+                                "{:+.3f} [{:+.3f}, {:+.3f}], right {:+.3f} [{:+.3f}, {:+.3f}] (95 %, revolutions as "
+                                "units; bands.json end_layers)\n",
+                                100.0 * layer_width, left.back().from, last.revolutions, left.back().difference,
+                                left.back().interval.lo, left.back().interval.hi, right.back().difference,
+                                right.back().interval.lo, right.back().interval.hi);
+    }
     text << "    " << describe_crossing(crossing, small_msd, small, large) << "\n";
 }
 

@@ -293,18 +293,42 @@ TEST(Bands, RadialCoreInBlocksOfRevolutions) {
         periphery.push_back(0.4);
     }
     core[1] = std::nan("");  // an empty core: left out
-    const std::vector<CoreBlock> blocks = radial_core_blocks(N, core, periphery);
+    const std::vector<DifferenceBlock> blocks = difference_blocks(N, core, periphery);
     ASSERT_EQ(blocks.size(), 4u);
     EXPECT_DOUBLE_EQ(blocks[2].from, 2.0);
     EXPECT_DOUBLE_EQ(blocks[2].to, 4.0);
     EXPECT_EQ(blocks[0].revolutions, 1u);
-    EXPECT_NEAR(blocks[0].excess, 0.1, 1e-12);
-    EXPECT_TRUE(std::isnan(blocks[1].excess_interval.lo));  // one revolution: no interval
-    EXPECT_EQ(blocks[3].revolutions, 4u);                   // 4, 5, 6 and the last sample, N = 7
-    EXPECT_GT(blocks[3].excess, 0.2);
-    EXPECT_LE(blocks[3].excess_interval.lo, blocks[3].excess);
-    EXPECT_GE(blocks[3].excess_interval.hi, blocks[3].excess);
-    EXPECT_GT(blocks[3].excess_interval.lo, 0.19);
+    EXPECT_NEAR(blocks[0].difference, 0.1, 1e-12);
+    EXPECT_TRUE(std::isnan(blocks[1].interval.lo));  // one revolution: no interval
+    EXPECT_EQ(blocks[3].revolutions, 4u);            // 4, 5, 6 and the last sample, N = 7
+    EXPECT_GT(blocks[3].difference, 0.2);
+    EXPECT_LE(blocks[3].interval.lo, blocks[3].difference);
+    EXPECT_GE(blocks[3].interval.hi, blocks[3].difference);
+    EXPECT_GT(blocks[3].interval.lo, 0.19);
+}
+
+// The end layers: phi of the bins next to each cap against the row's phi0,
+// grain-weighted, empty bins left out. A row of 10 bins of 10 grains with
+// phi 0.2 in the first two bins, 0.6 in the last two and 0.4 between:
+// phi0 = 0.4, the 2-bin layers 0.2 and 0.6.
+TEST(Bands, EndLayersAgainstTheRowsMean) {
+    BandField field;
+    field.inner_length = 0.04;
+    field.revolutions = {0.0, 1.0};
+    for (int k = 0; k < 2; ++k) {
+        std::vector<double> phi(10, 0.4), grains(10, 10.0);
+        phi[0] = phi[1] = 0.2;
+        phi[8] = phi[9] = 0.6;
+        if (k == 1) phi[5] = std::nan(""), grains[5] = 0.0;  // an empty bin
+        field.small_fraction.push_back(phi);
+        field.grains.push_back(grains);
+    }
+    const EndLayers layers = end_layers(field, 2);
+    for (std::size_t k = 0; k < 2; ++k) {
+        EXPECT_NEAR(layers.left[k], 0.2, 1e-12);
+        EXPECT_NEAR(layers.right[k], 0.6, 1e-12);
+        EXPECT_NEAR(layers.mean[k], 0.4, 1e-12);
+    }
 }
 
 // Bad thresholds are refused naming the setting as the caller spells it.

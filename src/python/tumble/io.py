@@ -98,7 +98,7 @@ class Run:
         small_grains, bed_core_fraction or bed_periphery_fraction (phi in the
         inner and outer third about the bed's centre) per axial bin
         (docs/BANDS.md); bin b is centred at z = -L/2 + (b + 1/2) L / bins.
-        Samples written by a tumble before 2026-11-30 have core_fraction and
+        Samples written by an earlier tumble have core_fraction and
         wall_fraction instead, ranked from the drum axis: each quantity has
         the samples that hold it."""
         frame = self.table("band_profile.csv")

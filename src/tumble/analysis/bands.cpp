@@ -404,41 +404,61 @@ BandHistory analyze_band_field(const BandField& field, const BandOptions& option
     return h;
 }
 
-std::vector<CoreBlock> radial_core_blocks(const std::vector<double>& revolutions, const std::vector<double>& core,
-                                          const std::vector<double>& periphery) {
-    if (core.size() != revolutions.size() || periphery.size() != revolutions.size())
-        throw Error("radial core blocks: as many core and periphery values as samples expected");
+std::vector<DifferenceBlock> difference_blocks(const std::vector<double>& revolutions, const std::vector<double>& a,
+                                               const std::vector<double>& b) {
+    if (a.size() != revolutions.size() || b.size() != revolutions.size())
+        throw Error("difference blocks: as many values of each quantity as samples expected");
     // Per whole revolution: the sums of the finite samples.
     struct Turn {
-        double core = 0.0, periphery = 0.0, count = 0.0;
+        double a = 0.0, b = 0.0, count = 0.0;
     };
     std::vector<Turn> turns;
     for (std::size_t k = 0; k < revolutions.size(); ++k) {
-        if (!(std::isfinite(core[k]) && std::isfinite(periphery[k]) && revolutions[k] >= 0.0)) continue;
+        if (!(std::isfinite(a[k]) && std::isfinite(b[k]) && revolutions[k] >= 0.0)) continue;
         const auto r = static_cast<std::size_t>(revolutions[k] + 1e-9);  // a sample time rounded just below N
         if (turns.size() <= r) turns.resize(r + 1);
-        turns[r].core += core[k], turns[r].periphery += periphery[k], turns[r].count += 1.0;
+        turns[r].a += a[k], turns[r].b += b[k], turns[r].count += 1.0;
     }
-    std::vector<CoreBlock> blocks;
+    std::vector<DifferenceBlock> blocks;
     for (std::size_t from = 0, to = 1; from < turns.size(); from = to, to *= 2) {
-        CoreBlock b;
-        b.from = static_cast<double>(from), b.to = static_cast<double>(to);
-        std::vector<double> excess;
+        DifferenceBlock block;
+        block.from = static_cast<double>(from), block.to = static_cast<double>(to);
+        std::vector<double> difference;
         for (std::size_t r = from; r < std::min(to, turns.size()); ++r) {
             const Turn& t = turns[r];
             if (!(t.count > 0.0)) continue;
-            b.core += t.core / t.count, b.periphery += t.periphery / t.count;
-            excess.push_back((t.core - t.periphery) / t.count);
+            block.a += t.a / t.count, block.b += t.b / t.count;
+            difference.push_back((t.a - t.b) / t.count);
         }
-        b.revolutions = excess.size();
-        const double n = static_cast<double>(excess.size());
-        b.core = n > 0.0 ? b.core / n : nan;
-        b.periphery = n > 0.0 ? b.periphery / n : nan;
-        b.excess = b.core - b.periphery;
-        b.excess_interval = bootstrap_mean_interval(excess);
-        blocks.push_back(b);
+        block.revolutions = difference.size();
+        const double n = static_cast<double>(difference.size());
+        block.a = n > 0.0 ? block.a / n : nan;
+        block.b = n > 0.0 ? block.b / n : nan;
+        block.difference = block.a - block.b;
+        block.interval = bootstrap_mean_interval(difference);
+        blocks.push_back(block);
     }
     return blocks;
+}
+
+EndLayers end_layers(const BandField& field, std::size_t bins) {
+    EndLayers layers;
+    const std::size_t n = field.bins();
+    bins = std::min(bins, n);
+    // Grain-weighted phi over bins [from, to) of sample k.
+    const auto pooled = [&](std::size_t k, std::size_t from, std::size_t to) {
+        double sum = 0.0, grains = 0.0;
+        for (std::size_t i = from; i < to; ++i)
+            if (std::isfinite(field.small_fraction[k][i]))
+                sum += field.grains[k][i] * field.small_fraction[k][i], grains += field.grains[k][i];
+        return grains > 0.0 ? sum / grains : nan;
+    };
+    for (std::size_t k = 0; k < field.revolutions.size(); ++k) {
+        layers.left.push_back(pooled(k, 0, bins));
+        layers.right.push_back(pooled(k, n - bins, n));
+        layers.mean.push_back(pooled(k, 0, n));
+    }
+    return layers;
 }
 
 }  // namespace tumble::analysis

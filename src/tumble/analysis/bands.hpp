@@ -181,22 +181,31 @@ struct BandHistory {
 
 BandHistory analyze_band_field(const BandField& field, const BandOptions& options = {});
 
-// The radial core over the run, in blocks of revolutions doubling in
-// length, [0, 1), [1, 2), [2, 4), [4, 8), ... (log N, as banding is read),
-// the last ending past the last sample. Each sample gives phi_core and
-// phi_periphery pooled over the bins; the samples of each whole revolution
-// are averaged first, and those revolution means are the independent units
-// of the block (the bed turns over in about a revolution: a grain passes
-// the flowing layer once or twice a turn). excess = phi_core -
-// phi_periphery, its 95 % interval the bootstrap of the revolution means
-// (NaN with fewer than 3 revolutions; bootstrap.hpp).
-struct CoreBlock {
+// Two quantities a and b sampled over the run (the radial core: phi_core
+// and phi_periphery pooled over the bins; an end layer: phi next to a cap
+// and the row's phi0), in blocks of revolutions doubling in length, [0, 1),
+// [1, 2), [2, 4), [4, 8), ... (log N, as banding is read), the last ending
+// past the last sample. The samples of each whole revolution are averaged
+// first, and those revolution means are the independent units of the block
+// (the bed turns over in about a revolution: a grain passes the flowing
+// layer once or twice a turn). difference = a - b, its 95 % interval the
+// bootstrap of the revolution means (NaN with fewer than 3 revolutions;
+// bootstrap.hpp).
+struct DifferenceBlock {
     double from = 0.0, to = 0.0;        // revolutions, [from, to)
     std::size_t revolutions = 0;        // whole revolutions with a finite sample
-    double core = 0.0, periphery = 0.0, excess = 0.0;  // means of the revolution means
-    Interval excess_interval;
+    double a = 0.0, b = 0.0, difference = 0.0;  // means of the revolution means
+    Interval interval;
 };
-std::vector<CoreBlock> radial_core_blocks(const std::vector<double>& revolutions, const std::vector<double>& core,
-                                          const std::vector<double>& periphery);
+std::vector<DifferenceBlock> difference_blocks(const std::vector<double>& revolutions, const std::vector<double>& a,
+                                               const std::vector<double>& b);
+
+// phi in the layer of `bins` bins next to each cap (grain-weighted; NaN
+// where the layer holds no grains), and the row's phi0, per sample: the
+// end layers, where end-wall friction segregates first in experiments.
+struct EndLayers {
+    std::vector<double> left, right, mean;
+};
+EndLayers end_layers(const BandField& field, std::size_t bins);
 
 }  // namespace tumble::analysis
