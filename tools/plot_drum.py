@@ -778,18 +778,8 @@ def fig_bands(run, w):
     core.set_ylabel(f"volume fraction of {small}")
     core.set_title("radial core: composition by distance from the bed's centre", fontsize=9)
     core.legend(fontsize=7)
-    radial = [b for b in info.get("radial_core", {}).get("blocks", []) if b.get("core_excess") is not None]
-    if radial:
-        mid = np.array([math.sqrt(max(b["from"], 0.5) * b["to"]) for b in radial])
-        value = np.array([b["core_excess"] for b in radial])
-        lo = np.array([b["core_excess_lo"] if b["core_excess_lo"] is not None else math.nan for b in radial])
-        hi = np.array([b["core_excess_hi"] if b["core_excess_hi"] is not None else math.nan for b in radial])
-        has = np.isfinite(lo) & np.isfinite(hi)
-        if has.any():
-            blocks.errorbar(mid[has], value[has], yerr=[value[has] - lo[has], hi[has] - value[has]], fmt="o", ms=4,
-                            color="0.2", capsize=3, label="95 % interval (revolutions as units)")
-        if (~has).any():
-            blocks.plot(mid[~has], value[~has], "o", ms=4, mfc="none", color="0.2", label="under 3 revolutions")
+    if _plot_blocks(blocks, info.get("radial_core", {}).get("blocks", []), "core_excess", "0.2", "o",
+                    "95 % interval (revolutions as units)"):
         blocks.set_xscale("log")
         blocks.xaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
         blocks.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
@@ -802,15 +792,42 @@ def fig_bands(run, w):
                                   ("right_end_fraction", ">", "right end band")):
         ends.plot(t["revolutions"], t[column], marker, ms=4, ls="none", color="0.3" if marker == "<" else "0.6",
                   label=label)
+    layers = info.get("end_layers") or {}
+    for side, colour, marker in (("left", COLOURS[0], "<"), ("right", COLOURS[1 % len(COLOURS)], ">")):
+        _plot_blocks(ends, layers.get(side, []), "excess", colour, marker,
+                     f"{side} end layer ({100 * layers.get('width', 0.02):.3g} cm) minus the mean, per block",
+                     shift=mean)
     ends.axhline(mean, color="0.6", lw=0.8, ls="--", label="mean")
     ends.set_ylim(0, 1)
     ends.set_xlabel("revolutions N")
     ends.set_ylabel(f"volume fraction of {small}")
-    ends.set_title("composition of the end bands", fontsize=9)
+    ends.set_title("composition of the end bands, and of the layers at the caps", fontsize=9)
     ends.legend(fontsize=7)
     fig.suptitle(f"Axial bands, {run.mode} mode, {run.label()}", fontsize=10)
     fig.tight_layout()
     w.save(fig, name)
+
+
+def _plot_blocks(ax, blocks, key, colour, marker, label, shift=0.0):
+    """A quantity per block of N (bands.json's radial_core and end_layers
+    blocks: KEY, KEY_lo, KEY_hi), at the geometric middle of each block, with
+    its 95 % interval where it has one (3 revolutions or more), plus
+    `shift`. Returns whether there was anything to plot."""
+    blocks = [b for b in blocks if b.get(key) is not None]
+    if not blocks:
+        return False
+    mid = np.array([math.sqrt(max(b["from"], 0.5) * b["to"]) for b in blocks])
+    value = np.array([b[key] for b in blocks]) + shift
+    lo = np.array([b[key + "_lo"] if b[key + "_lo"] is not None else math.nan for b in blocks]) + shift
+    hi = np.array([b[key + "_hi"] if b[key + "_hi"] is not None else math.nan for b in blocks]) + shift
+    has = np.isfinite(lo) & np.isfinite(hi)
+    if has.any():
+        ax.errorbar(mid[has], value[has], yerr=[value[has] - lo[has], hi[has] - value[has]], fmt=marker, ms=4,
+                    color=colour, capsize=3, label=label)
+    if (~has).any():
+        ax.plot(mid[~has], value[~has], marker, ms=4, mfc="none", color=colour,
+                label=label.replace("95 % interval (revolutions as units)", "block") + ": under 3 revolutions, no interval")
+    return True
 
 
 def do_run(args):
