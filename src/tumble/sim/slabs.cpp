@@ -198,10 +198,12 @@ void Slabs::make_ghosts(ParticleStore& p) {
     for (int s : {1, 0}) {
         const auto& side = side_[static_cast<std::size_t>(s)];
         mpi::Bytes out;
+        ParticleStore copy;  // the copy is sent shifted; the sphere itself stays as it is, bit for bit
         for (std::uint32_t i : state_.send[static_cast<std::size_t>(s)]) {
-            shift_particle(p, i, axis_, side.shift);  // the copy is sent shifted, the sphere stays
-            put_particle(out, p, i);
-            shift_particle(p, i, axis_, -side.shift);
+            copy.resize(0);
+            copy.append(p, i);
+            shift_particle(copy, 0, axis_, side.shift);
+            put_particle(out, copy, 0);
         }
         if (side.rank != mpi::no_rank) traffic_.rebuild_bytes += static_cast<std::int64_t>(out.size());
         const mpi::Bytes in =
