@@ -342,7 +342,7 @@ fs::path write_checkpoint(const fs::path& run_directory, const Checkpoint& check
     fs::create_directories(folder, ec);
     if (ec) throw Error(folder.string() + ": cannot create the checkpoint folder: " + ec.message());
     std::vector<fs::path> old = checkpoint_files(run_directory, who);
-    if (number <= 0) number = old.empty() ? 1 : checkpoint_number(old.back(), who) + 1;
+    if (number <= 0) number = next_checkpoint_number(run_directory, who);
     const fs::path file = folder / fmt::format("{:06d}{}", number, rank_suffix(who));
     write_file_atomically(file, encode_checkpoint(checkpoint));
     old.push_back(file);

@@ -14,14 +14,6 @@
 
 namespace tumble {
 
-namespace {
-// Shared among ranks, a pair of an own sphere and a ghost is in the lists of
-// both ranks: it counts on the rank of the lower id (as in observe()).
-bool counted_here(const Simulation& sim, std::uint32_t i, std::uint32_t j) {
-    const ParticleStore& p = sim.particles();
-    return j < sim.owned() || p.id[i] < p.id[j];
-}
-}  // namespace
 
 // The same pair test and geometry as the force loop (add_contact_forces in
 // simulation.cpp), then only the normal terms of contact_law(): those need
@@ -37,7 +29,7 @@ std::vector<ContactLink> contact_network(const Simulation& sim) {
     std::vector<ContactLink> links;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         std::uint32_t i = pairs.first[k], j = pairs.second[k];
-        if (!counted_here(sim, i, j)) continue;
+        if (!sim.counts_pair(i, j)) continue;
         Vec3 d = p.position[i] - p.position[j] + images[pairs.image[k]];
         const double distance2 = norm2(d);
         const double reach = p.radius[i] + p.radius[j];
@@ -86,7 +78,7 @@ std::vector<std::uint32_t> contact_counts(const Simulation& sim) {
     std::vector<std::uint32_t> counts(sim.scenario().particles.size(), 0);
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const std::uint32_t i = pairs.first[k], j = pairs.second[k];
-        if (!counted_here(sim, i, j)) continue;
+        if (!sim.counts_pair(i, j)) continue;
         const double reach = p.radius[i] + p.radius[j];
         if (norm2(p.position[i] - p.position[j] + images[pairs.image[k]]) >= reach * reach) continue;
         ++counts[static_cast<std::size_t>(p.id[i])];

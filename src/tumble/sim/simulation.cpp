@@ -19,17 +19,13 @@ namespace tumble {
 
 namespace {
 
-double default_skin(const Scenario& s) {
-    double largest = 0.0;
-    for (const auto& p : s.particles) largest = std::max(largest, p.radius);
-    return 0.2 * largest;
-}
-
 double largest_radius(const Scenario& s) {
     double largest = 0.0;
     for (const auto& p : s.particles) largest = std::max(largest, p.radius);
     return largest;
 }
+
+double default_skin(const Scenario& s) { return 0.2 * largest_radius(s); }
 
 // The axis a domain is cut along when shared among ranks: its longest (a
 // drum's rotation axis z; z, then y, on a tie).
@@ -539,7 +535,7 @@ Observables Simulation::observe() const {
     const PairList& pairs = neighbors_.pairs();
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const std::uint32_t i = pairs.first[k], j = pairs.second[k];
-        if (j >= owned_ && p.id[j] < p.id[i]) continue;  // a pair with a ghost: counted on the rank of the lower id
+        if (!counts_pair(i, j)) continue;
         const double distance = norm(p.position[i] - p.position[j] + neighbors_.images()[pairs.image[k]]);
         const double overlap = p.radius[i] + p.radius[j] - distance;
         if (overlap <= 0.0) continue;

@@ -82,6 +82,12 @@ public:
     // ranks, the rank's own spheres [0, owned()) and after them the ghosts.
     const ParticleStore& particles() const { return particles_; }
     std::size_t owned() const { return owned_; }
+    // Whether this rank counts pair (i, j) of its list (array indices, i < j)
+    // in sums over the pairs: a pair of an own sphere and a ghost is in the
+    // lists of both ranks, and counts on the rank of the lower global id.
+    bool counts_pair(std::uint32_t i, std::uint32_t j) const {
+        return j < owned_ || particles_.id[i] < particles_.id[j];
+    }
     bool shared() const { return slabs_ != nullptr; }
     const Slabs* slabs() const { return slabs_.get(); }
     // Every sphere: on one rank particles(); shared among ranks, the own
