@@ -189,6 +189,10 @@ int main(int argc, char** argv) {
     omega_opt->excludes(rpm_opt)->excludes(froude_opt);
     rpm_opt->excludes(froude_opt);
     drum_cmd->add_option("--revolutions", revolutions, "Revolutions after settling");
+    std::optional<double> until_band_change;
+    drum_cmd->add_option("--until-band-change", until_band_change,
+                         "End the rotation early once the band count has differed from the start's for this many "
+                         "revolutions (a prepared start's bands merged or dissolved; docs/BANDS.md; default 0: off)");
     drum_cmd->add_option("--samples", samples, "Samples per revolution (default 20)");
     drum_cmd->add_option("--bins", bins, "Axial bins of the concentration profile (default 12)");
     drum_cmd->add_option("--band-bins", band_bins, "Axial bins of the band profile (default: L / 4 mm; docs/BANDS.md)");
@@ -419,6 +423,7 @@ int main(int argc, char** argv) {
             if (grains) d.grains = static_cast<std::size_t>(*grains), d.fill_fraction = 0.0;
             if (fill) d.fill_fraction = *fill;
             if (revolutions) d.revolutions = *revolutions;
+            if (until_band_change) d.until_band_change = *until_band_change;
             if (samples) d.samples_per_revolution = *samples;
             if (bins) d.profile_bins = *bins;
             if (band_bins) d.band_bins = *band_bins;

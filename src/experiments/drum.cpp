@@ -132,6 +132,10 @@ public:
         series_.emplace(dir_ / "time_series.csv", sim.scenario().materials, continuing);
         if (continuing && plan_.rotating) drum_series_.emplace(dir_, plan_.info, true);
         if (continuing && plan_.rotating && plan_.info.band_bins > 0) band_profile_.emplace(dir_, plan_.info.band_bins, true);
+        band_field_.inner_length = plan_.info.inner_length;
+        band_field_.periodic = plan_.info.periodic_axis;
+        if (band_profile_ && continuing && plan_.info.until_band_change > 0.0)  // the samples before the stop
+            band_field_ = io::read_band_profile(dir_ / "band_profile.csv", plan_.info).field;
     }
 
     // snapshot_times: of the snapshots written before a resume.
@@ -260,6 +264,10 @@ private:
             if (k % sample_every_ == 0) sample();
             if (snapshot_every_ && k % snapshot_every_ == 0) snapshots_->write(sim_);
             progress.update(k);
+            if (ends_on_band_change(k)) {
+                steps_ = k;
+                break;
+            }
             const auto due = checkpoints_.after_steps(sim_, k);
             if (due != Checkpointer::Due::no) checkpoint(false, progress.elapsed_seconds());
             if (due == Checkpointer::Due::and_stop) {
@@ -291,10 +299,42 @@ private:
         drum_series_->write(revolutions, sim_.time(), state);
         // The band profile at every band_every_-th step of the rotation and at its end.
         const std::int64_t k = sim_.step_count() - plan_.rotation_start_step;
-        if (band_profile_ && (k % band_every_ == 0 || k == steps_))
-            band_profile_->write(revolutions, analysis::measure_bands(all, band_frame_));
+        if (band_profile_ && (k % band_every_ == 0 || k == steps_)) {
+            const analysis::BandSample bands = analysis::measure_bands(all, band_frame_);
+            band_profile_->write(revolutions, bands);
+            if (plan_.info.until_band_change > 0.0) watch_band_count(revolutions, bands);
+        }
         series_->write(observed);
         if (on_sample_) on_sample_({revolutions, state, sim_});
+    }
+
+    // --until-band-change: the band count of every band sample so far, as
+    // the run's analysis will count it; once it has differed from the
+    // start's for the revolutions asked, the run is marked to end.
+    void watch_band_count(double revolutions, const analysis::BandSample& bands) {
+        band_field_.revolutions.push_back(revolutions);
+        band_field_.small_fraction.push_back(bands.small_fraction);
+        band_field_.grains.push_back(bands.grains);
+        band_field_.small_grains.push_back(bands.small_grains);
+        const analysis::BandHistory h = analysis::analyze_band_field(band_field_);
+        const double since = analysis::band_count_changed(h, plan_.info.until_band_change);
+        if (!std::isfinite(since)) return;
+        io::DrumRunInfo& info = plan_.info;
+        info.band_change_since = since;
+        info.bands_at_start = static_cast<int>(h.samples.front().bands.size());
+        info.bands_at_end = static_cast<int>(h.samples.back().bands.size());
+        if (talk())
+            fmt::print("the band count left its start value, {}, at N = {:.4g} and has not come back for {:.3g} "
+                       "revolutions ({} bands now): the rotation ends at N = {:.4g} (--until-band-change)\n",
+                       info.bands_at_start, since, revolutions - since, info.bands_at_end, revolutions);
+    }
+
+    // Whether the rotation ends at step k on its band count: decided by rank
+    // 0, which measures the bands, and told to every rank at each band sample.
+    bool ends_on_band_change(std::int64_t k) const {
+        if (!(plan_.info.until_band_change > 0.0) || k % band_every_ != 0) return false;
+        const bool ends = plan_.info.band_change_since >= 0.0;
+        return sim_.shared() ? mpi::any(ends) : ends;
     }
 
     int finish() {
@@ -347,6 +387,7 @@ private:
     std::optional<io::TimeSeriesWriter> series_;  // rank 0's, as the next two
     std::optional<io::DrumSeriesWriter> drum_series_;
     std::optional<io::BandProfileWriter> band_profile_;
+    analysis::BandField band_field_;  // rank 0's band samples, kept with --until-band-change
     std::optional<io::SnapshotSeries> snapshots_;
 };
 
@@ -383,6 +424,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     info.arrangement = keyword_of(arrangements, s.fill.arrangement);
     info.band_edges = band_edges(s.geometry, s.fill);
     info.cap_friction = s.fill.cap_friction.value_or(-1.0);
+    info.until_band_change = s.until_band_change;
     info.dt = sim.dt();
     info.threads = sim.threads();
     info.isa = isa_description();

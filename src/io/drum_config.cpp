@@ -45,6 +45,9 @@ void check_drum_settings(const DrumSettings& s, const std::string& source) {
         fail("speed", "the rotation speed must be > 0, got " + show(s.speed));
     if (!(s.revolutions > 0.0) || !std::isfinite(s.revolutions))
         fail("revolutions", "must be > 0, got " + show(s.revolutions));
+    if (!(s.until_band_change >= 0.0 && s.until_band_change < s.revolutions))
+        fail("until_band_change",
+             "must be >= 0 (0: off) and below revolutions (" + show(s.revolutions) + "), got " + show(s.until_band_change));
     if (s.grains < 2) fail("grains", "need at least 2 grains");
     if (!(s.fill_fraction >= 0.0 && s.fill_fraction <= 1.0))
         fail("fill_fraction", "must lie in (0, 1], got " + show(s.fill_fraction));
@@ -108,7 +111,7 @@ DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::
             s.seed = static_cast<std::uint64_t>(r.integer(*n, "fill.seed", 0, INT64_MAX));
     }
     if (const toml::table* t = r.table(root, "rotation", false)) {
-        r.only_keys(*t, "rotation", {"omega", "rpm", "froude", "revolutions", "spin_up_time"});
+        r.only_keys(*t, "rotation", {"omega", "rpm", "froude", "revolutions", "spin_up_time", "until_band_change"});
         s.spin_up_time = r.number(*t, "rotation", "spin_up_time", Bound::non_negative, s.spin_up_time);
         int given = 0;
         for (auto [key, unit] : {std::pair{"omega", SpeedUnit::rad_per_s}, std::pair{"rpm", SpeedUnit::rpm},
@@ -120,6 +123,7 @@ DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::
             }
         if (given > 1) r.fail("rotation", "give the speed once: omega (rad/s), rpm or froude");
         s.revolutions = r.number(*t, "rotation", "revolutions", Bound::positive, s.revolutions);
+        s.until_band_change = r.number(*t, "rotation", "until_band_change", Bound::non_negative, s.until_band_change);
     }
     if (const toml::table* t = r.table(root, "measure", false)) {
         r.only_keys(*t, "measure", {"samples_per_revolution", "profile_bins", "band_bins", "snapshots_per_revolution"});

@@ -36,6 +36,11 @@ struct DrumSettings {
     // start, N = omega t / 2 pi, so the ramp ends at N = omega T / 2 pi.
     double spin_up_time = 0.0;
     double revolutions = 12.0;         // after the bed has settled (the MSD's D needs 5 blocks of 2 after N = 1)
+    // If > 0: end the rotation early, once the band count has differed from
+    // its value at the start for this many revolutions
+    // (analysis::band_count_changed; docs/BANDS.md): a prepared start's
+    // bands merged, lost an end band or dissolved. 0: every revolution.
+    double until_band_change = 0.0;
     int samples_per_revolution = 20;
     int profile_bins = 12;
     int band_bins = 0;                 // axial bins of the band profile (docs/BANDS.md); 0: L / 4 mm

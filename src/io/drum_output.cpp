@@ -63,6 +63,10 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                         {"arrangement", info.arrangement},
                         {"band_edges", edges},
                         {"cap_friction", info.cap_friction},
+                        {"until_band_change", info.until_band_change},
+                        {"band_change_since", info.band_change_since},
+                        {"bands_at_start", info.bands_at_start},
+                        {"bands_at_end", info.bands_at_end},
                         {"component", components}};
     std::ostringstream text;
     text << "# tumble drum run: what was run (read by `tumble analyze`)\n" << t << '\n';
@@ -111,6 +115,11 @@ DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
     info.arrangement = t["arrangement"].value_or(std::string("halves"));
     if (const toml::node* n = t.get("band_edges")) info.band_edges = r.numbers(*n, "band_edges");
     info.cap_friction = t["cap_friction"].value_or(-1.0);
+    // Absent before --until-band-change (2026-11-30): every revolution.
+    info.until_band_change = t["until_band_change"].value_or(0.0);
+    info.band_change_since = t["band_change_since"].value_or(-1.0);
+    info.bands_at_start = t["bands_at_start"].value_or(0);
+    info.bands_at_end = t["bands_at_end"].value_or(0);
     const auto entries = r.tables(t, "", "component");
     for (std::size_t i = 0; i < entries.size(); ++i) {
         const std::string p = at("component", i);
@@ -519,6 +528,11 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     text << fmt::format("  mode {}, omega {:.4g} rad/s ({:.3g} rpm, Froude {:.3g}), {:.4g} revolutions\n", info.mode,
                         info.omega, info.omega * 60.0 / (2.0 * tumble::pi), info.froude,
                         series.revolutions.empty() ? 0.0 : series.revolutions.back());
+    if (info.band_change_since >= 0.0)
+        text << fmt::format("  ended early (--until-band-change {:.3g}): {} bands at the start, another count from "
+                            "N = {:.4g} on, {} at the end ({:.4g} revolutions asked)\n",
+                            info.until_band_change, info.bands_at_start, info.band_change_since, info.bands_at_end,
+                            info.revolutions);
     text << fmt::format("  shear model {}, friction limited by the {} normal force\n", info.shear_model,
                         info.friction_normal);
     const std::string edges =
@@ -652,6 +666,15 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                  {"omega", info.omega},
                  {"froude", info.froude},
                  {"revolutions", series.revolutions.empty() ? 0.0 : series.revolutions.back()},
+                 {"revolutions_asked", info.revolutions},
+                 {"until_band_change",
+                  info.until_band_change > 0.0
+                      ? Json{{"hold", info.until_band_change},
+                             {"ended", info.band_change_since >= 0.0},
+                             {"since", info.band_change_since >= 0.0 ? Json(info.band_change_since) : Json()},
+                             {"bands_at_start", info.bands_at_start},
+                             {"bands_at_end", info.bands_at_end}}
+                      : Json()},
                  {"grains", static_cast<std::int64_t>([&] {
                       std::size_t n = 0;
                       for (const auto& c : info.components) n += c.grains;

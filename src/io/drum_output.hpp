@@ -59,6 +59,13 @@ struct DrumRunInfo {
     std::string arrangement = "halves";  // the start's axial arrangement (keyword; setup/drum.hpp)
     std::vector<double> band_edges;      // z (m) of the start's band edges, -L/2 to L/2 (empty: not recorded)
     double cap_friction = -1.0;          // mu between grains and caps (< 0: the wall's)
+    // tumble drum --until-band-change: revolutions the band count must
+    // differ from the start's before the run ends (0: off); if it ended so,
+    // the N since which it differed and the counts at the start and end
+    // (band_change_since < 0: the run turned every revolution asked).
+    double until_band_change = 0.0;
+    double band_change_since = -1.0;
+    int bands_at_start = 0, bands_at_end = 0;
     std::vector<DrumComponent> components;
 };
 

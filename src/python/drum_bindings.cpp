@@ -50,6 +50,8 @@ void bind_drum(py::module_& m) {
         .def_property_readonly("grains", &io::DrumSettings::grain_count, "the number of grains it makes")
         .def_property_readonly("omega", &io::DrumSettings::omega, "rad/s")
         .def_readonly("revolutions", &io::DrumSettings::revolutions)
+        .def_readonly("until_band_change", &io::DrumSettings::until_band_change,
+                      "end early once the band count has differed from the start's this many revolutions (0: off)")
         .def_readonly("seed", &io::DrumSettings::seed)
         .def_property_readonly("length", [](const io::DrumSettings& s) { return s.geometry.length; }, "m")
         .def_property_readonly("diameter", [](const io::DrumSettings& s) { return s.geometry.diameter; }, "m")

@@ -67,6 +67,10 @@ def test_arrangement_settings_are_the_command_lines():
         tumble.drum_settings(arrangement="bands", bands=1)
     with pytest.raises(tumble.Error, match="cap_friction"):
         tumble.drum_settings(periodic_axis=True, cap_friction=0.5)
+    assert tumble.drum_settings(revolutions=150, until_band_change=10).until_band_change == 10
+    assert default.until_band_change == 0
+    with pytest.raises(tumble.Error, match="until_band_change"):
+        tumble.drum_settings(revolutions=12, until_band_change=12)
     # The drum built from them: three bands, small grains in the middle one.
     scenario = tumble.drum_scenario(length=0.24, grains=400, arrangement="bands", bands=3, ends="large")
     sim = tumble.Simulation(scenario)

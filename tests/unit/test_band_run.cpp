@@ -152,6 +152,62 @@ TEST_F(BandRun, SoFarAnalysesAStoppedRunWithoutFinishingIt) {
               std::string::npos);
 }
 
+TEST_F(BandRun, UntilBandChangeEndsTheRunOnceTheCountHasHeld) {
+    // Four prepared bands in the small drum lose their middle bands within
+    // two revolutions of 4 (bands.csv: 4, then 2 from N = 0.75, then none).
+    // With --until-band-change 1 the run must end at the first band sample
+    // (every 1/4 revolution) at which its count has differed from the
+    // start's for a whole revolution, and be finished there; stopped on the
+    // way and resumed, the same files.
+    const std::string drum = "drum -q --grains 300 --length 0.06 --omega 8 --revolutions 4 --samples 8 "
+                             "--dt 3.926990816987241e-05 --snapshots 0 --no-plot --arrangement bands --bands 4 "
+                             "--until-band-change 1 --out ";
+    const fs::path out = dir_ / "until", stopped = dir_ / "stopped";
+    const auto r = tumble_run(drum + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const tumble::io::CsvTable bands = tumble::io::read_csv_table(out / "bands.csv");
+    const std::vector<double> N = bands.numbers("revolutions"), count = bands.numbers("bands");
+    ASSERT_GE(N.size(), 3u);
+    std::size_t k = N.size();  // the samples from k on differ from the start's count
+    while (k > 1 && count[k - 1] != count.front()) --k;
+    ASSERT_LT(k, N.size()) << "the run ended with the start's band count";
+    const double since = N[k], end = N.back();
+    EXPECT_GE(end - since, 1.0 - 1e-9);
+    EXPECT_LT(end - since, 1.25 - 1e-9);  // not a band sample later than needed
+    EXPECT_LT(end, 3.5);                  // ended early
+    const tumble::io::Json summary = tumble::io::parse_json(read_file(out / "summary.json"));
+    EXPECT_NEAR(summary["revolutions"].get<double>(), end, 1e-9);
+    EXPECT_EQ(summary["revolutions_asked"].get<double>(), 4.0);
+    const tumble::io::Json& until = summary["until_band_change"];
+    EXPECT_TRUE(until["ended"].get<bool>());
+    EXPECT_NEAR(until["since"].get<double>(), since, 1e-9);
+    EXPECT_EQ(until["bands_at_start"].get<double>(), count.front());
+    EXPECT_EQ(until["bands_at_end"].get<double>(), count.back());
+    EXPECT_NE(read_file(out / "summary.txt").find("ended early (--until-band-change 1)"), std::string::npos);
+    const auto again = tumble_run("resume " + out.string());
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    EXPECT_NE(again.output.find("nothing to do"), std::string::npos) << again.output;
+
+    // Stopped near N = 1 (settling takes about 10,000 steps, a revolution
+    // 20,000) and resumed: the samples before the stop are read back and the
+    // run ends where the uninterrupted one did.
+    ASSERT_EQ(tumble_run(drum + stopped.string() + " --stop-at-step 30000").exit_code, 4);
+    const auto resumed = tumble_run("resume -q " + stopped.string());
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+    EXPECT_EQ(read_file(stopped / "bands.csv"), read_file(out / "bands.csv"));
+    EXPECT_EQ(read_file(stopped / "drum_series.csv"), read_file(out / "drum_series.csv"));
+}
+
+TEST_F(BandRun, BadUntilBandChangeIsRefusedNamingIt) {
+    for (const std::string value : {"-1", "12", "nan"}) {
+        const auto r = tumble_run("drum -q --revolutions 12 --until-band-change " + value + " --out " +
+                                  (dir_ / "never").string());
+        EXPECT_NE(r.exit_code, 0) << value;
+        EXPECT_NE(r.output.find("until_band_change"), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(dir_ / "never"));
+    }
+}
+
 TEST_F(BandRun, BadBandBinsIsRefusedBeforeAnyWork) {
     const auto r = tumble_run("drum -q --band-bins 1 --out " + (dir_ / "never").string());
     EXPECT_NE(r.exit_code, 0);

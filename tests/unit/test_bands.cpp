@@ -123,6 +123,42 @@ TEST(Bands, MergeIsFoundAtTheSampleWhereABandVanishes) {
     EXPECT_EQ(e.after, 3u);
 }
 
+TEST(Bands, CountChangeIsFoundOnceItHasHeldLongEnough) {
+    // Five bands until sample 7, three from then on (the merge above),
+    // samples one revolution apart: with a hold of 3 revolutions the change
+    // is reported from sample 10 on, dated N = 7; not before, not with a
+    // longer hold than the samples give.
+    constexpr int vanish = 7;
+    std::vector<std::vector<double>> rows;
+    for (int k = 0; k < 12; ++k)
+        rows.push_back(k < vanish ? banded_row({-0.03, -0.01, 0.015, 0.035}) : banded_row({0.015, 0.035}));
+    const BandField all = field_of(rows);
+    for (int last = 1; last < 12; ++last) {
+        BandField f = all;  // the samples a run has seen by sample `last`
+        for (auto* rows_of : {&f.small_fraction, &f.grains}) rows_of->resize(static_cast<std::size_t>(last) + 1);
+        f.revolutions.resize(static_cast<std::size_t>(last) + 1);
+        const double since = band_count_changed(analyze_band_field(f), 3.0);
+        if (last < vanish + 3)
+            EXPECT_TRUE(std::isnan(since)) << "sample " << last;
+        else
+            EXPECT_DOUBLE_EQ(since, vanish) << "sample " << last;
+    }
+    EXPECT_TRUE(std::isnan(band_count_changed(analyze_band_field(all), 5.0)));  // 4 revolutions of change only
+    EXPECT_TRUE(std::isnan(band_count_changed(analyze_band_field(all), 0.0)));  // off
+}
+
+TEST(Bands, CountChangeThatReturnsDoesNotCount) {
+    // Two halves, a third band for samples 3 to 6, two again from 7: the
+    // last samples have the start's count, so nothing is reported; a start
+    // without bands (a mixed start) that bands counts as a change.
+    std::vector<std::vector<double>> rows;
+    for (int k = 0; k < 10; ++k) rows.push_back(k >= 3 && k < 7 ? banded_row({-0.01, 0.02}) : banded_row({0.0}));
+    EXPECT_TRUE(std::isnan(band_count_changed(analyze_band_field(field_of(rows)), 2.0)));
+    rows.assign(3, std::vector<double>(bins, 0.5));
+    for (int k = 0; k < 4; ++k) rows.push_back(banded_row({0.0}));
+    EXPECT_DOUBLE_EQ(band_count_changed(analyze_band_field(field_of(rows)), 3.0), 3.0);
+}
+
 TEST(Bands, EndBandVanishingIsAnEndEvent) {
     const BandHistory h =
         analyze_band_field(field_of({banded_row({-0.04, 0.0, 0.03}), banded_row({0.0, 0.03}, false)}));

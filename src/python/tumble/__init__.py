@@ -63,6 +63,7 @@ DRUM_OPTIONS = {
     "rpm": ("rotation", "rpm"),
     "froude": ("rotation", "froude"),
     "revolutions": ("rotation", "revolutions"),
+    "until_band_change": ("rotation", "until_band_change"),
     "spin_up": ("rotation", "spin_up_time"),
     "samples": ("measure", "samples_per_revolution"),
     "bins": ("measure", "profile_bins"),

@@ -404,6 +404,19 @@ BandHistory analyze_band_field(const BandField& field, const BandOptions& option
     return h;
 }
 
+double band_count_changed(const BandHistory& history, double hold) {
+    const std::vector<BandProfile>& s = history.samples;
+    if (!(hold > 0.0) || !std::isfinite(hold) || s.size() < 2) return std::nan("");
+    const std::size_t start = s.front().bands.size();
+    std::size_t k = s.size();  // s[k], ..., the last: counts other than the start's
+    while (k > 1 && s[k - 1].bands.size() != start) --k;
+    if (k == s.size()) return std::nan("");
+    const double since = s[k].revolutions;
+    // N is omega t / 2 pi of the sample times: a quarter revolution apart is
+    // 0.25 to within an ulp or so, hence the tolerance.
+    return s.back().revolutions - since >= hold * (1.0 - 1e-9) ? since : std::nan("");
+}
+
 std::vector<DifferenceBlock> difference_blocks(const std::vector<double>& revolutions, const std::vector<double>& a,
                                                const std::vector<double>& b) {
     if (a.size() != revolutions.size() || b.size() != revolutions.size())

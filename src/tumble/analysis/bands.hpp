@@ -181,6 +181,18 @@ struct BandHistory {
 
 BandHistory analyze_band_field(const BandField& field, const BandOptions& options = {});
 
+// When the band count left its start value for good: the revolution N of
+// the first sample of the run of samples, reaching to the last one, whose
+// counts all differ from the first sample's, if that run spans at least
+// `hold` revolutions; NaN otherwise (hold <= 0 or not finite, fewer than two
+// samples, the last sample back at the start's count, or a change younger
+// than `hold`). A merge, an end band lost, bands dissolving or (from a mixed
+// start) banding beginning all count. What `tumble drum --until-band-change
+// HOLD` ends a run on (docs/BANDS.md); the counts are those of
+// analyze_band_field, whose hysteresis makes each sample's count depend on
+// the earlier samples only, so the run sees the counts its analysis reports.
+double band_count_changed(const BandHistory& history, double hold);
+
 // Two quantities a and b sampled over the run (the radial core: phi_core
 // and phi_periphery pooled over the bins; an end layer: phi next to a cap
 // and the row's phi0), in blocks of revolutions doubling in length, [0, 1),
