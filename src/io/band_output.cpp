@@ -12,6 +12,7 @@
 #include "io/png.hpp"
 #include "io/render/scene.hpp"
 #include "tumble/analysis/band_crossing.hpp"
+#include "tumble/analysis/edge_broadening.hpp"
 #include "tumble/core/error.hpp"
 
 namespace tumble::io {
@@ -235,6 +236,59 @@ std::string describe_crossing(const analysis::CrossingEstimate& e, const analysi
     return s;
 }
 
+// bands.json's "edges": the blur of the start's boundaries
+// (analysis/edge_broadening.hpp), per level of the normalised composition,
+// with the MSD's D of the small grains.
+Json edges_json(const analysis::EdgeDiffusion& e, const analysis::MsdEstimate* msd) {
+    Json levels = Json::array(), boundaries = Json::array();
+    for (std::size_t l = 0; l < analysis::edge_levels.size(); ++l) {
+        Json level = estimate_json(e.D[l], e.interval[l], e.determined, e.note);
+        level["u"] = analysis::edge_levels[l];
+        if (msd) level["ratio_to_msd"] = e.D[l] / msd->D;
+        levels.push_back(level);
+    }
+    for (std::size_t b = 0; b < e.boundaries.size(); ++b)
+        boundaries.push_back(Json{{"z", e.boundaries[b]},
+                                  {"species_side", e.species_left[b] ? "left" : "right"},
+                                  {"D", e.boundary_D[b]}});
+    Json j{{"method", "Boltzmann-Matano"},
+           {"block_revolutions", analysis::edge_block_revolutions},
+           {"boundaries", boundaries},
+           {"levels", levels},
+           {"determined", e.determined},
+           {"note", e.note}};
+    if (msd) j["msd"] = msd_json(*msd);
+    return j;
+}
+
+std::string describe_edges(const analysis::EdgeDiffusion& e, const analysis::MsdEstimate* msd,
+                           const std::string& small, const std::string& large) {
+    if (e.boundaries.empty()) return "blur of the start's boundaries: not measured (" + e.note + ")";
+    std::string s = fmt::format("blur of the start's {} boundaries (Boltzmann-Matano; band_edges.csv), D in m^2/rev "
+                                "at u = {} (among {}), {}, {} (among {}):",
+                                e.boundaries.size(), analysis::edge_levels[0], large, analysis::edge_levels[1],
+                                analysis::edge_levels[2], small);
+    for (std::size_t l = 0; l < analysis::edge_levels.size(); ++l) {
+        s += fmt::format(" {:.3e}", e.D[l]);
+        if (e.determined) s += fmt::format(" [{:.3e}, {:.3e}]", e.interval[l].lo, e.interval[l].hi);
+    }
+    if (!e.determined) s += " (no interval: " + e.note + ")";
+    if (msd && std::isfinite(msd->D)) s += fmt::format("; the MSD's D of {} {:.3e} m^2/rev", small, msd->D);
+    return s;
+}
+
+// band_edges.csv: per boundary of the start and block of revolutions, the
+// Matano plane and D at each level.
+void write_edge_blocks(const fs::path& file, const analysis::EdgeDiffusion& e) {
+    std::ofstream out = open_for_writing(file);
+    out << "boundary,z_start,revolutions,matano";
+    for (double u : analysis::edge_levels) out << ",D_u" << u;
+    out << '\n';
+    for (const analysis::EdgeBlock& b : e.blocks)
+        out << fmt::format("{},{},{},{},{}\n", b.boundary, e.boundaries[b.boundary], b.revolutions, b.matano,
+                           fmt::join(b.D, ","));
+}
+
 Json band_json(const analysis::Band& b, const std::string& rich, const std::string& poor) {
     return Json{{"species", b.rich ? rich : poor}, {"rich", b.rich},       {"lo", b.lo},
                 {"hi", b.hi},                      {"centre", b.centre},   {"small_fraction", b.small_fraction}};
@@ -316,6 +370,8 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
     for (const analysis::BandEvent& e : h.events)
         if (e.kind == "onset" && !std::isfinite(onset)) onset = e.revolutions;
     const analysis::CrossingEstimate crossing = crossing_of_run(h, field, frames);
+    const analysis::EdgeDiffusion edges = analysis::edge_diffusion(field, info.band_edges);
+    if (!edges.boundaries.empty()) write_edge_blocks(out / "band_edges.csv", edges);
     Json events = Json::array();
     std::size_t merges = 0;
     for (const analysis::BandEvent& e : h.events) {
@@ -346,6 +402,7 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
                {"radial_core", radial_core_json(field.revolutions, core, periphery, record.axis_samples)},
                {"end_layers", field.periodic ? Json(nullptr) : end_layers_json(field, layer_bins, layer_width)},
                {"crossing", crossing_json(crossing, small_msd)},
+               {"edges", edges_json(edges, small_msd)},
                {"max_bands", static_cast<std::int64_t>(most)},
                {"onset_revolution", onset},
                {"merges", static_cast<std::int64_t>(merges)},
@@ -431,6 +488,7 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
                                 right.back().interval.lo, right.back().interval.hi);
     }
     text << "    " << describe_crossing(crossing, small_msd, small, large) << "\n";
+    text << "    " << describe_edges(edges, small_msd, small, large) << "\n";
 }
 
 

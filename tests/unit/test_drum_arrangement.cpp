@@ -17,6 +17,8 @@
 #include "io/toml_reader.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
+#include <tuple>
+
 #include "tumble/setup/drum.hpp"
 #include "tumble/sim/simulation.hpp"
 
@@ -123,6 +125,37 @@ TEST(DrumArrangement, BandsOfTheRequestedWidthsAndSpecies) {
     EXPECT_EQ(per_band[1], d.grains_left);
     EXPECT_LE(std::max(per_band[0], per_band[2]) - std::min(per_band[0], per_band[2]), 1u);
     EXPECT_EQ(d.grains_left + d.grains_right, 1201u);
+}
+
+// Bands without widths fill the bed evenly: each band holds the same grain
+// volume per length (to within the rounding of counts, a grain per band).
+// Three bands, small at the ends, of equal masses: 1/4, 1/2, 1/4 (equal
+// widths would put twice the volume per length into the middle band); five,
+// large at the ends: large bands 1/6, small bands 1/4.
+TEST(DrumArrangement, BandsWithoutWidthsFillTheBedEvenly) {
+    const DrumGeometry g = long_drum(0.24);
+    for (auto [k, ends, widths] :
+         {std::tuple{3, Species::small, std::vector<double>{0.25, 0.5, 0.25}},
+          std::tuple{5, Species::large, std::vector<double>{1.0 / 6, 0.25, 1.0 / 6, 0.25, 1.0 / 6}}}) {
+        DrumFill fill;
+        fill.arrangement = Arrangement::bands;
+        fill.bands = k;
+        fill.ends = ends;
+        const std::vector<double> w = band_widths(fill);
+        ASSERT_EQ(w.size(), widths.size());
+        for (std::size_t i = 0; i < w.size(); ++i) EXPECT_NEAR(w[i], widths[i], 1e-15) << "band " << i;
+        const DrumSetup d = build_drum_scenario(g, "two-component", 1500, 5, fill);
+        const std::vector<double> edges = band_edges(g, fill);
+        std::vector<double> volume(static_cast<std::size_t>(k), 0.0);
+        for (const ParticleSpec& p : grains_of(d))
+            volume[static_cast<std::size_t>(std::upper_bound(edges.begin() + 1, edges.end() - 1, p.position.z) -
+                                            (edges.begin() + 1))] += ball(p.radius);
+        for (int i = 0; i < k; ++i) {
+            const double per_length = volume[i] / (edges[i + 1] - edges[i]), first = volume[0] / (edges[1] - edges[0]);
+            EXPECT_NEAR(per_length, first, ball(R_large) / (edges[i + 1] - edges[i])) << "k = " << k << ", band " << i;
+        }
+        EXPECT_NE(describe(fill).find("an even fill"), std::string::npos) << describe(fill);
+    }
 }
 
 // Four equal bands, large grains at the left end: an even count ends with

@@ -513,6 +513,24 @@ std::optional<DrumFillProblem> drum_fill_problem(const DrumGeometry& g, const st
     return std::nullopt;
 }
 
+std::vector<double> band_widths(const DrumFill& f) {
+    const auto k = static_cast<std::size_t>(std::max(f.bands, 1));
+    if (!f.band_widths.empty()) {
+        if (f.band_widths.size() != k)
+            throw Error("drum: band_widths: need one width per band (" + std::to_string(k) + ")");
+        return f.band_widths;
+    }
+    // An even fill: each species' volume share over its number of bands.
+    const double small_share = f.small_volume_fraction.value_or(0.5);
+    double small_bands = 0.0;
+    for (std::size_t i = 0; i < k; ++i) small_bands += band_species(f, i) == Species::small;
+    std::vector<double> widths(k);
+    for (std::size_t i = 0; i < k; ++i)
+        widths[i] = band_species(f, i) == Species::small ? small_share / small_bands
+                                                         : (1.0 - small_share) / (static_cast<double>(k) - small_bands);
+    return widths;
+}
+
 std::vector<double> band_edges(const DrumGeometry& g, const DrumFill& f) {
     const double half = 0.5 * g.length;
     std::vector<double> edges{-half};
@@ -520,14 +538,12 @@ std::vector<double> band_edges(const DrumGeometry& g, const DrumFill& f) {
         case Arrangement::halves: edges.push_back(0.0); break;
         case Arrangement::mixed: break;
         case Arrangement::bands: {
-            const auto k = static_cast<std::size_t>(std::max(f.bands, 1));
-            if (!f.band_widths.empty() && f.band_widths.size() != k)
-                throw Error("drum: band_widths: need one width per band (" + std::to_string(k) + ")");
+            const std::vector<double> widths = band_widths(f);
             double sum = 0.0;  // the widths' sum, 1 to within band_width_tolerance
-            for (double w : f.band_widths) sum += w;
+            for (double w : widths) sum += w;
             double at = 0.0;
-            for (std::size_t i = 0; i + 1 < k; ++i) {
-                at += f.band_widths.empty() ? 1.0 / static_cast<double>(k) : f.band_widths[i] / sum;
+            for (std::size_t i = 0; i + 1 < widths.size(); ++i) {
+                at += widths[i] / sum;
                 edges.push_back(-half + at * g.length);
             }
             break;
@@ -542,8 +558,8 @@ std::string describe(const DrumFill& f) {
     std::string text(keyword_of(arrangements, f.arrangement));
     const std::string ends = std::string(keyword_of(species_names, f.ends));
     if (f.arrangement == Arrangement::bands)
-        text += " " + std::to_string(f.bands) + " (widths " +
-                (f.band_widths.empty() ? std::string("equal") : numbers_text(f.band_widths)) + ", " + ends +
+        text += " " + std::to_string(f.bands) + " (widths " + numbers_text(band_widths(f)) +
+                (f.band_widths.empty() ? std::string(": an even fill") : std::string()) + ", " + ends +
                 " at the left end)";
     if (f.arrangement == Arrangement::boundaries)
         text += " at z = " + numbers_text(f.boundaries) + " m (" + ends + " at the left end)";

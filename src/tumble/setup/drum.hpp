@@ -148,7 +148,7 @@ inline constexpr std::array<Keyword<Species>, 2> species_names{{
 struct DrumFill {
     Arrangement arrangement = Arrangement::halves;
     // bands: the number of bands K >= 2 and their widths as fractions of the
-    // length, summing to 1 (empty: K equal widths).
+    // length, summing to 1 (empty: an even fill, band_widths()).
     int bands = 0;
     std::vector<double> band_widths;
     // boundaries: the z (m) between bands, strictly increasing inside
@@ -176,6 +176,17 @@ struct DrumFillProblem {
     std::string reason;
 };
 std::optional<DrumFillProblem> drum_fill_problem(const DrumGeometry& g, const std::string& mode, const DrumFill& fill);
+
+// The widths of the bands of Arrangement::bands, as fractions of the
+// length: the fill's, or by default an even fill, the bed as deep in every
+// band: each species' share of the grains' volume (small_volume_fraction;
+// equal masses of the paper's grains, of one density, are equal volumes)
+// split equally among its bands. For an even K with equal volumes these are
+// K equal widths; for 3 bands, small at the ends, 1/4, 1/2, 1/4. (Equal
+// widths with an odd K put twice the grain volume per length into the
+// middle species' bands, and the bed levels itself by an axial flow in the
+// first ten revolutions: docs/BANDS.md.)
+std::vector<double> band_widths(const DrumFill& fill);
 
 // The bands of an arrangement along z, left to right, as boundaries z_0 =
 // -length/2 < z_1 < ... < z_K = length/2 (halves: 2 bands; mixed: 1).
