@@ -282,7 +282,7 @@ std::string describe_edges(const analysis::EdgeDiffusion& e, const analysis::Msd
 void write_edge_blocks(const fs::path& file, const analysis::EdgeDiffusion& e) {
     std::ofstream out = open_for_writing(file);
     out << "boundary,z_start,revolutions,matano";
-    for (double u : analysis::edge_levels) out << ",D_u" << u;
+    for (double u : analysis::edge_levels) out << ",D_u" << std::lround(100.0 * u);  // D_u25: numpy keeps no '.' in a name
     out << '\n';
     for (const analysis::EdgeBlock& b : e.blocks)
         out << fmt::format("{},{},{},{},{}\n", b.boundary, e.boundaries[b.boundary], b.revolutions, b.matano,

@@ -71,12 +71,15 @@ def test_arrangement_settings_are_the_command_lines():
     assert default.until_band_change == 0
     with pytest.raises(tumble.Error, match="until_band_change"):
         tumble.drum_settings(revolutions=12, until_band_change=12)
-    # The drum built from them: three bands, small grains in the middle one.
+    # The drum built from them: three bands, small grains in the middle one,
+    # by default an even fill (1/4, 1/2, 1/4 of the length: equal volumes).
+    assert tumble.drum_settings(length=0.24, arrangement="bands", bands=3).band_edges == pytest.approx(
+        [-0.12, -0.06, 0.06, 0.12])
     scenario = tumble.drum_scenario(length=0.24, grains=400, arrangement="bands", bands=3, ends="large")
     sim = tumble.Simulation(scenario)
     free = sim.motions < 0
     z, materials = sim.positions[free, 2], sim.materials[free]
-    assert np.all(materials[np.abs(z) < 0.04] == 1) and np.all(materials[np.abs(z) > 0.04] == 0)
+    assert np.all(materials[np.abs(z) < 0.06] == 1) and np.all(materials[np.abs(z) > 0.06] == 0)
 
 
 def test_drum_as_a_scenario_to_step():
