@@ -687,8 +687,10 @@ def fig_bands(run, w):
     """Axial bands (docs/BANDS.md): the kymograph C(z, N) with the merges, the radial
     core per slice (phi in the inner minus the outer third about the bed's centre)
     against z and N, the band count against log N, the dominant wavelength, the
-    contrast, the radial core of the whole bed per sample and per block of N, and
-    the composition of the end bands (band_profile.csv, bands.csv, bands.json)."""
+    contrast, the radial core of the whole bed per sample and per block of N, the
+    composition of the end bands, and how fast the start's boundaries blur, D at
+    three compositions per block of N (band_profile.csv, bands.csv, bands.json,
+    band_edges.csv)."""
     name = "fig_bands"
     profile, series = run.path("band_profile.csv"), run.path("bands.csv")
     if not (os.path.isfile(profile) and os.path.isfile(series)):
@@ -701,8 +703,8 @@ def fig_bands(run, w):
     info = read_json(run.path("bands.json")) if os.path.isfile(run.path("bands.json")) else {}
     small = info.get("species", run.components[-1])
     large = info.get("other", run.components[0])
-    fig, axes = plt.subplots(2, 4, figsize=(20, 8.5))
-    kymo, core_kymo, count, wave, contrast, core, blocks, ends = axes.ravel()
+    fig, axes = plt.subplots(3, 3, figsize=(16, 12.5))
+    kymo, core_kymo, count, wave, contrast, core, blocks, ends, blur = axes.ravel()
     from matplotlib.colors import LinearSegmentedColormap, TwoSlopeNorm
     cmap = LinearSegmentedColormap.from_list("species", [COLOURS[0], "#ffffff", COLOURS[1 % len(COLOURS)]])
     mean = float(np.nanmean(t["mean"])) if len(t["mean"]) and np.isfinite(t["mean"]).any() else 0.5
@@ -803,9 +805,39 @@ def fig_bands(run, w):
     ends.set_ylabel(f"volume fraction of {small}")
     ends.set_title("composition of the end bands, and of the layers at the caps", fontsize=9)
     ends.legend(fontsize=7)
+    _plot_edge_blur(blur, run.path("band_edges.csv"), small, large)
     fig.suptitle(f"Axial bands, {run.mode} mode, {run.label()}", fontsize=10)
     fig.tight_layout()
     w.save(fig, name)
+
+
+def _plot_edge_blur(ax, path, small, large):
+    """D of the start's boundaries per block of N at u = 0.25, 0.5, 0.75
+    (band_edges.csv; docs/BANDS.md, Boltzmann-Matano): one colour per
+    composition, one marker per boundary. A constant D is Fickian blur."""
+    ax.set_xlabel("revolutions N (block means)")
+    ax.set_ylabel("D (m$^2$ per revolution)")
+    ax.set_title("blur of the start's boundaries: D by composition (Boltzmann-Matano)", fontsize=9)
+    if not os.path.isfile(path):
+        ax.text(0.5, 0.5, "no boundaries at the start", ha="center", va="center", transform=ax.transAxes)
+        return
+    e = read_csv(path)
+    levels = ((25, f"u = 0.25 (among {large})"), (50, "u = 0.5"), (75, f"u = 0.75 (among {small})"))
+    markers = "os^vD<>"
+    plotted = False
+    for k, (u, label) in enumerate(levels):
+        column = f"D_u{u}"
+        if column not in e:
+            continue
+        for b in sorted(set(e["boundary"].astype(int))):
+            rows = (e["boundary"] == b) & np.isfinite(e[column]) & (e[column] > 0)
+            if rows.any():
+                ax.plot(e["revolutions"][rows], e[column][rows], markers[b % len(markers)], ms=4,
+                        color=COLOURS[k % len(COLOURS)], label=label if b == 0 else None)
+                plotted = True
+    if plotted:
+        ax.set_yscale("log")
+        ax.legend(fontsize=7, title="markers: boundaries", title_fontsize=7)
 
 
 def _plot_blocks(ax, blocks, key, colour, marker, label, shift=0.0):

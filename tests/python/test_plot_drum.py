@@ -133,8 +133,16 @@ class Figures(unittest.TestCase):
               '[{"revolutions": 0.25, "kind": "merge", "z": -0.015}], "radial_core": {"blocks": '
               '[{"from": 0, "to": 1, "revolutions": 1, "core_excess": 0.1, "core_excess_lo": null, '
               '"core_excess_hi": null}]}}')
+        write(os.path.join(self.dir, "band_edges.csv"),
+              "boundary,z_start,revolutions,matano,D_u25,D_u50,D_u75\n"
+              "0,-0.02,15,-0.02,1e-5,2e-5,3e-5\n0,-0.02,25,-0.02,1.1e-5,2.1e-5,nan\n"
+              "1,0.02,15,0.02,1e-5,2e-5,3e-5\n1,0.02,25,0.02,1.2e-5,1.9e-5,2.9e-5\n")
         w = Capture()
         plot_drum.fig_bands(run, w)
+        blur = w.figures["fig_bands"].axes[8]  # D of the boundaries: 3 compositions x 2 boundaries
+        self.assertEqual(len(blur.get_lines()), 6)
+        self.assertEqual(blur.get_yscale(), "log")
+        self.assertEqual(len(blur.get_lines()[4].get_xdata()), 1)  # u = 0.75 of boundary 0 (by level, then boundary): one finite D
         kymo = w.figures["fig_bands"].axes[0]
         mesh = kymo.collections[0]
         self.assertEqual(mesh.get_array().size, 2 * bins)
