@@ -42,6 +42,13 @@ def test_band_files_of_a_run(tiny_drum):
     _, core = run.band_profile("bed_core_fraction")
     assert core.shape == phi.shape
     assert run.band_summary["radial_core"]["reference"] == "bed centroid"
+    # The halves' boundary at z = 0: its blur is not measured in a drum 3 cm long (the windows keep 2 cm from
+    # the caps), and no band_edges.csv is written.
+    edges = run.band_summary["edges"]
+    assert edges["method"] == "Boltzmann-Matano" and edges["boundaries"] == [] and not edges["determined"]
+    assert [level["u"] for level in edges["levels"]] == [0.25, 0.5, 0.75] and edges["note"]
+    with pytest.raises(FileNotFoundError):
+        run.band_edges
     with pytest.raises(KeyError, match="bed_periphery_fraction"):
         run.band_profile("wall_fraction")  # the axis-referenced rows of an older tumble
 

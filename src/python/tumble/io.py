@@ -121,6 +121,12 @@ class Run:
         return self.table("band_positions.csv")
 
     @property
+    def band_edges(self):
+        """band_edges.csv: per boundary of the start and block of 10 revolutions, the Matano plane and the
+        interdiffusion D at three compositions, D_u25, D_u50, D_u75 (docs/BANDS.md, Boltzmann-Matano)."""
+        return self.table("band_edges.csv")
+
+    @property
     def band_summary(self):
         """bands.json: the thresholds, the final bands, the events (merges), the radial core per block of N."""
         return json.loads((self.directory / "bands.json").read_text())
