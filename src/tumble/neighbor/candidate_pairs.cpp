@@ -223,15 +223,17 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
         part.first.clear();
         part.second.clear();
         part.image.clear();
-        std::vector<std::uint32_t> near;  // candidates j > i with their image codes
-        std::vector<std::uint8_t> near_image;
-        std::vector<std::size_t> by_j;
+        struct Near {
+            std::uint32_t j;
+            std::uint8_t image;
+        };
+        std::vector<Near> near;  // candidates j > i with their image codes
         const IndexRange range = team.range(c, free_end);
         for (auto i = static_cast<std::uint32_t>(range.begin); i < range.end; ++i) {
             const Vec3& xi = p.position[i];
+            const bool i_kinematic = p.is_kinematic(i);
             const int cell_i[3] = {grid.coordinate(xi, 0), grid.coordinate(xi, 1), grid.coordinate(xi, 2)};
             near.clear();
-            near_image.clear();
             for (int dz = -1; dz <= 1; ++dz)
                 for (int dy = -1; dy <= 1; ++dy)
                     for (int dx = -1; dx <= 1; ++dx) {
@@ -253,26 +255,25 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
                         const std::uint8_t code = image_code(-s[0], -s[1], -s[2]);
                         // d = X_i - X_j + shift: j sits at X_j + s L seen from i,
                         // so shift = -s L, the image code of (-s).
-                        for (std::uint32_t m = start_[cell]; m < start_[cell + 1]; ++m) {
-                            const std::uint32_t j = members_[m];
-                            if (j <= i || both_kinematic(p, i, j)) continue;
-                            Vec3 d = xi - p.position[j];
-                            for (int k = 0; k < 3; ++k) d[k] -= s[k] * L[k];
+                        const Vec3 shift{s[0] * L.x, s[1] * L.y, s[2] * L.z};
+                        // A cell's members are in ascending index (a stable
+                        // counting sort): those up to i are skipped at once.
+                        const std::uint32_t* m = members_.data() + start_[cell];
+                        const std::uint32_t* end = members_.data() + start_[cell + 1];
+                        for (m = std::upper_bound(m, end, i); m < end; ++m) {
+                            const std::uint32_t j = *m;
+                            if (i_kinematic && p.is_kinematic(j)) continue;
+                            const Vec3 d = xi - p.position[j] - shift;
                             const double range_ij = p.radius[i] + p.radius[j] + skin;
-                            if (norm2(d) < range_ij * range_ij) {
-                                near.push_back(j);
-                                near_image.push_back(code);
-                            }
+                            if (norm2(d) < range_ij * range_ij) near.push_back({j, code});
                         }
                     }
             // Ascending j within each i: the pair order does not depend on cell layout.
-            by_j.resize(near.size());
-            for (std::size_t k = 0; k < by_j.size(); ++k) by_j[k] = k;
-            std::sort(by_j.begin(), by_j.end(), [&](std::size_t a, std::size_t b) { return near[a] < near[b]; });
-            for (std::size_t k : by_j) {
+            std::sort(near.begin(), near.end(), [](const Near& a, const Near& b) { return a.j < b.j; });
+            for (const Near& n : near) {
                 part.first.push_back(i);
-                part.second.push_back(near[k]);
-                part.image.push_back(near_image[k]);
+                part.second.push_back(n.j);
+                part.image.push_back(n.image);
             }
         }
     });
