@@ -196,7 +196,9 @@ std::vector<ContactHistory> get_histories(ByteReader& r, std::uint32_t version, 
     return histories;
 }
 
-SimulationState get_state(ByteReader& r, std::uint32_t version) {
+// cuts: the state has the slab cuts (format 5, and some files of format 4:
+// checkpoint.hpp).
+SimulationState get_state(ByteReader& r, std::uint32_t version, bool cuts) {
     SimulationState s;
     ParticleStore& p = s.particles;
     p.id = r.get_array<std::int64_t>("particle ids");
@@ -221,7 +223,7 @@ SimulationState get_state(ByteReader& r, std::uint32_t version) {
     s.owned = p.id.size();  // formats 2 and 3: one rank, every sphere its own
     if (version >= 4) {
         s.owned = static_cast<std::size_t>(r.get<std::uint64_t>("own spheres"));
-        s.slabs.cuts = r.get_array<double>("slab cuts");
+        if (cuts) s.slabs.cuts = r.get_array<double>("slab cuts");
         for (int side = 0; side < 2; ++side) {
             const auto sd = static_cast<std::size_t>(side);
             s.slabs.send[sd] = r.get_array<std::uint32_t>("ghosts sent");
@@ -316,8 +318,16 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
     c.record = get_record(r);
     c.record.source = name;
     c.scenario = get_scenario(r);
-    c.state = get_state(r, version);
-    if (!r.at_end()) r.fail("bytes left over after the state (damaged)");
+    const ByteReader at_state = r;
+    try {
+        c.state = get_state(r, version, version >= 4);
+        if (!r.at_end()) r.fail("bytes left over after the state (damaged)");
+    } catch (const Error&) {
+        if (version != 4) throw;
+        r = at_state;  // format 4 without the cuts (checkpoint.hpp)
+        c.state = get_state(r, version, false);
+        if (!r.at_end()) r.fail("bytes left over after the state (damaged)");
+    }
     return c;
 }
 

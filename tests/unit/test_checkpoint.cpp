@@ -272,4 +272,29 @@ TEST(Crc32, ACheckpointWrittenBeforeZlibStillLoads) {
     EXPECT_EQ(c.scenario.particles.size(), 30u);
 }
 
+// Format 4 was written two ways on 2026-11-30 (io/checkpoint.hpp): without
+// the slab cuts (commits 1a68a4f to 2f2c542, 16:11 to 16:51 UTC; the band
+// study's checkpoints) and with them (bc6e54a to 9358371, until 19:20). Both
+// files below are `tumble run --stop-at-step 50` of the walled box of
+// test_support::walled_box_scenario with seed 3, one process (built at
+// 2f2c542 and at 9358371 with the band analysis on top); both load, at
+// step 50 with 30 spheres, all their own, and no cuts of a one-process run.
+TEST(CheckpointFormat, BothKindsOfFormat4Load) {
+    for (const char* name : {"format4_without_cuts.tck", "format4_with_cuts.tck"}) {
+        const std::string bytes =
+            test_support::read_file(fs::path(TUMBLE_SOURCE_DIR) / "tests/data/checkpoints" / name);
+        std::uint32_t version = 0;
+        std::memcpy(&version, bytes.data() + 8, 4);  // after the 8 bytes of TUMBLECK
+        EXPECT_EQ(version, 4u) << name;
+        const io::Checkpoint c = io::decode_checkpoint(bytes, name);
+        EXPECT_EQ(c.state.step, 50) << name;
+        EXPECT_EQ(c.scenario.particles.size(), 30u) << name;
+        EXPECT_EQ(c.state.owned, 30u) << name;
+        EXPECT_EQ(c.state.ranks, 1) << name;
+        EXPECT_TRUE(c.state.slabs.cuts.empty()) << name;
+    }
+    // And what tumble writes now is format 5, which loads as itself.
+    EXPECT_EQ(io::checkpoint_format_version, 5u);
+}
+
 }  // namespace
