@@ -264,9 +264,10 @@ Json edges_json(const analysis::EdgeDiffusion& e, const analysis::MsdEstimate* m
 std::string describe_edges(const analysis::EdgeDiffusion& e, const analysis::MsdEstimate* msd,
                            const std::string& small, const std::string& large) {
     if (e.boundaries.empty()) return "blur of the start's boundaries: not measured (" + e.note + ")";
-    std::string s = fmt::format("blur of the start's {} boundaries (Boltzmann-Matano; band_edges.csv), D in m^2/rev "
-                                "at u = {} (among {}), {}, {} (among {}):",
-                                e.boundaries.size(), analysis::edge_levels[0], large, analysis::edge_levels[1],
+    std::string s = fmt::format("blur of the start's {} {} (Boltzmann-Matano; band_edges.csv), D in m^2/rev at u "
+                                "= {} (among {}), {}, {} (among {}):",
+                                e.boundaries.size(), e.boundaries.size() == 1 ? "boundary" : "boundaries",
+                                analysis::edge_levels[0], large, analysis::edge_levels[1],
                                 analysis::edge_levels[2], small);
     for (std::size_t l = 0; l < analysis::edge_levels.size(); ++l) {
         s += fmt::format(" {:.3e}", e.D[l]);

@@ -179,8 +179,8 @@ EdgeDiffusion edge_diffusion(const BandField& field, const std::vector<double>& 
         out.note = "no block of " + std::to_string(static_cast<int>(block_revolutions)) +
                    " revolutions with the step alone in its window";
     else if (!out.determined)
-        out.note = std::to_string(measured) + " boundaries measured: an interval needs 3 or more (more bands, or "
-                   "the runs of other seeds together)";
+        out.note = std::to_string(measured) + (measured == 1 ? " boundary" : " boundaries") +
+                   " measured: an interval needs 3 or more (more bands, or the runs of other seeds together)";
     return out;
 }
 
