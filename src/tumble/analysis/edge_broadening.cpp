@@ -49,6 +49,7 @@ MatanoProfile boltzmann_matano(const std::vector<double>& z, const std::vector<d
     MatanoProfile out;
     out.D.assign(levels.size(), nan_value);
     const std::vector<double> p = non_increasing(phi, weight);
+    if (!p.empty()) out.first = p.front(), out.last = p.back();
     const double jump = phi_rich - phi_poor;
     if (p.size() < 3 || !(jump > 0.0) || !(t > 0.0)) return out;
     // The Matano plane: rich (z_M - z_0) + poor (z_n - z_M) = integral of phi.
@@ -139,10 +140,9 @@ EdgeDiffusion edge_diffusion(const BandField& field, const std::vector<double>& 
             for (std::size_t i = 0; i < bins.size(); ++i)
                 if (weight[i] > 0.0) zs.push_back(z[i]), phi.push_back(sum[i] / weight[i]), w.push_back(weight[i]);
             if (zs.size() < 4) continue;
-            // The step must still be alone in its window: both plateaus reached.
-            const std::vector<double> ends = non_increasing(phi, w);
-            if (ends.front() < rich - 0.1 * (rich - poor) || ends.back() > poor + 0.1 * (rich - poor)) continue;
             const MatanoProfile m = boltzmann_matano(zs, phi, w, rich, poor, N / count, levels);
+            // The step must still be alone in its window: both plateaus reached.
+            if (m.first < rich - 0.1 * (rich - poor) || m.last > poor + 0.1 * (rich - poor)) continue;
             EdgeBlock block{boundary, N / count, left_rich ? m.matano : -m.matano};
             std::copy(m.D.begin(), m.D.end(), block.D.begin());
             mine.push_back(block);

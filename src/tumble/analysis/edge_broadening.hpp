@@ -81,6 +81,7 @@ inline constexpr double nan_value = std::numeric_limits<double>::quiet_NaN();
 struct MatanoProfile {
     double matano = nan_value;           // z_M, m
     std::vector<double> D;               // per level, m^2 per unit of t
+    double first = nan_value, last = nan_value;  // phi of the monotone profile at its two ends
 };
 MatanoProfile boltzmann_matano(const std::vector<double>& z, const std::vector<double>& phi,
                                const std::vector<double>& weight, double phi_rich, double phi_poor, double t,
