@@ -781,7 +781,7 @@ def fig_bands(run, w):
     core.set_title("radial core: composition by distance from the bed's centre", fontsize=9)
     core.legend(fontsize=7)
     if _plot_blocks(blocks, info.get("radial_core", {}).get("blocks", []), "core_excess", "0.2", "o",
-                    "95 % interval (revolutions as units)"):
+                    "95 % interval (correlated revolutions)"):
         blocks.set_xscale("log")
         blocks.xaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
         blocks.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
@@ -858,7 +858,7 @@ def _plot_blocks(ax, blocks, key, colour, marker, label, shift=0.0):
                     color=colour, capsize=3, label=label)
     if (~has).any():
         ax.plot(mid[~has], value[~has], marker, ms=4, mfc="none", color=colour,
-                label=label.replace("95 % interval (revolutions as units)", "block") + ": under 3 revolutions, no interval")
+                label=label.replace("95 % interval (correlated revolutions)", "block") + ": under 3 independent revolutions, no interval")
     return True
 
 

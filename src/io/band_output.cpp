@@ -141,7 +141,8 @@ Json difference_blocks_json(const std::vector<analysis::DifferenceBlock>& blocks
                             {b, block.b},
                             {difference, block.difference},
                             {difference + "_lo", block.interval.lo},
-                            {difference + "_hi", block.interval.hi}});
+                            {difference + "_hi", block.interval.hi},
+                            {"correlation_revolutions", block.correlation}});
     return list;
 }
 
@@ -482,11 +483,12 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
         const auto right = analysis::difference_blocks(field.revolutions, layers.right, layers.mean);
         if (!left.empty() && !right.empty())
             text << fmt::format("    end layers ({:.3g} cm at each cap), phi - phi0 over N = {:.3g} to {:.3g}: left "
-                                "{:+.3f} [{:+.3f}, {:+.3f}], right {:+.3f} [{:+.3f}, {:+.3f}] (95 %, revolutions as "
-                                "units; bands.json end_layers)\n",
+                                "{:+.3f} [{:+.3f}, {:+.3f}], right {:+.3f} [{:+.3f}, {:+.3f}] (95 %, revolution means correlated "
+                                "over {:.2g} and {:.2g} revolutions; bands.json end_layers)\n",
                                 100.0 * layer_width, left.back().from, last.revolutions, left.back().difference,
                                 left.back().interval.lo, left.back().interval.hi, right.back().difference,
-                                right.back().interval.lo, right.back().interval.hi);
+                                right.back().interval.lo, right.back().interval.hi, left.back().correlation,
+                                right.back().correlation);
     }
     text << "    " << describe_crossing(crossing, small_msd, small, large) << "\n";
     text << "    " << describe_edges(edges, small_msd, small, large) << "\n";

@@ -7,6 +7,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "tumble/analysis/series.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 
@@ -448,7 +449,9 @@ std::vector<DifferenceBlock> difference_blocks(const std::vector<double>& revolu
         block.a = n > 0.0 ? block.a / n : nan;
         block.b = n > 0.0 ? block.b / n : nan;
         block.difference = block.a - block.b;
-        block.interval = bootstrap_mean_interval(difference);
+        const SeriesMean m = series_mean(difference);
+        block.correlation = m.tau;
+        block.interval = m.interval;
         blocks.push_back(block);
     }
     return blocks;

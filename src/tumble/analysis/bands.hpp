@@ -198,15 +198,16 @@ double band_count_changed(const BandHistory& history, double hold);
 // and the row's phi0), in blocks of revolutions doubling in length, [0, 1),
 // [1, 2), [2, 4), [4, 8), ... (log N, as banding is read), the last ending
 // past the last sample. The samples of each whole revolution are averaged
-// first, and those revolution means are the independent units of the block
-// (the bed turns over in about a revolution: a grain passes the flowing
-// layer once or twice a turn). difference = a - b, its 95 % interval the
-// bootstrap of the revolution means (NaN with fewer than 3 revolutions;
-// bootstrap.hpp).
+// first; difference = a - b is the mean of the block's revolution means,
+// with the 95 % interval of a correlated series (series.hpp): revolution
+// means are not independent when the quantity drifts or wanders over many
+// revolutions, as the end layers do. NaN bounds when the block is worth
+// fewer than 3 independent revolutions.
 struct DifferenceBlock {
     double from = 0.0, to = 0.0;        // revolutions, [from, to)
     std::size_t revolutions = 0;        // whole revolutions with a finite sample
     double a = 0.0, b = 0.0, difference = 0.0;  // means of the revolution means
+    double correlation = 1.0;           // integrated autocorrelation time of the differences, revolutions
     Interval interval;
 };
 std::vector<DifferenceBlock> difference_blocks(const std::vector<double>& revolutions, const std::vector<double>& a,

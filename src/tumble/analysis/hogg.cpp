@@ -11,6 +11,7 @@
 #include <limits>
 #include <sstream>
 
+#include "tumble/analysis/series.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 
@@ -240,39 +241,6 @@ double polish_full(const Series& s, double D) {
         if (!accepted) break;
     }
     return D;
-}
-
-// Integrated autocorrelation time of a series, in samples:
-//   tau = 1 + 2 sum_{k=1}^{M} rho_k,
-// rho_k the sample autocorrelation at lag k, with Sokal's automatic window:
-// the smallest M with M >= 3 tau (for an exponential correlation that
-// truncates e^-6 of the tail). tau = (1 + rho)/(1 - rho) for AR(1) noise;
-// the variance of a mean, or of a least-squares parameter whose Jacobian
-// varies slowly over tau samples, is tau times its white-noise value.
-// Subtracting the sample mean biases the sum low by about (2M + 1)/n of
-// itself; it is multiplied back as in Wolff, Comput. Phys. Commun. 156
-// (2004) 143, eq. (49). Floored at 1 (anti-correlated residuals are not
-// allowed to shrink errors). Correlations longer than ~n/6 samples cannot be
-// seen in n residuals and are underestimated.
-double integrated_autocorrelation(const std::vector<double>& r) {
-    const std::size_t n = r.size();
-    if (n < 3) return 1.0;
-    double mean = 0.0;
-    for (double v : r) mean += v;
-    mean /= static_cast<double>(n);
-    double c0 = 0.0;
-    for (double v : r) c0 += (v - mean) * (v - mean);
-    if (c0 <= 0.0) return 1.0;
-    double tau = 1.0;
-    std::size_t window = 0;
-    while (++window < n / 2) {
-        double c = 0.0;
-        for (std::size_t i = 0; i + window < n; ++i) c += (r[i] - mean) * (r[i + window] - mean);
-        tau += 2.0 * c / c0;
-        if (static_cast<double>(window) >= 3.0 * tau) break;
-    }
-    tau *= 1.0 + static_cast<double>(2 * window + 1) / static_cast<double>(n);
-    return std::max(tau, 1.0);
 }
 
 void check_series(const std::vector<double>& N, const std::vector<double>& z, double L) {
