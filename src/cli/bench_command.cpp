@@ -217,6 +217,9 @@ int long_drum_bench(const BenchOptions& options) {
     // (ghost updates; and, averaged over the steps, the rebuilds'
     // migrations and ghost lists), the mean over the ranks; the ghosts it holds.
     double update_bytes = 0.0, rebuild_bytes = 0.0, ghosts = 0.0;
+    // The neighbour list's pairs at the end (within the reach plus the skin;
+    // `contacts` of them touch): what the pair loop works through.
+    const double candidate_pairs = mpi::sum(static_cast<double>(sim.neighbors().pairs().size()));
     if (shared) {
         const Slabs::Traffic& t = sim.slabs()->traffic();
         const auto ranks = static_cast<double>(mpi::size());
@@ -235,6 +238,8 @@ int long_drum_bench(const BenchOptions& options) {
         fmt::print("  steps/revolution   {:.0f}\n", steps_per_revolution);
         fmt::print("  dt                 {:.4g} s, set by {}\n", sim.dt(), limited_by);
         fmt::print("  list rebuilds      {}\n", builds);
+        fmt::print("  pairs              {:.0f} in the list, {} of them touching (at the end)\n", candidate_pairs,
+                   o.contacts);
         fmt::print("  kinetic energy     {:.4g} J translational, {:.4g} J rotational (grains, at the end)\n",
                    o.kinetic_translational, o.kinetic_rotational);
         fmt::print("  threads            {}\n", sim.threads());
@@ -269,6 +274,7 @@ int long_drum_bench(const BenchOptions& options) {
                                                   {"kinetic_translational", o.kinetic_translational},
                                                   {"kinetic_rotational", o.kinetic_rotational},
                                                   {"contacts", o.contacts},
+                                                  {"candidate_pairs", std::llround(candidate_pairs)},
                                                   {"threads", sim.threads()},
                                                   {"ranks", mpi::size()},
                                                   {"ghost_update_bytes_per_step", update_bytes},

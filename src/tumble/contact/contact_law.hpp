@@ -100,14 +100,13 @@ inline ContactForces contact_law(const PairCoefficients& c, const ContactGeometr
     // couple follows the shear model's reading of the limit (the paper's
     // when the shear is off).
     const double v_reg = model.slip_velocity_regularisation;
+    const SlipLimits limits = slip_limits(c.G_star, a, friction_limit);
     const Vec3 F_t = model.shear != ShearModel::Off
-                         ? mindlin_shear_force(model.shear, c.G_star, a, friction_limit, g.n, g.v_t, dt, v_reg,
-                                               history.slip)
+                         ? mindlin_shear_force(model.shear, limits, g.n, g.v_t, dt, v_reg, history.slip)
                          : Vec3{};
     const ShearModel twist_reading = model.shear == ShearModel::Off ? ShearModel::Paper : model.shear;
-    const double M = model.twisting ? twisting_couple(twist_reading, c.G_star, a, friction_limit, g.w_n, dt, v_reg,
-                                                      history.angular_slip)
-                                    : 0.0;
+    const double M =
+        model.twisting ? twisting_couple(twist_reading, limits, a, g.w_n, dt, v_reg, history.angular_slip) : 0.0;
 
     history.viscous_force = F_viscous;  // for the dashpot's next step (integrate/dashpot.hpp)
 

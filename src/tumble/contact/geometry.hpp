@@ -47,9 +47,11 @@ inline ContactGeometry make_contact_geometry(const Vec3& d, double distance, dou
                                              const Vec3& v_ij, const Vec3& kick_ij, const Vec3& omega_i,
                                              const Vec3& omega_j) {
     ContactGeometry c;
-    c.n = (1.0 / distance) * d;
+    // 1/distance and R* from one division.
+    const double r = 1.0 / (distance * (R_i + R_j));
+    c.n = ((R_i + R_j) * r) * d;
     c.overlap = R_i + R_j - distance;
-    c.R_star = R_i * R_j / (R_i + R_j);
+    c.R_star = R_i * R_j * distance * r;
     c.contact_radius = std::sqrt(c.R_star * c.overlap);
     c.lever_i = R_i - 0.5 * c.overlap;
     c.lever_j = R_j - 0.5 * c.overlap;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tumble/core/constants.hpp"
 #include "tumble/core/vec3.hpp"
 
 namespace tumble {
@@ -26,9 +27,37 @@ namespace tumble {
 // without creeping.
 enum class ShearModel { Off, Paper, Coulomb, Spring };
 
-// The pair loop runs these on every contact: each division counts, so the
-// length at the limit comes with its reciprocal, per_held = 1 / held (0 for
-// held = 0, no friction).
+// The pair loop runs these on every contact: each division counts (on Intel
+// processors the divider, which also takes the square roots, bounds the
+// vectorised law: docs/BENCHMARKS.md), so the length at the limit comes with
+// its reciprocal, per_held = 1 / held (0 for held = 0, no friction).
+
+// The static limits of the shear force and of the twisting couple (element
+// 5, twisting.hpp) as slips, for a contact of radius a = sqrt(R* h) whose
+// friction limit is mu |F_n| = friction_limit:
+//   shear: stiffness 16/3 G* a (N/m), held = mu |F_n| / stiffness (m);
+//   twist: stiffness 8/3 G* a^3 (N m/rad), held = 3 pi/16 a mu |F_n| /
+//          stiffness (rad),
+// so held = 3/16 mu|F_n| / (G* a) and twist_held = 9 pi/128 mu|F_n| / (G* a^2):
+// the four lengths and reciprocals come from the one reciprocal
+// 1 / (G* a^2 mu|F_n|). No friction (mu |F_n| = 0): held = per_held = 0.
+struct SlipLimits {
+    double stiffness = 0.0, held = 0.0, per_held = 0.0;
+    double twist_stiffness = 0.0, twist_held = 0.0, per_twist_held = 0.0;
+};
+inline SlipLimits slip_limits(double G_star, double contact_radius, double friction_limit) {
+    const double a = contact_radius, Ga = G_star * a, f = friction_limit;
+    const double denominator = Ga * a * f;
+    const double r = denominator > 0.0 ? 1.0 / denominator : 0.0;  // 1 / (G* a^2 mu|F_n|)
+    SlipLimits s;
+    s.stiffness = 16.0 / 3.0 * Ga;
+    s.held = 3.0 / 16.0 * (f * f * a * r);
+    s.per_held = 16.0 / 3.0 * (Ga * Ga * a * r);
+    s.twist_stiffness = 8.0 / 3.0 * Ga * a * a;
+    s.twist_held = 9.0 * pi / 128.0 * (f * f * r);
+    s.per_twist_held = 128.0 / (9.0 * pi) * (Ga * Ga * a * a * r);
+    return s;
+}
 
 // Length of the slip after the contact has slipped: `length` (> `held`, the
 // length at the limit) wrapped back by whole teeth for Paper, `held`
@@ -74,25 +103,28 @@ inline double sawtooth_in_window(double x, double step, double held, double per_
 // mu |F_n|) (-v_t/|v_t|); taking the direction from the slip rather than
 // from v_t lets a contact at rest hold its load (SPEC-NOTES, shear
 // direction). n points from j to i.
-inline Vec3 mindlin_shear_force(ShearModel model, double G_star, double contact_radius, double friction_limit,
-                                const Vec3& n, const Vec3& v_t, double dt, double v_reg, Vec3& slip) {
-    // Into the contact plane, keeping the length.
-    const double old_length = norm(slip);
+// (`limits`: slip_limits() of the contact.)
+inline Vec3 mindlin_shear_force(ShearModel model, const SlipLimits& limits, const Vec3& n, const Vec3& v_t, double dt,
+                                double v_reg, Vec3& slip) {
+    // Into the contact plane, keeping the length (one square root).
     Vec3 in_plane = slip - dot(slip, n) * n;
-    const double plane_length = norm(in_plane);
-    in_plane *= plane_length > 0.0 ? old_length / plane_length : 0.0;
+    const double old2 = norm2(slip), plane2 = norm2(in_plane);
+    in_plane *= plane2 > 0.0 ? std::sqrt(old2 / plane2) : 0.0;
     slip = in_plane + dt * v_t;
 
-    const double stiffness = 16.0 / 3.0 * G_star * contact_radius;  // N/m
-    const double held = friction_limit / stiffness;                // slip at the limit, m
-    const double per_held = held > 0.0 ? 1.0 / held : 0.0;
+    const double stiffness = limits.stiffness;  // N/m
+    const double held = limits.held, per_held = limits.per_held;  // slip at the limit, m
     // After slipping the slip is `after` long, along the sliding velocity for
     // the paper's readings while the contact slides faster than v_reg (the
     // paper's direction -v_t/|v_t| then), else along itself. Written as
     // choices between values rather than branches, so that the pair loop
     // still runs several contacts per instruction.
     const double length = norm(slip), speed = norm(v_t);
-    const double per_length = length > 0.0 ? 1.0 / length : 0.0, per_speed = speed > 0.0 ? 1.0 / speed : 0.0;
+    // 1/length and 1/speed (0 for 0) from one division.
+    const double length_or_1 = length > 0.0 ? length : 1.0, speed_or_1 = speed > 0.0 ? speed : 1.0;
+    const double per_both = 1.0 / (length_or_1 * speed_or_1);
+    const double per_length = length > 0.0 ? speed_or_1 * per_both : 0.0;
+    const double per_speed = speed > 0.0 ? length_or_1 * per_both : 0.0;
     const bool slides = length > held;
     const bool along_velocity = model != ShearModel::Spring && speed > v_reg;
     const double after = slip_length_after_slipping(model, length, held, per_held);

@@ -20,13 +20,13 @@ namespace tumble {
 // is held there (Coulomb, Spring), with the sign of w_n while the rim of the
 // contact slides faster than v_reg (Paper, Coulomb), else its own.
 // With da of one sign this is the paper's min(...) (-sign w_n).
-inline double twisting_couple(ShearModel model, double G_star, double contact_radius, double friction_limit,
-                              double w_n, double dt, double v_reg, double& angular_slip) {
+// (`limits`: slip_limits() of the contact; a: its radius.)
+inline double twisting_couple(ShearModel model, const SlipLimits& limits, double contact_radius, double w_n,
+                              double dt, double v_reg, double& angular_slip) {
     angular_slip += w_n * dt;
     const double a = contact_radius;
-    const double stiffness = 8.0 / 3.0 * G_star * a * a * a;           // N m/rad
-    const double held = 3.0 * pi / 16.0 * a * friction_limit / stiffness;  // rad
-    const double per_held = held > 0.0 ? 1.0 / held : 0.0;
+    const double stiffness = limits.twist_stiffness;  // N m/rad
+    const double held = limits.twist_held, per_held = limits.per_twist_held;  // rad
     const double length = std::abs(angular_slip);
     const bool along_spin = model != ShearModel::Spring && std::abs(w_n) * a > v_reg;
     const double sign = (along_spin ? w_n : angular_slip) < 0.0 ? -1.0 : 1.0;
