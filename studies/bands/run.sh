@@ -2,7 +2,8 @@
 # The band study (issue 16; studies/bands/README.md): starts or continues
 # the runs of runs.txt, JOBS at a time (default 2), each on THREADS threads
 # (default 1), at low priority (nice 10). RUNS="NAME ..." picks runs (default:
-# every run of experiment A). A run kept in git (kept/NAME.tar.gz: its
+# every run of runs.txt, experiment B first: its runs are shorter and
+# answer the conjecture; finished runs are skipped). A run kept in git (kept/NAME.tar.gz: its
 # newest checkpoint and written series) is unpacked and resumed; a run with
 # a checkpoint in out/ is resumed; a finished run (summary.json) is
 # skipped. Stop the runs with stop.sh (each writes a checkpoint), then
@@ -16,7 +17,7 @@ tumble=${TUMBLE:-build/tumble}
 [[ -n "${TUMBLE:-}" ]] || bash scripts/build.sh >/dev/null
 common=(--length 0.64 --fill 0.3 --samples 4 --snapshots 1 --checkpoint-every-revolutions 1
         --no-plot --progress-every 60)
-runs=${RUNS:-$(awk '/^A_/ {print $1}' "$study/runs.txt")}
+runs=${RUNS:-$(awk '/^B_/ {print $1}' "$study/runs.txt"; awk '/^A_/ {print $1}' "$study/runs.txt")}
 mkdir -p "$study/out"
 
 one_run() {
@@ -27,6 +28,7 @@ one_run() {
   if [[ -f "$dir/summary.json" ]]; then echo "bands: $name finished"; return 0; fi
   if [[ ! -d "$dir/checkpoints" && -f "$study/kept/$name.tar.gz" ]]; then
     mkdir -p "$dir" && tar -xzf "$study/kept/$name.tar.gz" -C "$dir"
+    if [[ -f "$dir/summary.json" ]]; then echo "bands: $name finished (kept)"; return 0; fi
   fi
   if compgen -G "$dir/checkpoints/*.tck" >/dev/null; then
     echo "bands: $name resumed (log $dir.log)"
