@@ -32,8 +32,8 @@ enum class ShearModel { Off, Paper, Coulomb, Spring };
 // vectorised law: docs/BENCHMARKS.md), so the length at the limit comes with
 // its reciprocal, per_held = 1 / held (0 for held = 0, no friction).
 
-// The static limits of the shear force and of the twisting couple (element
-// 5, twisting.hpp) as slips, for a contact of radius a = sqrt(R* h) whose
+// The static limits of the shear force (paper eq. 8) and of the twisting
+// couple (eq. 9, element 5, twisting.hpp) as slips, for a contact of radius a = sqrt(R* h) whose
 // friction limit is mu |F_n| = friction_limit:
 //   shear: stiffness 16/3 G* a (N/m), held = mu |F_n| / stiffness (m);
 //   twist: stiffness 8/3 G* a^3 (N m/rad), held = 3 pi/16 a mu |F_n| /
