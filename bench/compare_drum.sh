@@ -92,11 +92,16 @@ echo "  the settled bed (tumble bench --case long-drum --export)" >&2
 python3 "$drum" data "$out/bed/snapshots/000000.csv" "$out/bed/drum.data" >&2
 
 # ------------------------------------------------------------------ runners
+# tumble's threads bound to cores, as mpirun binds the peers' ranks (OpenMPI
+# binds each of up to 2 ranks to a core by default): unbound, two threads ran
+# the long drum 1 to 3.5 % slower on an Intel Xeon (docs/BENCHMARKS.md,
+# "Threads bound to cores"). OMP_PROC_BIND=false measures them unbound.
+bind=(env "OMP_PROC_BIND=${OMP_PROC_BIND:-close}" "OMP_PLACES=${OMP_PLACES:-cores}")
 dt=""  # tumble's step, from its first run
 run_tumble() {  # round threads
     local log="$out/tumble_r$1_t$2.out"
     if ! python3 "$lib" exec "$log.time" "$log" "$log.err" -- \
-            "$tumble" bench --case long-drum --json --steps "$steps" --warmup "$warmup" --threads "$2"; then
+            "${bind[@]}" "$tumble" bench --case long-drum --json --steps "$steps" --warmup "$warmup" --threads "$2"; then
         cat "$log.err" >&2
         die "tumble bench failed ($2 threads), see $log.err"
     fi

@@ -118,11 +118,16 @@ results="$out/results.jsonl"
 : > "$results"
 
 # ------------------------------------------------------------------ runners
+# tumble's threads bound to cores, as mpirun binds the peers' ranks (OpenMPI
+# binds each of up to 2 ranks to a core by default): unbound, two threads ran
+# the long drum 1 to 3.5 % slower on an Intel Xeon (docs/BENCHMARKS.md,
+# "Threads bound to cores"). OMP_PROC_BIND=false measures them unbound.
+bind=(env "OMP_PROC_BIND=${OMP_PROC_BIND:-close}" "OMP_PLACES=${OMP_PLACES:-cores}")
 run_tumble() {  # size round threads
     local log="$out/tumble_N$1_r$2_t$3.out" label="$3 threads"
     [[ $3 -eq 1 ]] && label="1 thread"
     if ! python3 "$lib" exec "$log.time" "$log" "$log.err" -- \
-            "$tumble" bench --json --size "$1" --steps "$steps" --warmup "$warmup" --threads "$3"; then
+            "${bind[@]}" "$tumble" bench --json --size "$1" --steps "$steps" --warmup "$warmup" --threads "$3"; then
         cat "$log.err" >&2
         die "tumble bench failed (size $1, $3 threads), see $log.err"
     fi

@@ -88,7 +88,7 @@ int cube_bench(const BenchOptions& options) {
                    updates, updates / paper_best_updates_per_second);
         fmt::print("  contacts/sphere  {:.3f}\n", contacts_per_particle);
         fmt::print("  list rebuilds    {}\n", builds);
-        fmt::print("  threads          {}\n", sim.threads());
+        fmt::print("  threads          {} (bound to cores: {})\n", sim.threads(), thread_binding());
         fmt::print("  instruction set  {}\n", isa_description());
         fmt::print("  memory           {:.0f} bytes per sphere (resident, measured)\n", bytes_per_particle);
         fmt::print("  machine          {}\n", machine);
@@ -104,6 +104,7 @@ int cube_bench(const BenchOptions& options) {
                                                   {"contacts_per_particle", contacts_per_particle},
                                                   {"neighbor_builds", builds},
                                                   {"threads", sim.threads()},
+                                                  {"thread_binding", thread_binding()},
                                                   {"bytes_per_particle", std::llround(bytes_per_particle)},
                                                   {"dt", sim.dt()},
                                                   {"cpu_seconds", cpu},
@@ -242,7 +243,7 @@ int long_drum_bench(const BenchOptions& options) {
                    o.contacts);
         fmt::print("  kinetic energy     {:.4g} J translational, {:.4g} J rotational (grains, at the end)\n",
                    o.kinetic_translational, o.kinetic_rotational);
-        fmt::print("  threads            {}\n", sim.threads());
+        fmt::print("  threads            {} (bound to cores: {})\n", sim.threads(), thread_binding());
         if (shared)
             fmt::print("  MPI ranks          {} (slabs along z): per rank and step {:.0f} bytes of ghost updates, {:.0f} of "
                        "rebuilds, {:.0f} ghosts\n",
@@ -276,6 +277,7 @@ int long_drum_bench(const BenchOptions& options) {
                                                   {"contacts", o.contacts},
                                                   {"candidate_pairs", std::llround(candidate_pairs)},
                                                   {"threads", sim.threads()},
+                                                  {"thread_binding", thread_binding()},
                                                   {"ranks", mpi::size()},
                                                   {"ghost_update_bytes_per_step", update_bytes},
                                                   {"rebuild_bytes_per_step", rebuild_bytes},

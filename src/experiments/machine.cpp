@@ -35,4 +35,17 @@ int resolve_threads(int requested) {
     return threads;
 }
 
+std::string thread_binding() {
+#ifdef _OPENMP
+    switch (omp_get_proc_bind()) {
+        case omp_proc_bind_true: return "true";
+        case omp_proc_bind_master: return "master";
+        case omp_proc_bind_close: return "close";
+        case omp_proc_bind_spread: return "spread";
+        default: break;
+    }
+#endif
+    return "none";
+}
+
 }  // namespace tumble::experiments

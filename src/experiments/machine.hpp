@@ -17,4 +17,11 @@ std::string machine_description();
 // more than they gain (docs/BENCHMARKS.md "Threads").
 int resolve_threads(int requested);
 
+// How OpenMP binds the threads to cores (OMP_PROC_BIND, with OMP_PLACES):
+// "none" (OpenMP's default: threads may move between cores) or the policy,
+// "close", "spread", "master" or "true". For benchmark reports: two threads
+// bound to two cores ran the long drum 1 to 3.5 % faster than unbound ones on
+// an Intel Xeon (docs/BENCHMARKS.md "Threads bound to cores").
+std::string thread_binding();
+
 }  // namespace tumble::experiments
