@@ -287,8 +287,13 @@ TEST_F(Cli, BenchLongDrumReportsEveryFieldAndKeepsTheSettledBed) {
     EXPECT_EQ(j.value("case", ""), "long-drum");
     for (const char* key : {"grains", "particles", "steps", "seconds", "grain_updates_per_second",
                             "revolutions_per_hour", "steps_per_revolution", "dt", "bytes_per_particle", "threads",
-                            "kinetic_translational", "kinetic_rotational", "contacts"})
+                            "kinetic_translational", "kinetic_rotational", "contacts", "candidate_pairs"})
         EXPECT_TRUE(tumble::io::json_number(j, key).has_value()) << key << " missing in: " << json.output;
+    // The drum has no flat walls: every contact is a pair of the list, which
+    // holds more (those within the skin).
+    EXPECT_GE(j.at("candidate_pairs").get<double>(), j.at("contacts").get<double>());
+    EXPECT_GT(j.at("contacts").get<double>(), 0.0);
+    EXPECT_FALSE(j.value("thread_binding", "").empty()) << json.output;
     EXPECT_NE(j.value("dt_limited_by", "").find("Hertz collision time"), std::string::npos) << json.output;
     // 5 rad/s at the automatic step: 2 pi / 5 / dt steps per revolution.
     EXPECT_NEAR(j.at("steps_per_revolution").get<double>(), 2.0 * 3.141592653589793 / 5.0 / j.at("dt").get<double>(),
