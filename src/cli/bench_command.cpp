@@ -219,7 +219,9 @@ int long_drum_bench(const BenchOptions& options) {
     // migrations and ghost lists), the mean over the ranks; the ghosts it holds.
     double update_bytes = 0.0, rebuild_bytes = 0.0, ghosts = 0.0;
     // The neighbour list's pairs at the end (within the reach plus the skin;
-    // `contacts` of them touch): what the pair loop works through.
+    // `contacts` of them touch): what the pair loop works through. Shared
+    // among ranks, the sum of the ranks' lists, which both hold a pair
+    // across a cut (`contacts` counts it once).
     const double candidate_pairs = mpi::sum(static_cast<double>(sim.neighbors().pairs().size()));
     if (shared) {
         const Slabs::Traffic& t = sim.slabs()->traffic();
