@@ -81,12 +81,15 @@ void VerletList::rebuild(ParticleStore& p, Team& team) {
         previous_start_.resize(n + 1);
         position_at_build_.resize(n);
     });
-    team.each([&](int c) {
+    team.each([&](int c) {  // one search for the chunk's first particle, then a walk along the old list
         const IndexRange r = team.range(c, n);
-        for (std::size_t i = r.begin; i < r.end; ++i)
-            previous_start_[i] = static_cast<std::size_t>(
-                std::lower_bound(previous_.first.begin(), previous_.first.end(), static_cast<std::uint32_t>(i)) -
-                previous_.first.begin());
+        const std::vector<std::uint32_t>& first = previous_.first;
+        auto k = static_cast<std::size_t>(
+            std::lower_bound(first.begin(), first.end(), static_cast<std::uint32_t>(r.begin)) - first.begin());
+        for (std::size_t i = r.begin; i < r.end; ++i) {
+            while (k < first.size() && first[k] < i) ++k;
+            previous_start_[i] = k;
+        }
         if (c == team.chunks() - 1) previous_start_[n] = previous_.size();
     });
     const bool sort = wrap_and_sort(p, team);

@@ -217,8 +217,8 @@ void add_and_clear(double* __restrict sum, double* __restrict part, std::size_t 
 //
 // Phase 1: chunk c takes the c-th part of the pair list; chunk 0 sums into
 // the particles' arrays, chunk c >= 1 into its own. Phase 2: chunk c takes
-// the c-th part of the particles and adds the other chunks' sums to theirs,
-// in chunk order, then the flat walls. The sums are thus the same bitwise
+// the c-th part of the own spheres (and of the ghosts) and adds the other
+// chunks' sums to theirs, in chunk order, then the flat walls. The sums are thus the same bitwise
 // on every run with the same chunk count, and differ from one chunk's only
 // by the order of the additions (round-off). Recording runs on one chunk.
 //
@@ -248,8 +248,7 @@ void Simulation::compute_forces(Team& team, Then&& then) {
                                           force, torque, records_);
         });
     });
-    team.each_own([&](int c) {
-        const IndexRange r = team.range(c, n);
+    const auto add_chunk_sums = [&](IndexRange r) {
         for (std::size_t part = 1; part < touched_from_.size(); ++part) {
             const std::size_t from = std::max(r.begin, touched_from_[part]), offset = (part - 1) * n;
             if (from >= r.end) continue;
@@ -258,7 +257,14 @@ void Simulation::compute_forces(Team& team, Then&& then) {
                 add_and_clear(&p.torque.data()->x, &(chunk_torque_.data() + offset)->x, 3 * from, 3 * r.end);
             });
         }
-        const IndexRange own{std::min(r.begin, owned_), std::min(r.end, owned_)};
+    };
+    team.each_own([&](int c) {
+        // The chunk's own spheres are split as in step()'s first phase, which
+        // follows without a wait; the ghosts (after them) apart: their sums
+        // are only cleared for the next call (no ghost's force is used).
+        const IndexRange own = team.range(c, owned_), ghosts = team.range(c, n - owned_);
+        add_chunk_sums(own);
+        add_chunk_sums({owned_ + ghosts.begin, owned_ + ghosts.end});
         if (!wall_history_.empty()) add_wall_forces(own);
         then(c, own);
     });
