@@ -21,7 +21,7 @@
 #include "io/csv_table.hpp"
 #include "io/json.hpp"
 #include "io/toml_reader.hpp"
-#include "tumble/analysis/bootstrap.hpp"
+#include "tumble/analysis/series.hpp"
 #include "tumble/core/error.hpp"
 #include "tumble/core/mpi.hpp"
 
@@ -542,9 +542,9 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
                     for (double x : v) ss += (x - mean) * (x - mean);
                     sd = std::sqrt(ss / static_cast<double>(v.size() - 1));
                 }
-                // The seed is the statistical unit: the interval of the mean
-                // over seeds (none from fewer than 3).
-                const analysis::Interval ci = analysis::bootstrap_mean_interval(v);
+                // The seed is the statistical unit: Student's t interval of
+                // the mean over seeds (none from fewer than 3).
+                const analysis::Interval ci = analysis::independent_mean(v).interval;
                 out << fmt::format(",{},{},{},{},{}", cell(mean), cell(sd), v.size(), cell(ci.lo), cell(ci.hi));
             }
             out << '\n';

@@ -188,15 +188,6 @@ TEST(HoggFree, SeparatesDriftFromDiffusionOnALongSeries) {
     EXPECT_GT(std::abs(held.drift), 3.0 * held.drift_stderr);
 }
 
-TEST(Bootstrap, MeanIntervalNeedsThreeValuesAndHoldsTheMean) {
-    EXPECT_TRUE(std::isnan(bootstrap_mean_interval({1.0, 2.0}).lo));
-    const Interval i = bootstrap_mean_interval({1.0, 2.0, 3.0, 4.0, 5.0});
-    EXPECT_LT(i.lo, 3.0);
-    EXPECT_GT(i.hi, 3.0);
-    EXPECT_GE(i.lo, 1.0);
-    EXPECT_LE(i.hi, 5.0);
-}
-
 }  // namespace
 }  // namespace tumble::analysis
 

@@ -473,12 +473,12 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     EXPECT_NEAR(std::stod(s1["D_material_1_mean"]), 3e-5, 1e-18);
     EXPECT_NEAR(std::stod(s1["D_material_1_std"]), 2e-5, 1e-18);
     EXPECT_EQ(s1["D_material_1_n"], "3");
-    // Three seeds: a bootstrap interval of the mean over seeds, inside the
-    // range of the seeds' values and around their mean.
-    EXPECT_LT(std::stod(s1["D_msd_material_1_lo"]), 3e-5);
-    EXPECT_GT(std::stod(s1["D_msd_material_1_hi"]), 3e-5);
-    EXPECT_GE(std::stod(s1["D_msd_material_1_lo"]), 1e-5);
-    EXPECT_LE(std::stod(s1["D_msd_material_1_hi"]), 5e-5);
+    // Three seeds (1, 3, 5 e-5): Student's t interval of the mean over the
+    // seeds, 3e-5 +- t(0.95, 2) 2e-5 / sqrt(3), t = 4.303 from the table
+    // (the expansion's 0.8 % of it as the tolerance).
+    const double half = 4.303 * 2e-5 / std::sqrt(3.0);
+    EXPECT_NEAR(std::stod(s1["D_msd_material_1_lo"]), 3e-5 - half, 0.008 * half);
+    EXPECT_NEAR(std::stod(s1["D_msd_material_1_hi"]), 3e-5 + half, 0.008 * half);
     EXPECT_NEAR(std::stod(s1["D_material_2_mean"]), 3e-5, 1e-18);  // the undetermined seed left out
     EXPECT_EQ(s1["D_material_2_n"], "2");
     EXPECT_NEAR(std::stod(s1["ke_ratio_total_mean"]), 2.0, 1e-12);

@@ -34,17 +34,4 @@ Interval percentile_interval(std::vector<double> values, double level) {
     return {quantile(0.5 * (1.0 - level)), quantile(0.5 * (1.0 + level))};
 }
 
-Interval bootstrap_mean_interval(const std::vector<double>& values, double level) {
-    if (values.size() < 3) return {std::nan(""), std::nan("")};
-    Resampler resample(bootstrap_seed);
-    std::vector<double> means(bootstrap_replicates);
-    for (double& m : means) {
-        const std::vector<double> w = resample.weights(values.size());
-        double sum = 0.0;
-        for (std::size_t k = 0; k < values.size(); ++k) sum += w[k] * values[k];
-        m = sum / static_cast<double>(values.size());
-    }
-    return percentile_interval(std::move(means), level);
-}
-
 }  // namespace tumble::analysis

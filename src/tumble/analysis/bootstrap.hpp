@@ -39,9 +39,4 @@ inline constexpr std::uint64_t bootstrap_seed = 20261130;
 // interval. NaN bounds if no value is finite.
 Interval percentile_interval(std::vector<double> values, double level = 0.95);
 
-// The mean of independent values (e.g. one D per seed) and its bootstrap
-// percentile interval; NaN bounds with fewer than 3 values (two values say
-// nothing about a spread).
-Interval bootstrap_mean_interval(const std::vector<double>& values, double level = 0.95);
-
 }  // namespace tumble::analysis

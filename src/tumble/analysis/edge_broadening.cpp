@@ -167,10 +167,9 @@ EdgeDiffusion edge_diffusion(const BandField& field, const std::vector<double>& 
             if (std::isfinite(d[l])) values.push_back(d[l]);
         measured = std::max(measured, values.size());
         if (values.empty()) continue;
-        double s = 0.0;
-        for (double v : values) s += v;
-        out.D[l] = s / static_cast<double>(values.size());
-        out.interval[l] = bootstrap_mean_interval(values);
+        const SeriesMean m = independent_mean(values);
+        out.D[l] = m.mean;
+        out.interval[l] = m.interval;
     }
     out.determined = measured >= 3 && std::isfinite(out.interval[1].lo);
     if (out.boundaries.empty())

@@ -47,8 +47,9 @@
 // boundary's D is the mean of its blocks in the second half of its
 // measured span (the step well developed: the start's own blur, a few mm,
 // is a small part of the step by then); the boundaries, and across runs
-// the seeds, are the independent units: the interval is the bootstrap of
-// the boundaries' mean, not determined with fewer than 3.
+// the seeds, are the independent units: the interval is Student's t of
+// the boundaries' mean (series.hpp, independent_mean), not determined with
+// fewer than 3.
 // Validated on steps spread numerically with a known D(phi), constant and
 // varying tenfold, with the noise of 40 grains per bin
 // (tests/unit/test_edge_broadening.cpp).
@@ -62,6 +63,7 @@
 
 #include "tumble/analysis/bands.hpp"
 #include "tumble/analysis/bootstrap.hpp"
+#include "tumble/analysis/series.hpp"
 
 namespace tumble::analysis {
 
@@ -100,7 +102,7 @@ struct EdgeDiffusion {
     std::vector<EdgeBlock> blocks;             // those measured, by boundary then N
     // Per boundary: the mean of its blocks in the second half of its span.
     std::vector<std::array<double, edge_levels.size()>> boundary_D;
-    // Across the boundaries, per level: the mean and its bootstrap interval.
+    // Across the boundaries, per level: the mean and its t interval.
     std::array<double, edge_levels.size()> D{nan_value, nan_value, nan_value};
     std::array<Interval, edge_levels.size()> interval{Interval{nan_value, nan_value}, Interval{nan_value, nan_value},
                                                       Interval{nan_value, nan_value}};

@@ -46,7 +46,11 @@ double student_t_quantile(double level, double dof) {
     return z + v * (g1 + v * (g2 + v * (g3 + v * g4)));
 }
 
-SeriesMean series_mean(const std::vector<double>& values, double level) {
+namespace {
+
+// The mean of the finite values and, given their autocorrelation time
+// (`tau` of the values, or 1 for independent ones), its t interval.
+SeriesMean mean_with_interval(const std::vector<double>& values, double level, bool correlated) {
     std::vector<double> x;
     for (double v : values)
         if (std::isfinite(v)) x.push_back(v);
@@ -58,7 +62,7 @@ SeriesMean series_mean(const std::vector<double>& values, double level) {
         return m;
     }
     for (double v : x) m.mean += v / n;
-    m.tau = integrated_autocorrelation(x);
+    m.tau = correlated ? integrated_autocorrelation(x) : 1.0;
     m.effective = n / m.tau;
     if (m.effective < 3.0) return m;
     double s2 = 0.0;
@@ -66,6 +70,16 @@ SeriesMean series_mean(const std::vector<double>& values, double level) {
     const double half = student_t_quantile(level, m.effective - 1.0) * std::sqrt(m.tau * s2 / n);
     m.interval = {m.mean - half, m.mean + half};
     return m;
+}
+
+}  // namespace
+
+SeriesMean series_mean(const std::vector<double>& values, double level) {
+    return mean_with_interval(values, level, true);
+}
+
+SeriesMean independent_mean(const std::vector<double>& values, double level) {
+    return mean_with_interval(values, level, false);
 }
 
 }  // namespace tumble::analysis
