@@ -305,8 +305,8 @@ int main(int argc, char** argv) {
         "--first-revolution", first_revolution, "Leave the start-up out of the fits: use revolutions N >= this (default 1)");
     bool so_far = false;
     analyze_cmd->add_flag("--so-far", so_far,
-                          "The bands of the revolutions written so far, of a run stopped or unfinished, into DIR/so_far/ "
-                          "(docs/BANDS.md); the run's own files untouched")
+                          "The bands of the revolutions written so far, of a run stopped, unfinished or going on, into "
+                          "DIR/so_far/ (docs/BANDS.md); the run's own files untouched")
         ->excludes(first_revolution_opt);
     // The band segmentation's thresholds (analysis::BandOptions; docs/BANDS.md);
     // checked, naming the option, before anything is read.

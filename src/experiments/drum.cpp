@@ -503,8 +503,15 @@ std::string analyze_drum(const std::string& directory, const io::AnalyzeOptions&
 
 std::string analyze_bands_so_far(const std::string& directory, const analysis::BandOptions& options) {
     analysis::check_band_options(options);
-    const io::RunLock lock(directory);  // not while the run goes on
-    return io::analyze_bands_so_far(directory, options);
+    // The run may be going on (its process holds the run's lock): then what
+    // it is writing is left out. One --so-far at a time: the lock of so_far/.
+    const std::optional<io::RunLock> run = io::RunLock::if_free(directory);
+    const fs::path so_far = fs::path(directory) / "so_far";
+    std::error_code ec;
+    fs::create_directories(so_far, ec);
+    if (ec) throw Error(so_far.string() + ": cannot create the folder: " + ec.message());
+    const io::RunLock lock(so_far);
+    return io::analyze_bands_so_far(directory, options, !run.has_value());
 }
 
 }  // namespace tumble::experiments

@@ -69,8 +69,9 @@ DrumOutcome resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& 
 // is read; analysis::check_band_options), a run in use or unfinished.
 std::string analyze_drum(const std::string& directory, const io::AnalyzeOptions& options = {});
 
-// The bands of a run so far (io::analyze_bands_so_far), finished or not:
-// into DIR/so_far/. Refuses bad thresholds, a run in use.
+// The bands of a run so far (io::analyze_bands_so_far), finished, stopped
+// or going on: into DIR/so_far/. Refuses bad thresholds, and a second
+// --so-far on the same run at the same time.
 std::string analyze_bands_so_far(const std::string& directory, const analysis::BandOptions& options = {});
 
 }  // namespace tumble::experiments

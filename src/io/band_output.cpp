@@ -53,8 +53,9 @@ void BandProfileWriter::write(double revolutions, const analysis::BandSample& s)
     check_written(out_, path_);
 }
 
-BandRecord read_band_profile(const fs::path& file, const DrumRunInfo& info) {
-    const CsvTable csv = read_csv_table(file);
+BandRecord read_band_profile(const fs::path& file, const DrumRunInfo& info, bool growing) {
+    CsvTable csv = read_csv_table(file, growing);
+    if (growing) csv.rows.resize(csv.rows.size() - csv.rows.size() % quantities.size());  // whole samples
     const auto bins = static_cast<std::size_t>(info.band_bins);
     if (csv.header.size() != bins + 2)
         throw Error(file.string() + ": " + std::to_string(csv.header.size() - 2) + " bins, drum_run.toml says " +
@@ -300,12 +301,13 @@ Json band_json(const analysis::Band& b, const std::string& rich, const std::stri
 
 void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInfo& info, std::ostringstream& text,
                       Json& summary, const analysis::BandOptions& options,
-                      const std::vector<analysis::GrainFrame>& frames, const analysis::MsdEstimate* small_msd) {
+                      const std::vector<analysis::GrainFrame>& frames, const analysis::MsdEstimate* small_msd,
+                      bool growing) {
     if (info.band_bins <= 0 || !fs::exists(dir / "band_profile.csv")) {
         text << "  bands: not measured (no band_profile.csv: a run of tumble before the band analysis)\n";
         return;
     }
-    const BandRecord record = read_band_profile(dir / "band_profile.csv", info);
+    const BandRecord record = read_band_profile(dir / "band_profile.csv", info, growing);
     const analysis::BandField& field = record.field;
     const analysis::BandHistory h = analysis::analyze_band_field(field, options);
     const std::string small = info.components.size() > 1 ? info.components[1].name : "species 1";
@@ -495,7 +497,7 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
 }
 
 
-std::string analyze_bands_so_far(const fs::path& dir, const analysis::BandOptions& options) {
+std::string analyze_bands_so_far(const fs::path& dir, const analysis::BandOptions& options, bool running) {
     const DrumRunInfo info = read_drum_run_info(dir / "drum_run.toml");
     const fs::path out = dir / "so_far";
     std::error_code ec;
@@ -504,8 +506,11 @@ std::string analyze_bands_so_far(const fs::path& dir, const analysis::BandOption
     std::ostringstream text;
     text << "tumble analyze --so-far " << dir.string() << ": the bands of the revolutions written so far, into "
          << out.string() << "\n";
+    if (running)
+        text << "  the run is going on: its newest snapshot and band sample, perhaps half written, are left out\n";
     Json summary = Json::object();
-    analyze_band_run(dir, out, info, text, summary, options, read_rotation_frames(dir, info), nullptr);
+    std::vector<analysis::GrainFrame> frames = read_rotation_frames(dir, info, running ? 1 : 0);
+    analyze_band_run(dir, out, info, text, summary, options, frames, nullptr, running);
     write_file_atomically(out / "summary.txt", text.str());
     return text.str();
 }

@@ -55,7 +55,9 @@ struct BandRecord {
     std::vector<std::vector<double>> core_fraction, periphery_fraction;
     std::size_t axis_samples = 0;  // samples measured from the drum axis
 };
-BandRecord read_band_profile(const std::filesystem::path& file, const DrumRunInfo& info);
+// growing: the file of a run going on, whose last sample may be half
+// written: it is left out.
+BandRecord read_band_profile(const std::filesystem::path& file, const DrumRunInfo& info, bool growing = false);
 
 // The band analysis of a run directory: reads its band_profile.csv, writes
 // bands.csv, band_positions.csv, band_spectrum.csv, bands.json and
@@ -70,13 +72,16 @@ BandRecord read_band_profile(const std::filesystem::path& file, const DrumRunInf
 void analyze_band_run(const std::filesystem::path& directory, const std::filesystem::path& out,
                       const DrumRunInfo& info, std::ostringstream& text, Json& summary,
                       const analysis::BandOptions& options, const std::vector<analysis::GrainFrame>& frames,
-                      const analysis::MsdEstimate* small_msd);
+                      const analysis::MsdEstimate* small_msd, bool growing = false);
 
 // The band analysis of the revolutions written so far, of a run stopped or
-// still unfinished (a long band study looked at between sittings): the
-// files of analyze_band_run and summary.txt in DIR/so_far/, the run's own
-// files untouched (no summary.json: a sweep does not take the run for
-// finished). Returns the text.
-std::string analyze_bands_so_far(const std::filesystem::path& directory, const analysis::BandOptions& options = {});
+// still going on (a long band study looked at between sittings, or while
+// it runs): the files of analyze_band_run and summary.txt in DIR/so_far/,
+// the run's own files untouched (no summary.json: a sweep does not take the
+// run for finished). running: another process is writing the run, so its
+// newest snapshot and last band sample, perhaps half written, are left out.
+// Returns the text.
+std::string analyze_bands_so_far(const std::filesystem::path& directory, const analysis::BandOptions& options,
+                                 bool running);
 
 }  // namespace tumble::io

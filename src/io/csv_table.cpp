@@ -3,6 +3,7 @@
 
 #include <cctype>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -56,9 +57,12 @@ std::vector<double> CsvTable::numbers(const std::string& name) const {
     return out;
 }
 
-CsvTable read_csv_table(const fs::path& file) {
-    std::ifstream in(file);
-    if (!in) throw Error(file.string() + ": cannot read");
+CsvTable read_csv_table(const fs::path& file, bool growing) {
+    std::ifstream whole(file);
+    if (!whole) throw Error(file.string() + ": cannot read");
+    std::string text{std::istreambuf_iterator<char>(whole), std::istreambuf_iterator<char>()};
+    if (growing) text.erase(text.find_last_of('\n') + 1);  // npos + 1 = 0: no whole line yet
+    std::istringstream in(text);
     CsvTable csv;
     csv.file = file;
     std::string line;

@@ -34,7 +34,9 @@ struct CsvTable {
 };
 
 // tumble::Error naming the file if it cannot be read, has no header, or a
-// row has not as many cells as the header.
-CsvTable read_csv_table(const std::filesystem::path& file);
+// row has not as many cells as the header. growing: a file another process
+// is appending to (a run going on): a last line without its newline, half
+// written, is left out.
+CsvTable read_csv_table(const std::filesystem::path& file, bool growing = false);
 
 }  // namespace tumble::io

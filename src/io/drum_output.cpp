@@ -266,9 +266,12 @@ analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_
     return frame;
 }
 
-std::vector<analysis::GrainFrame> read_rotation_frames(const fs::path& dir, const DrumRunInfo& info) {
+std::vector<analysis::GrainFrame> read_rotation_frames(const fs::path& dir, const DrumRunInfo& info,
+                                                       std::size_t leave_newest) {
     std::vector<analysis::GrainFrame> frames;
-    for (const fs::path& file : list_snapshot_csv(dir)) {
+    std::vector<fs::path> files = list_snapshot_csv(dir);
+    files.resize(files.size() - std::min(leave_newest, files.size()));
+    for (const fs::path& file : files) {
         analysis::GrainFrame frame = read_snapshot_grains(file, info.settle_time, info.omega);
         if (frame.revolutions >= -1e-9) frames.push_back(std::move(frame));  // from the start of rotation
     }

@@ -106,8 +106,10 @@ DrumProfiles read_drum_profiles(const std::filesystem::path& file, std::size_t c
 // sorted by id, at N = omega (t - rotation_start) / 2 pi revolutions.
 analysis::GrainFrame read_snapshot_grains(const std::filesystem::path& file, double rotation_start, double omega);
 
-// The particle snapshots taken during the rotation (N >= 0), in time order.
-std::vector<analysis::GrainFrame> read_rotation_frames(const std::filesystem::path& directory, const DrumRunInfo& info);
+// The particle snapshots taken during the rotation (N >= 0), in time order,
+// but the `leave_newest` newest files (a run going on may be writing one).
+std::vector<analysis::GrainFrame> read_rotation_frames(const std::filesystem::path& directory, const DrumRunInfo& info,
+                                                       std::size_t leave_newest = 0);
 
 struct AnalyzeOptions {
     // The start-up left out of the fits: revolutions N >= this (the bed

@@ -15,6 +15,18 @@
 namespace tumble::io {
 
 RunLock::RunLock(const std::filesystem::path& directory) {
+    if (const std::optional<std::string> holder = acquire(directory))
+        throw Error(directory.string() + ": in use by another tumble process (pid " + *holder + ", holding " +
+                    (directory / run_lock_file).string() + "); wait for it to end, or stop it first");
+}
+
+std::optional<RunLock> RunLock::if_free(const std::filesystem::path& directory) {
+    RunLock lock;
+    if (lock.acquire(directory)) return std::nullopt;
+    return lock;
+}
+
+std::optional<std::string> RunLock::acquire(const std::filesystem::path& directory) {
     if (!std::filesystem::is_directory(directory)) throw Error(directory.string() + ": no such run directory");
     const std::filesystem::path file = directory / run_lock_file;
     // O_CLOEXEC: the sweep's child processes do not inherit the sweep's lock.
@@ -30,16 +42,16 @@ RunLock::RunLock(const std::filesystem::path& directory) {
         if (why != EWOULDBLOCK) throw Error(file.string() + ": cannot lock: " + std::strerror(why));
         std::string holder(pid);
         while (!holder.empty() && (holder.back() == '\n' || holder.back() == ' ')) holder.pop_back();
-        throw Error(directory.string() + ": in use by another tumble process (pid " +
-                    (holder.empty() ? std::string("unknown") : holder) +
-                    ", holding " + file.string() + "); wait for it to end, or stop it first");
+        return holder.empty() ? std::string("unknown") : holder;
     }
     const std::string pid = std::to_string(::getpid()) + "\n";
     if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
         const int why = errno;
         ::close(fd_);
+        fd_ = -1;
         throw Error(file.string() + ": cannot write the lock file: " + std::strerror(why));
     }
+    return std::nullopt;
 }
 
 RunLock::RunLock(RunLock&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}

@@ -9,6 +9,8 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
+#include <string>
 
 namespace tumble::io {
 
@@ -19,6 +21,9 @@ public:
     // Locks `directory` or throws tumble::Error: "DIR: no such run
     // directory", "DIR: in use by another tumble process (pid N) ...".
     explicit RunLock(const std::filesystem::path& directory);
+    // Locks `directory` if no other process holds it; nullopt if one does
+    // (a run going on). Throws as the constructor for anything else.
+    static std::optional<RunLock> if_free(const std::filesystem::path& directory);
     RunLock(RunLock&& other) noexcept;
     RunLock& operator=(RunLock&& other) noexcept;
     RunLock(const RunLock&) = delete;
@@ -26,6 +31,10 @@ public:
     ~RunLock();
 
 private:
+    RunLock() = default;
+    // Takes the lock; if another process holds it, returns its pid (as the
+    // lock file says) and holds nothing.
+    std::optional<std::string> acquire(const std::filesystem::path& directory);
     int fd_ = -1;
 };
 

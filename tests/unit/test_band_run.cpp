@@ -9,11 +9,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "io/band_output.hpp"
 #include "io/csv_table.hpp"
 #include "io/json.hpp"
 #include "io/png.hpp"
+#include "io/run_lock.hpp"
+#include "io/snapshots.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -120,7 +123,8 @@ TEST_F(BandRun, BadBandThresholdsAreRefusedNamingTheOption) {
 
 // A run stopped part way (a long band study between sittings): tumble
 // analyze refuses it, --so-far analyses its bands so far into DIR/so_far/
-// and leaves the run's files alone, and the run then resumes.
+// and leaves the run's files alone, also while the run goes on, and the run
+// then resumes.
 TEST_F(BandRun, SoFarAnalysesAStoppedRunWithoutFinishingIt) {
     const fs::path out = dir_ / "stopped";
     const auto r = tumble_run("drum -q --grains 300 --length 0.06 --omega 8 --revolutions 1 --samples 8 --snapshots 4 "
@@ -142,6 +146,35 @@ TEST_F(BandRun, SoFarAnalysesAStoppedRunWithoutFinishingIt) {
     EXPECT_GT(bands["crossing"]["band_revolutions"].get<double>(), 0.0) << so_far.output;
     EXPECT_FALSE(bands["crossing"]["determined"].get<bool>());
     EXPECT_FALSE(bands["crossing"].contains("msd"));
+
+    // While the run goes on (its lock held, as the running process holds
+    // it), with a band sample and a snapshot half written: --so-far reads
+    // what is whole and says what it left out.
+    {
+        const tumble::io::RunLock running(out);
+        const std::string profile = read_file(out / "band_profile.csv");
+        const std::vector<fs::path> snapshots = tumble::io::list_snapshot_csv(out);
+        ASSERT_FALSE(snapshots.empty());
+        const fs::path half = out / "snapshots" / "999999.csv";
+        {
+            // One whole row of a new sample (a copy of the first) and the
+            // start of its second.
+            const std::size_t row1 = profile.find('\n') + 1, row2 = profile.find('\n', row1) + 1;
+            std::ofstream(out / "band_profile.csv", std::ios::app)
+                << profile.substr(row1, row2 - row1) << profile.substr(row2, 10);
+            std::ofstream(half) << read_file(snapshots.back()).substr(0, 300);
+        }
+        EXPECT_NE(tumble_run("analyze " + out.string()).exit_code, 0);  // in use
+        const auto live = tumble_run("analyze --so-far " + out.string());
+        ASSERT_EQ(live.exit_code, 0) << live.output;
+        EXPECT_NE(live.output.find("the run is going on: its newest snapshot and band sample"), std::string::npos)
+            << live.output;
+        const tumble::io::Json again = tumble::io::parse_json(read_file(out / "so_far" / "bands.json"));
+        EXPECT_EQ(again["samples"], bands["samples"]);
+        EXPECT_EQ(again["crossing"]["band_revolutions"], bands["crossing"]["band_revolutions"]);
+        std::ofstream(out / "band_profile.csv", std::ios::trunc) << profile;  // as the run left it
+        fs::remove(half);
+    }
     const auto resumed = tumble_run("resume -q " + out.string());
     ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
     EXPECT_TRUE(fs::exists(out / "summary.json"));
