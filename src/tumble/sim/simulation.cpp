@@ -128,6 +128,18 @@ IndexRange Simulation::free_part(IndexRange r) const {
 
 IndexRange Simulation::kinematic_part(IndexRange r) const { return {std::max(r.begin, kinematic_begin_), r.end}; }
 
+// Chunk c's own particles: its part of the free ones and its part of the
+// kinematic ones, which the sort puts after them (when it has not, one
+// range). Each thread kicks a share of the grains and moves a share of the
+// wall, the share near its pairs in the cell order, so that the particle
+// phases are even and a thread's pairs mostly read wall spheres it moved
+// itself (docs/BENCHMARKS.md, "Where two threads lose their tenth").
+std::array<IndexRange, 2> Simulation::own_parts(const Team& team, int c) const {
+    const std::size_t split = kinematic_begin_ >= free_end_ ? kinematic_begin_ : owned_;
+    const IndexRange free = team.range(c, split), kinematic = team.range(c, owned_ - split);
+    return {free, IndexRange{split + kinematic.begin, split + kinematic.end}};
+}
+
 // Time step `next` of velocity Verlet (integrate/velocity_verlet.hpp) by
 // the threads of a team: each takes a part of the particles, then a part of
 // the pairs, then its part of the particles again, and waits for the others
@@ -139,10 +151,13 @@ void Simulation::step(Team& team, std::int64_t next) {
     const std::vector<MotionNow> now = motions_now(static_cast<double>(next) * dt_);
     ParticleStore& p = particles_;
     team.each([&](int c) {
-        const IndexRange r = team.range(c, owned_);
-        kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r));  // v(t) -> v(t + dt/2), x(t) -> x(t + dt); F = 0
-        move_kinematic(now, kinematic_part(r));                         // prescribed x, v, omega at t + dt; F = 0
-        moved_[static_cast<std::size_t>(c)] = neighbors_.moved_far(p, r);
+        char moved = 0;
+        for (const IndexRange r : own_parts(team, c)) {
+            kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r));  // v(t) -> v(t + dt/2), x(t) -> x(t + dt); F = 0
+            move_kinematic(now, kinematic_part(r));                         // prescribed x, v, omega at t + dt; F = 0
+            moved |= static_cast<char>(neighbors_.moved_far(p, r));
+        }
+        moved_[static_cast<std::size_t>(c)] = moved;
     });
     const bool moved_here = std::find(moved_.begin(), moved_.end(), 1) != moved_.end();
     if (slabs_)  // the ghosts where their owners moved them; a rebuild on every rank if one needs it
@@ -262,11 +277,13 @@ void Simulation::compute_forces(Team& team, Then&& then) {
         // The chunk's own spheres are split as in step()'s first phase, which
         // follows without a wait; the ghosts (after them) apart: their sums
         // are only cleared for the next call (no ghost's force is used).
-        const IndexRange own = team.range(c, owned_), ghosts = team.range(c, n - owned_);
-        add_chunk_sums(own);
+        const IndexRange ghosts = team.range(c, n - owned_);
         add_chunk_sums({owned_ + ghosts.begin, owned_ + ghosts.end});
-        if (!wall_history_.empty()) add_wall_forces(own);
-        then(c, own);
+        for (const IndexRange own : own_parts(team, c)) {
+            add_chunk_sums(own);
+            if (!wall_history_.empty()) add_wall_forces(own);
+            then(c, own);
+        }
     });
 }
 

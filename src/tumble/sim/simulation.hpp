@@ -3,6 +3,7 @@
 // contact history, and the clock. step() is the whole time step.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -141,9 +142,11 @@ private:
     // restored onto ranks, or made of several ranks'), not the list; the
     // list is then found with them by global id, on one rank too.
     void rebuild(Team& team, bool keep_histories = false);
-    // The part of range r where free (kinematic) particles can be.
+    // The part of range r where free (kinematic) particles can be; chunk
+    // c's own particles in a step's per-particle phases.
     IndexRange free_part(IndexRange r) const;
     IndexRange kinematic_part(IndexRange r) const;
+    std::array<IndexRange, 2> own_parts(const Team& team, int c) const;
 
     Scenario scenario_;
     PairTable pair_table_;
