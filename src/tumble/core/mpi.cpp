@@ -125,6 +125,30 @@ Bytes exchange(int to, const Bytes& out, int from, int tag) {
     return in;
 }
 
+std::array<Bytes, 2> exchange_pair(const std::array<int, 2>& to, const std::array<Bytes, 2>& out,
+                                   const std::array<int, 2>& from, const std::array<std::size_t, 2>& in_size,
+                                   const std::array<int, 2>& tag) {
+    if (world_size == 1) return out;
+    std::array<Bytes, 2> in;
+    std::array<MPI_Request, 4> requests{};
+    for (std::size_t k = 0; k < 2; ++k) {
+        in[k].resize(in_size[k]);
+        MPI_Irecv(in[k].data(), static_cast<int>(in_size[k]), MPI_CHAR, from[k] == no_rank ? MPI_PROC_NULL : from[k],
+                  tag[k], MPI_COMM_WORLD, &requests[k]);
+    }
+    for (std::size_t k = 0; k < 2; ++k)
+        MPI_Isend(out[k].data(), static_cast<int>(out[k].size()), MPI_CHAR, to[k] == no_rank ? MPI_PROC_NULL : to[k],
+                  tag[k], MPI_COMM_WORLD, &requests[2 + k]);
+    std::array<MPI_Status, 4> status{};
+    MPI_Waitall(4, requests.data(), status.data());
+    for (std::size_t k = 0; k < 2; ++k) {
+        int count = 0;
+        MPI_Get_count(&status[k], MPI_CHAR, &count);
+        in[k].resize(from[k] == no_rank ? 0 : static_cast<std::size_t>(count));
+    }
+    return in;
+}
+
 std::vector<Bytes> gather(const Bytes& mine) {
     if (world_size == 1) return {mine};
     int count = static_cast<int>(mine.size());
@@ -193,6 +217,11 @@ void send(int, int, std::string_view) { throw Error("MPI: tumble was built witho
 Message receive(int, int) { throw Error("MPI: tumble was built without MPI"); }
 std::optional<Message> poll() { return std::nullopt; }
 Bytes exchange(int, const Bytes& out, int, int) { return out; }
+std::array<Bytes, 2> exchange_pair(const std::array<int, 2>&, const std::array<Bytes, 2>& out,
+                                   const std::array<int, 2>&, const std::array<std::size_t, 2>&,
+                                   const std::array<int, 2>&) {
+    return out;
+}
 std::vector<Bytes> gather(const Bytes& mine) { return {mine}; }
 bool any(bool mine) { return mine; }
 double sum(double mine) { return mine; }

@@ -11,6 +11,7 @@
 // OpenMP threads of a time step never do.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -89,6 +90,14 @@ using Bytes = std::vector<char>;
 // is none: nothing is sent, or nothing received.
 inline constexpr int no_rank = -1;
 Bytes exchange(int to, const Bytes& out, int from, int tag);
+// Two such exchanges at once, where the receiver knows each size (the ghost
+// updates between rebuilds): out[k] to rank to[k], and at most in_size[k]
+// bytes from rank from[k] (what arrived, resized to it), tag tag[k]. All
+// four messages are posted together (MPI_Isend, MPI_Irecv, MPI_Waitall), so
+// the two directions cost one latency, and no message's size goes first.
+std::array<Bytes, 2> exchange_pair(const std::array<int, 2>& to, const std::array<Bytes, 2>& out,
+                                   const std::array<int, 2>& from, const std::array<std::size_t, 2>& in_size,
+                                   const std::array<int, 2>& tag);
 // Every rank's `mine`, in rank order, on rank 0 (empty elsewhere).
 std::vector<Bytes> gather(const Bytes& mine);
 // Logical or, sum and maximum over the ranks; the result on every rank.

@@ -216,29 +216,39 @@ void Slabs::make_ghosts(ParticleStore& p) {
     }
 }
 
+// Both directions at once (mpi::exchange_pair): message s goes to side s
+// and comes from side 1 - s, whose ghosts this rank holds from the last
+// rebuild, so both ends know its size.
 void Slabs::update_ghosts(ParticleStore& p, std::size_t owned) {
     ++traffic_.updates;
-    for (int s : {1, 0}) {
-        const auto& side = side_[static_cast<std::size_t>(s)];
-        mpi::Bytes out;
-        out.reserve(state_.send[static_cast<std::size_t>(s)].size() * motion_bytes);
-        for (std::uint32_t i : state_.send[static_cast<std::size_t>(s)]) {
+    std::array<mpi::Bytes, 2> out;
+    std::array<int, 2> to{}, from{}, tag{};
+    std::array<std::size_t, 2> expected{};
+    for (std::size_t s = 0; s < 2; ++s) {
+        const auto& side = side_[s];
+        out[s].reserve(state_.send[s].size() * motion_bytes);
+        for (std::uint32_t i : state_.send[s]) {
             Vec3 x = p.position[i];
             x[axis_] += side.shift;
-            put(out, x);
-            put(out, p.velocity[i]);
-            put(out, p.angular_velocity[i]);
-            put(out, p.half_kick[i]);
+            put(out[s], x);
+            put(out[s], p.velocity[i]);
+            put(out[s], p.angular_velocity[i]);
+            put(out[s], p.half_kick[i]);
         }
-        if (side.rank != mpi::no_rank) traffic_.update_bytes += static_cast<std::int64_t>(out.size());
-        const mpi::Bytes in =
-            mpi::exchange(side.rank, out, side_[static_cast<std::size_t>(1 - s)].rank, update_tag + (1 - s));
-        const std::size_t from = static_cast<std::size_t>(1 - s);
-        const std::size_t begin = state_.receive_begin[from], count = state_.receive_count[from];
-        if (in.size() != count * motion_bytes || begin + count > p.size())
-            throw Error("slabs: the ghosts from rank " + std::to_string(side_[from].rank) +
+        if (side.rank != mpi::no_rank) traffic_.update_bytes += static_cast<std::int64_t>(out[s].size());
+        to[s] = side.rank;
+        from[s] = side_[1 - s].rank;
+        tag[s] = update_tag + static_cast<int>(1 - s);
+        expected[s] = state_.receive_count[1 - s] * motion_bytes;
+    }
+    const std::array<mpi::Bytes, 2> in = mpi::exchange_pair(to, out, from, expected, tag);
+    for (std::size_t s = 0; s < 2; ++s) {
+        const std::size_t side = 1 - s;
+        const std::size_t begin = state_.receive_begin[side], count = state_.receive_count[side];
+        if (in[s].size() != count * motion_bytes || begin + count > p.size())
+            throw Error("slabs: the ghosts from rank " + std::to_string(side_[side].rank) +
                         " do not match those of the last rebuild");
-        Reader r(in);
+        Reader r(in[s]);
         for (std::size_t g = begin; g < begin + count; ++g) {
             p.position[g] = r.get<Vec3>();
             p.velocity[g] = r.get<Vec3>();
