@@ -258,10 +258,11 @@ void add_and_clear(double* __restrict sum, double* __restrict part, std::size_t 
 //
 // Phase 1: chunk c takes the c-th part of the pair list; chunk 0 sums into
 // the particles' arrays, chunk c >= 1 into its own. Phase 2: chunk c takes
-// the c-th part of the own spheres (and of the ghosts) and adds the other
-// chunks' sums to theirs, in chunk order, then the flat walls. The sums are thus the same bitwise
-// on every run with the same chunk count, and differ from one chunk's only
-// by the order of the additions (round-off). Recording runs on one chunk.
+// its part of the own spheres (own_parts(), and the c-th part of the
+// ghosts) and adds the other chunks' sums to theirs, in chunk order, then
+// the flat walls. The sums are thus the same bitwise on every run with the
+// same chunk count, and differ from one chunk's only by the order of the
+// additions (round-off). Recording runs on one chunk.
 //
 // The list is sorted by first particle and j > i in every pair, so chunk
 // c >= 1 touches only particles from the first particle of its part on
