@@ -65,10 +65,12 @@ int contact_command(const ContactOptions& options);
 
 // tumble resume DIR: continue a run of `tumble run` or `tumble drum` from its
 // newest intact checkpoint (docs/CHECKPOINTS.md). progress_every: seconds
-// between progress lines when not on a terminal (0: none).
-int resume_command(const std::string& directory, bool quiet, double progress_every);
+// between progress lines when not on a terminal (0: none). revolutions > 0:
+// a drum run's new length (`--revolutions`; a finished run goes on).
+int resume_command(const std::string& directory, bool quiet, double progress_every, double revolutions = 0.0);
 int resume_run(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet, double progress_every);
-int resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet, double progress_every);
+int resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet, double progress_every,
+                double revolutions);
 
 // Re-analyse a drum run directory: summary.json, summary.txt.
 // options: the start-up left out of the fits and the band thresholds

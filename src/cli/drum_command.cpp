@@ -25,8 +25,10 @@ int with_figures(const experiments::DrumOutcome& outcome, bool quiet) {
 
 int drum_command(const DrumOptions& options) { return with_figures(experiments::run_drum(options), options.quiet); }
 
-int resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet, double progress_every) {
-    return with_figures(experiments::resume_drum(std::move(checkpoint), directory, quiet, progress_every), quiet);
+int resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet, double progress_every,
+                double revolutions) {
+    return with_figures(experiments::resume_drum(std::move(checkpoint), directory, quiet, progress_every, revolutions),
+                        quiet);
 }
 
 int analyze_command(const std::string& directory, const io::AnalyzeOptions& options, bool so_far) {

@@ -296,6 +296,11 @@ int main(int argc, char** argv) {
     resume_cmd->add_option("directory", resume_dir, "Run directory")->required();
     resume_cmd->add_flag("-q,--quiet", resume_quiet, "Print nothing but errors");
     add_progress_option(resume_cmd, resume_progress_every);
+    double resume_revolutions = 0.0;
+    resume_cmd->add_option("--revolutions", resume_revolutions,
+                           "A drum run: turn it to this many revolutions in all, more than it has turned: a run that "
+                           "has finished goes on from its end (docs/CHECKPOINTS.md)")
+        ->check(CLI::PositiveNumber);
 
     std::string analyze_dir;
     CLI::App* analyze_cmd = app.add_subcommand("analyze", "Analyse a drum run directory again (summary.json, summary.txt)");
@@ -400,7 +405,7 @@ int main(int argc, char** argv) {
         if (plot_cmd->parsed()) return plot_command(plot_compare ? "compare" : "run", plot_inputs, plot_out);
         if (sweep_cmd->parsed()) return sweep_command(sweep);
         if (render_cmd->parsed()) return render_command(render);
-        if (resume_cmd->parsed()) return resume_command(resume_dir, resume_quiet, resume_progress_every);
+        if (resume_cmd->parsed()) return resume_command(resume_dir, resume_quiet, resume_progress_every, resume_revolutions);
         if (contact_cmd->parsed()) {
             if (contact.scenario_file.empty() && !contact_drum)
                 throw tumble::Error("contact: give a scenario file or --drum");

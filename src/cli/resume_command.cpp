@@ -21,7 +21,7 @@ std::int64_t load_newest_ranks(const std::string& directory, std::uintmax_t max_
 }
 }  // namespace
 
-int resume_command(const std::string& directory, bool quiet, double progress_every) {
+int resume_command(const std::string& directory, bool quiet, double progress_every, double revolutions) {
     // Under mpirun every rank reads its own checkpoint file (a run shared
     // among ranks, io/checkpoint.hpp); rank 0 holds the lock and talks.
     const io::CheckpointRank who{mpi::rank(), mpi::size()};
@@ -47,16 +47,19 @@ int resume_command(const std::string& directory, bool quiet, double progress_eve
                                     "damaged); resume is not possible from mixed checkpoints");
     }
     const io::CheckpointRecord& record = loaded.checkpoint.record;
-    if (record.integer("finished")) {
+    const std::string command = record.text("command");
+    if (revolutions > 0.0 && command != "drum")
+        throw Error("--revolutions: the run in " + directory + " is not a drum run (tumble " + command +
+                    "); only a drum run is lengthened");
+    if (record.integer("finished") && !(revolutions > 0.0)) {
         if (talk)
             fmt::print("tumble resume: the run in {} has finished ({}); nothing to do\n", directory,
                        loaded.file.string());
         return 0;
     }
     if (talk) fmt::print("tumble resume: from {}\n", loaded.file.string());
-    const std::string command = record.text("command");
     if (command == "run") return resume_run(std::move(loaded.checkpoint), directory, quiet, progress_every);
-    if (command == "drum") return resume_drum(std::move(loaded.checkpoint), directory, quiet, progress_every);
+    if (command == "drum") return resume_drum(std::move(loaded.checkpoint), directory, quiet, progress_every, revolutions);
     throw Error(loaded.file.string() + ": a checkpoint of an unknown command \"" + command + "\"");
 }
 

@@ -391,6 +391,39 @@ private:
     std::optional<io::SnapshotSeries> snapshots_;
 };
 
+// tumble resume --revolutions: the run's new length.
+// done: the rotation's steps so far.
+void lengthen(DrumPlan& plan, double revolutions, std::int64_t done, double dt, const fs::path& dir, bool quiet) {
+    io::DrumRunInfo& info = plan.info;
+    const double period = 2.0 * pi / info.omega;  // s
+    if (std::llround(revolutions * period / dt) <= done)  // the rotation's length in steps, as DrumLoop counts it
+        throw Error(fmt::format("--revolutions {}: the run in {} has turned {:.4g} revolutions already; ask for more",
+                                revolutions, dir.string(), static_cast<double>(done) * dt / period));
+    const bool talk = !quiet && mpi::rank() == 0;
+    if (talk)
+        fmt::print("tumble resume: the run's length goes from {} to {} revolutions\n", info.revolutions, revolutions);
+    info.revolutions = revolutions;
+    if (info.until_band_change > 0.0 && info.band_change_since >= 0.0) {
+        if (talk)
+            fmt::print("tumble resume: the rotation ended on its band change (N = {:.4g}); it goes on without "
+                       "--until-band-change\n",
+                       info.band_change_since);
+        info.until_band_change = 0.0;
+    }
+}
+
+// A finished run lengthened is unfinished again: its summary (what marks a
+// finished run for tumble sweep, the band study's scripts and a reader)
+// goes until the new end writes it anew.
+void remove_summary(const fs::path& dir) {
+    if (mpi::rank() != 0) return;
+    for (const char* name : {"summary.json", "summary.txt"}) {
+        std::error_code ec;
+        fs::remove(dir / name, ec);
+        if (ec) throw Error((dir / name).string() + ": cannot remove the old summary: " + ec.message());
+    }
+}
+
 }  // namespace
 
 DrumOutcome run_drum(const DrumRunOptions& options) {
@@ -466,11 +499,15 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     return loop.run({});
 }
 
-DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet, double progress_every) {
+DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool quiet, double progress_every,
+                        double revolutions) {
     DrumPlan plan = load_plan(checkpoint.record);
     plan.quiet = quiet;
     plan.progress = progress_style(quiet, progress_every);
     plan.info.isa = isa_description();  // this machine's, which may differ from the interrupted run's
+    const std::int64_t done = plan.rotating ? checkpoint.state.step - plan.rotation_start_step : 0;  // steps
+    const double turned = plan.info.omega * static_cast<double>(done) * checkpoint.state.dt / (2.0 * pi);
+    if (revolutions > 0.0) lengthen(plan, revolutions, done, checkpoint.state.dt, dir, quiet);
     try {
         check_drum_durations(plan.info.revolutions, plan.info.omega, plan.info.samples_per_revolution,
                              plan.settle_max_time, checkpoint.state.dt);
@@ -481,11 +518,10 @@ DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool qui
         throw Error(checkpoint.record.source + ": its record does not fit its state: " + e.what());
     }
     Simulation sim = restore_simulation(checkpoint, dir);
+    if (revolutions > 0.0) remove_summary(dir);
     if (!quiet && mpi::rank() == 0)
         fmt::print("tumble resume: drum run at step {} (t = {:.6g} s, {})\n", sim.step_count(), sim.time(),
-                   plan.rotating ? fmt::format("{:.4g} revolutions",
-                                               plan.info.omega * (sim.time() - plan.info.settle_time) / (2.0 * pi))
-                                 : std::string("settling"));
+                   plan.rotating ? fmt::format("{:.4g} revolutions", turned) : std::string("settling"));
     DrumLoop loop(sim, std::move(plan), dir, load_policy(checkpoint.record), true, {});
     return loop.run(checkpoint.record.numbers("snapshot_times"));
 }

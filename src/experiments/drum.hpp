@@ -59,9 +59,13 @@ struct DrumOutcome {
 DrumOutcome run_drum(const DrumRunOptions& options);
 
 // Continues the run of `checkpoint` (the newest intact one of `directory`).
-// progress_every: as DrumRunOptions's.
+// progress_every: as DrumRunOptions's. revolutions > 0: the run's new
+// length, more than it has turned (tumble::Error otherwise, before any
+// work); a finished run goes on from its end (its summary is removed, and
+// written anew at the new end), and one that ended on its band change
+// (--until-band-change) goes on without that watch.
 DrumOutcome resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet,
-                        double progress_every = default_progress_every);
+                        double progress_every = default_progress_every, double revolutions = 0.0);
 
 // The analysis of a finished run directory again (summary.json,
 // summary.txt), returned as text; options: the start-up left out of the

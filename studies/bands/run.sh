@@ -6,7 +6,8 @@
 # answer the conjecture; finished runs are skipped). A run kept in git (kept/NAME.tar.gz: its
 # newest checkpoint and written series) is unpacked and resumed; a run with
 # a checkpoint in out/ is resumed; a finished run (summary.json) is
-# skipped. Stop the runs with stop.sh (each writes a checkpoint), then
+# skipped, unless runs.txt now asks for more revolutions than it has
+# (`tumble resume --revolutions`: it goes on from its end). Stop the runs with stop.sh (each writes a checkpoint), then
 # keep.sh packs them for a commit.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -25,14 +26,20 @@ one_run() {
   local args
   args=$(awk -v n="$name" '$1 == n {$1 = ""; print}' "$study/runs.txt")
   [[ -n "$args" ]] || { echo "bands: no run $name in $study/runs.txt" >&2; return 2; }
-  if [[ -f "$dir/summary.json" ]]; then echo "bands: $name finished"; return 0; fi
   if [[ ! -d "$dir/checkpoints" && -f "$study/kept/$name.tar.gz" ]]; then
     mkdir -p "$dir" && tar -xzf "$study/kept/$name.tar.gz" -C "$dir"
-    if [[ -f "$dir/summary.json" ]]; then echo "bands: $name finished (kept)"; return 0; fi
   fi
+  # Lengthened: runs.txt asks for more revolutions than the run was started with.
+  local asked had longer=()
+  asked=$(sed -n 's/.*--revolutions \([0-9.]*\).*/\1/p' <<<"$args")
+  had=$(awk -F' = ' '$1 == "revolutions" {print $2}' "$dir/drum_run.toml" 2>/dev/null || true)
+  if [[ -n "$asked" && -n "$had" ]] && awk -v a="$asked" -v h="$had" 'BEGIN {exit !(a > h)}'; then
+    longer=(--revolutions "$asked")
+  fi
+  if [[ -f "$dir/summary.json" && ${#longer[@]} -eq 0 ]]; then echo "bands: $name finished"; return 0; fi
   if compgen -G "$dir/checkpoints/*.tck" >/dev/null; then
-    echo "bands: $name resumed (log $dir.log)"
-    nice -n 10 "$tumble" resume "$dir" --progress-every 60 >>"$dir.log" 2>&1
+    echo "bands: $name resumed ${longer[*]} (log $dir.log)"
+    nice -n 10 "$tumble" resume "$dir" "${longer[@]}" --progress-every 60 >>"$dir.log" 2>&1
   else
     echo "bands: $name started (log $dir.log)"
     # shellcheck disable=SC2086

@@ -192,6 +192,48 @@ TEST(Slabs, CutsFollowTheGrains) {
     EXPECT_LT(tumble::mpi::max(highest), 0.05);  // the grains did fall
 }
 
+// The cuts follow the pairs as well as the grains: a column of 128 grains
+// at rest on a square lattice 2 x 2 x 32 (spacing 2 R + skin / 2, so each
+// has its nearest neighbours in the list: 252 pairs) under 128 grains of a
+// gas above it (moving at 0.3 m/s in a box 40 mm wide, so the list is
+// rebuilt every 15 steps or so and the cuts are looked at every 50
+// rebuilds), no gravity. The start's cuts split the grains equally, at the
+// gap between lattice and gas. A sphere's work is a grain's 1 plus 0.85
+// per pair (Slabs::rebalance): the lattice weighs 342, the gas about 128,
+// so after 4,000 steps the cuts lie inside the lattice and the ranks hold
+// unequal grains (the top rank at least 1.2 times the mean) but equal
+// work, grains + 0.85 pairs, within 10 % of the mean (a lattice layer,
+// 10.8, is 5 % of a rank's share on 2 ranks). Cuts that counted grains
+// only would leave the work 2.7 to 1 on 2 ranks.
+TEST(Slabs, CutsFollowThePairs) {
+    tumble::Scenario s = open_scenario(4e-5);
+    s.domain.lo = {-0.02, -0.02, 0.0};
+    s.domain.hi = {0.02, 0.02, 0.6};
+    s.domain.walls = {true, true, true};
+    s.neighbor.skin = 0.1 * R1;
+    const double spacing = 2.0 * R1 + 0.5 * s.neighbor.skin;
+    for (int k = 0; k < 128; ++k)
+        s.particles.push_back(
+            sphere({spacing * (k % 2 - 0.5), spacing * ((k / 2) % 2 - 0.5), 0.01 + spacing * (k / 4)}, R1, 0));
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> speed(-0.3, 0.3);
+    for (int k = 0; k < 128; ++k) {  // a 4 x 4 x 8 grid, 10 mm by 10 mm by 35 mm
+        tumble::ParticleSpec gas = sphere({-0.015 + 0.01 * (k % 4), -0.015 + 0.01 * ((k / 4) % 4), 0.3 + 0.035 * (k / 16)}, R1, 0);
+        gas.velocity = {speed(rng), speed(rng), speed(rng)};
+        s.particles.push_back(gas);
+    }
+    Simulation shared(s, 1, Ranks::world);
+    shared.advance(4000);
+    const double grains = static_cast<double>(shared.owned());
+    const double work = grains + 0.85 * static_cast<double>(shared.neighbors().pairs().size());
+    const double ranks = tumble::mpi::size();
+    const double mean_work = tumble::mpi::sum(work) / ranks, mean_grains = 256.0 / ranks;
+    std::printf("  [measured] rank %d: %g grains, work %g (mean %g)\n", tumble::mpi::rank(), grains, work, mean_work);
+    EXPECT_EQ(tumble::mpi::sum(static_cast<std::int64_t>(shared.owned())), 256);
+    EXPECT_LE(tumble::mpi::max(std::abs(work - mean_work)), 0.1 * mean_work) << "rank " << tumble::mpi::rank();
+    if (ranks > 1) EXPECT_GE(tumble::mpi::max(grains), 1.2 * mean_grains);
+}
+
 // A grain sliding on a flat floor across the cut between two ranks keeps
 // its wall contact's history: its friction force, step by step, is the
 // one-process run's. Two grains 20 cm apart in x slide towards each other's

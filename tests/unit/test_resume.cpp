@@ -208,6 +208,36 @@ snapshot_interval = 0.01
         EXPECT_EQ(read_file(dir_ / "full" / "snapshots" / snapshot), read_file(out / "snapshots" / snapshot));
 }
 
+// tumble resume --revolutions lengthens a drum run (the band study runs on
+// past its first 150 revolutions). Asked for fewer revolutions than it has
+// turned, it refuses before anything is touched (the summary stays); asked
+// for more, a finished run of 0.2 revolutions goes on from its end and
+// writes every snapshot as the run asked for 0.4 from the start, bit for
+// bit (a checkpoint holds the whole state), then its summary anew.
+TEST_F(Resume, AFinishedDrumRunIsLengthenedToTheLongerRun) {
+    const fs::path full = reference("0.4");
+    const fs::path out = dir_ / "lengthened";
+    ASSERT_EQ(tumble_run(small_drum + " --revolutions 0.2 --out " + out.string()).exit_code, 0);
+    const std::string summary = read_file(out / "summary.json");
+    const auto fewer = tumble_run("resume -q " + out.string() + " --revolutions 0.1");
+    EXPECT_EQ(fewer.exit_code, 2) << fewer.output;
+    EXPECT_NE(fewer.output.find("has turned 0.2 revolutions already"), std::string::npos) << fewer.output;
+    EXPECT_EQ(read_file(out / "summary.json"), summary);
+    const auto longer = tumble_run("resume -q " + out.string() + " --revolutions 0.4");
+    ASSERT_EQ(longer.exit_code, 0) << longer.output;
+    std::size_t snapshots = 0;
+    for (const auto& entry : fs::directory_iterator(full / "snapshots")) {
+        EXPECT_EQ(read_file(entry.path()), read_file(out / "snapshots" / entry.path().filename()))
+            << entry.path().filename();
+        ++snapshots;
+    }
+    EXPECT_GE(snapshots, 4u * 8u);  // 8 snapshots of 4 formats at 20 a revolution
+    EXPECT_EQ(tumble::io::read_drum_run_info(out / "drum_run.toml").revolutions, 0.4);
+    EXPECT_NE(read_file(out / "summary.json"), summary);
+    const auto again = tumble_run("resume " + out.string());
+    EXPECT_NE(again.output.find("has finished"), std::string::npos) << again.output;
+}
+
 TEST_F(Resume, AnExistingRunDirectoryIsRefusedWithoutForce) {
     const fs::path out = reference();
     const auto again = tumble_run(small_drum + " --revolutions 0.2 --out " + out.string());

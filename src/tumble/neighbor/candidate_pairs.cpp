@@ -86,6 +86,30 @@ struct CellGrid {
         return static_cast<std::size_t>(cx) + static_cast<std::size_t>(count[0]) * (cy + static_cast<std::size_t>(count[1]) * cz);
     }
     std::size_t cell_of(const Vec3& x) const { return index(coordinate(x, 0), coordinate(x, 1), coordinate(x, 2)); }
+    // f(cell, s) for the 27 cells around the one of x (fewer at an open
+    // side), s[k] = -1 or 1 where the cell lies across a periodic boundary
+    // (seen from x, it is shifted by s L), else 0.
+    template <class F>
+    void each_neighbor(const Vec3& x, F&& f) const {
+        const int centre[3] = {coordinate(x, 0), coordinate(x, 1), coordinate(x, 2)};
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int delta[3] = {dx, dy, dz};
+                    int nc[3], s[3];
+                    bool outside = false;
+                    for (int k = 0; k < 3; ++k) {
+                        nc[k] = centre[k] + delta[k];
+                        s[k] = 0;
+                        if (nc[k] < 0 || nc[k] >= count[k]) {
+                            if (!periodic[k]) { outside = true; break; }
+                            s[k] = nc[k] < 0 ? -1 : 1;
+                            nc[k] -= s[k] * count[k];
+                        }
+                    }
+                    if (!outside) f(index(nc[0], nc[1], nc[2]), s);
+                }
+    }
     std::size_t cells() const { return static_cast<std::size_t>(count[0]) * count[1] * count[2]; }
 };
 
@@ -140,7 +164,10 @@ void CellSearch::measure(const ParticleStore& p, Team& team) {
                 e.finite = e.finite && std::isfinite(x[k]);  // min and max pass over a NaN
             }
             e.largest_radius = std::max(e.largest_radius, p.radius[i]);
-            if (!p.is_kinematic(i)) e.free_end = i + 1;
+            if (!p.is_kinematic(i))
+                e.free_end = i + 1;
+            else
+                e.first_kinematic = std::min(e.first_kinematic, i);
         }
         extents_[static_cast<std::size_t>(c)] = e;
     });
@@ -205,7 +232,8 @@ void CellSearch::sort_order(const ParticleStore& p, const Domain& domain, double
     counting_sort(p.size(), 2 * grid.cells(), team, order);
 }
 
-void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double skin, Team& team, PairList& out) {
+void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double skin, std::size_t first_end,
+                            Team& team, PairList& out) {
     measure(p, team);
     const CellGrid grid(extents_, p.size(), domain, 2.0 * largest_radius(extents_) + skin);
     team.each([&](int c) {
@@ -215,8 +243,21 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
     counting_sort(p.size(), grid.cells(), team, members_);
     // A pair has a free particle and j > i: no pair starts after the last
     // free particle (with the store in cell_order(), the kinematic ones).
-    std::size_t free_end = 0;
-    for (const Extent& e : extents_) free_end = std::max(free_end, e.free_end);
+    std::size_t free_end = 0, first_kinematic = SIZE_MAX;
+    for (const Extent& e : extents_) {
+        free_end = std::max(free_end, e.free_end);
+        first_kinematic = std::min(first_kinematic, e.first_kinematic);
+    }
+    // A kinematic particle pairs only with free ones after it: free particles
+    // after the first kinematic one (an MPI rank's ghost grains, stored after
+    // its own wall spheres). The cells next to one are marked, and a
+    // kinematic particle elsewhere is passed over (on a rank of the long
+    // drum, half its spheres are wall spheres, most of them far from a ghost).
+    team.one([&] {
+        near_late_free_.assign(grid.cells(), 0);
+        for (std::size_t j = first_kinematic; j < free_end; ++j)
+            if (!p.is_kinematic(j)) grid.each_neighbor(p.position[j], [&](std::size_t cell, const int*) { near_late_free_[cell] = 1; });
+    });
     const Vec3 L = domain.length();
     team.each([&](int c) {
         Part& part = parts_[static_cast<std::size_t>(c)];
@@ -228,46 +269,29 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
             std::uint8_t image;
         };
         std::vector<Near> near;  // candidates j > i with their image codes
-        const IndexRange range = team.range(c, free_end);
+        const IndexRange range = team.range(c, std::min(free_end, first_end));
         for (auto i = static_cast<std::uint32_t>(range.begin); i < range.end; ++i) {
             const Vec3& xi = p.position[i];
             const bool i_kinematic = p.is_kinematic(i);
-            const int cell_i[3] = {grid.coordinate(xi, 0), grid.coordinate(xi, 1), grid.coordinate(xi, 2)};
+            if (i_kinematic && !near_late_free_[key_[i]]) continue;
             near.clear();
-            for (int dz = -1; dz <= 1; ++dz)
-                for (int dy = -1; dy <= 1; ++dy)
-                    for (int dx = -1; dx <= 1; ++dx) {
-                        const int delta[3] = {dx, dy, dz};
-                        int nc[3], s[3];
-                        bool outside = false;
-                        for (int k = 0; k < 3; ++k) {
-                            nc[k] = cell_i[k] + delta[k];
-                            s[k] = 0;
-                            if (nc[k] < 0 || nc[k] >= grid.count[k]) {
-                                if (!grid.periodic[k]) { outside = true; break; }
-                                // j lives across the boundary: shift its image toward i.
-                                s[k] = nc[k] < 0 ? -1 : 1;
-                                nc[k] -= s[k] * grid.count[k];
-                            }
-                        }
-                        if (outside) continue;
-                        const std::size_t cell = grid.index(nc[0], nc[1], nc[2]);
-                        const std::uint8_t code = image_code(-s[0], -s[1], -s[2]);
-                        // d = X_i - X_j + shift: j sits at X_j + s L seen from i,
-                        // so shift = -s L, the image code of (-s).
-                        const Vec3 shift{s[0] * L.x, s[1] * L.y, s[2] * L.z};
-                        // A cell's members are in ascending index (a stable
-                        // counting sort): those up to i are skipped at once.
-                        const std::uint32_t* m = members_.data() + start_[cell];
-                        const std::uint32_t* end = members_.data() + start_[cell + 1];
-                        for (m = std::upper_bound(m, end, i); m < end; ++m) {
-                            const std::uint32_t j = *m;
-                            if (i_kinematic && p.is_kinematic(j)) continue;
-                            const Vec3 d = xi - p.position[j] - shift;
-                            const double range_ij = p.radius[i] + p.radius[j] + skin;
-                            if (norm2(d) < range_ij * range_ij) near.push_back({j, code});
-                        }
-                    }
+            grid.each_neighbor(xi, [&](std::size_t cell, const int* s) {
+                const std::uint8_t code = image_code(-s[0], -s[1], -s[2]);
+                // d = X_i - X_j + shift: j sits at X_j + s L seen from i,
+                // so shift = -s L, the image code of (-s).
+                const Vec3 shift{s[0] * L.x, s[1] * L.y, s[2] * L.z};
+                // A cell's members are in ascending index (a stable
+                // counting sort): those up to i are skipped at once.
+                const std::uint32_t* m = members_.data() + start_[cell];
+                const std::uint32_t* end = members_.data() + start_[cell + 1];
+                for (m = std::upper_bound(m, end, i); m < end; ++m) {
+                    const std::uint32_t j = *m;
+                    if (i_kinematic && p.is_kinematic(j)) continue;
+                    const Vec3 d = xi - p.position[j] - shift;
+                    const double range_ij = p.radius[i] + p.radius[j] + skin;
+                    if (norm2(d) < range_ij * range_ij) near.push_back({j, code});
+                }
+            });
             // Ascending j within each i: the pair order does not depend on cell layout.
             std::sort(near.begin(), near.end(), [](const Near& a, const Near& b) { return a.j < b.j; });
             for (const Near& n : near) {
@@ -305,7 +329,7 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
 
 void cell_list_pairs(const ParticleStore& p, const Domain& domain, double skin, PairList& out, int chunks) {
     CellSearch search;
-    run_in_team(chunks, [&](Team& team) { search.find_pairs(p, domain, skin, team, out); });
+    run_in_team(chunks, [&](Team& team) { search.find_pairs(p, domain, skin, p.size(), team, out); });
 }
 
 std::vector<std::uint32_t> cell_order(const ParticleStore& p, const Domain& domain, double skin, int chunks) {

@@ -5,6 +5,7 @@
 // Two implementations: linked cells (fast) and brute force (reference).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "tumble/core/parallel.hpp"
@@ -43,7 +44,10 @@ std::vector<std::uint32_t> cell_order(const ParticleStore& p, const Domain& doma
 // on their own and joined in the order of the parts.
 class CellSearch {
 public:
-    void find_pairs(const ParticleStore& p, const Domain& domain, double skin, Team& team, PairList& out);
+    // The pairs whose first particle is one of the first `first_end` (an
+    // MPI rank's own spheres: the ghosts after them pair only with those).
+    void find_pairs(const ParticleStore& p, const Domain& domain, double skin, std::size_t first_end, Team& team,
+                    PairList& out);
     void sort_order(const ParticleStore& p, const Domain& domain, double skin, Team& team,
                     std::vector<std::uint32_t>& order);
 
@@ -54,6 +58,7 @@ public:
         bool finite = true;
         double largest_radius = 0.0;
         std::size_t free_end = 0;  // one past its last free particle (0: none)
+        std::size_t first_kinematic = SIZE_MAX;  // its first kinematic particle (SIZE_MAX: none)
     };
 
 private:
@@ -73,6 +78,7 @@ private:
     std::vector<std::vector<std::uint32_t>> count_;  // per chunk, per bin: its particles, then where they go
     std::vector<std::size_t> chunk_total_;         // per chunk of the bins: the particles in them
     std::vector<std::uint32_t> start_, members_;   // per bin: first place in members_; particles by bin
+    std::vector<std::uint8_t> near_late_free_;     // per cell: next to a free particle after a kinematic one
     std::vector<Part> parts_;                      // per chunk
 };
 

@@ -29,13 +29,6 @@ struct PairList {
         angular_slip.clear();
         viscous_force.clear();
     }
-    void truncate(std::size_t n) {
-        for (auto* v : {&first, &second}) v->resize(n);
-        image.resize(n);
-        slip.resize(n);
-        angular_slip.resize(n);
-        viscous_force.resize(n);
-    }
     void add(std::uint32_t i, std::uint32_t j, std::uint8_t code) {
         first.push_back(i);
         second.push_back(j);

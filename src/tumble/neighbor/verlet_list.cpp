@@ -93,7 +93,7 @@ void VerletList::rebuild(ParticleStore& p, Team& team) {
         if (c == team.chunks() - 1) previous_start_[n] = previous_.size();
     });
     const bool sort = wrap_and_sort(p, team);
-    search_.find_pairs(p, domain_, skin_, team, pairs_);
+    search_.find_pairs(p, domain_, skin_, p.size(), team, pairs_);
     team.each([&](int c) {
         const IndexRange r = team.range(c, pairs_.size());
         for (std::size_t k = r.begin; k < r.end; ++k) {
@@ -116,16 +116,11 @@ void VerletList::rebuild(ParticleStore& p, Team& team) {
 
 void VerletList::arrange(ParticleStore& p, Team& team) { wrap_and_sort(p, team); }
 
-// The ghosts lie after the own spheres, and every list is sorted by its
-// first sphere with the second after it: the pairs of two ghosts are the
-// end of the list.
+// The ghosts lie after the own spheres: the search takes pairs that start
+// at an own sphere only (two ghosts' pair is their owners' business).
 void VerletList::find_pairs(ParticleStore& p, std::size_t owned, const HistoryTable& histories, Team& team) {
-    search_.find_pairs(p, domain_, skin_, team, pairs_);
-    team.one([&] {
-        const auto own_end = std::lower_bound(pairs_.first.begin(), pairs_.first.end(), owned);
-        pairs_.truncate(static_cast<std::size_t>(own_end - pairs_.first.begin()));
-        position_at_build_.resize(p.size());
-    });
+    search_.find_pairs(p, domain_, skin_, owned, team, pairs_);
+    team.one([&] { position_at_build_.resize(p.size()); });
     team.each([&](int c) {
         const IndexRange r = team.range(c, pairs_.size());
         for (std::size_t k = r.begin; k < r.end; ++k)

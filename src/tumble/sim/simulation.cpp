@@ -83,7 +83,7 @@ void Simulation::rebuild(Team& team, bool keep_histories) {
         if (!keep_histories) histories_ = keyed_histories(particles_, neighbors_.pairs());
         particles_.resize(owned_);
         if (slabs_ && neighbors_.builds() % Slabs::rebalance_every == 0 && neighbors_.builds() > 0)
-            slabs_->rebalance(particles_, owned_);  // the cuts where the work now is, before the spheres migrate
+            slabs_->rebalance(particles_, owned_, neighbors_.pairs());  // the cuts where the work now is, before the spheres migrate
         if (slabs_) slabs_->migrate(particles_, histories_, wall_history_);
         history_table_.build(histories_, scenario_.particles.size());
         owned_ = particles_.size();

@@ -25,6 +25,7 @@
 #include "tumble/contact/history.hpp"
 #include "tumble/core/domain.hpp"
 #include "tumble/neighbor/keyed_history.hpp"
+#include "tumble/neighbor/pair_list.hpp"
 #include "tumble/particles/particle_store.hpp"
 
 namespace tumble {
@@ -53,17 +54,20 @@ public:
     double lo() const { return state_.cuts[static_cast<std::size_t>(rank_)]; }
     double hi() const { return state_.cuts[static_cast<std::size_t>(rank_) + 1]; }
 
-    // Collective, at a rebuild before migrate(): if the heaviest slab (a
-    // grain weighing 1, a kinematic sphere 0.2) is more than 5 % above the
-    // mean, the inner cuts move to the quantiles of the spheres' present
-    // coordinates (a histogram of 1,024 bins summed over the ranks, in
-    // whole counts, so that every rank finds the same cuts), each by at most
-    // half the narrower slab beside it (a sphere then changes owner only to
-    // a neighbour) and never to a slab narrower than the reach. Returns
-    // whether the cuts moved. The simulation calls it every
-    // `rebalance_every` rebuilds.
+    // Collective, at a rebuild before migrate(), with the pairs of the
+    // list about to be replaced (their first sphere is an own one): if the
+    // heaviest slab is more than 2 % above the mean, the inner cuts move to
+    // the weighted quantiles of the spheres' present coordinates. A sphere
+    // weighs what its step costs (measured, slabs.cpp): a grain 1, a
+    // kinematic sphere 0.25, plus 0.85 for each pair it is the first of.
+    // The weights come from a histogram of 1,024 bins summed over the ranks
+    // in whole counts, so that every rank finds the same cuts. Each cut
+    // moves by at most half the narrower slab beside it (a sphere then
+    // changes owner only to a neighbour) and never to a slab narrower than
+    // the reach. Returns whether the cuts moved. The simulation calls it
+    // every `rebalance_every` rebuilds.
     static constexpr int rebalance_every = 50;
-    bool rebalance(const ParticleStore& p, std::size_t owned);
+    bool rebalance(const ParticleStore& p, std::size_t owned, const PairList& pairs);
     // The domain a rank's neighbour search sees: not periodic along the
     // axis (ghosts carry their image).
     Domain local_domain() const;
