@@ -2,6 +2,7 @@
 #include "tumble/neighbor/candidate_pairs.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "tumble/core/error.hpp"
@@ -269,29 +270,46 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
             std::uint8_t image;
         };
         std::vector<Near> near;  // candidates j > i with their image codes
+        // The cells around the last particle's cell: the store is sorted by
+        // cell, so the particles of a cell follow each other and share them.
+        struct Around {
+            std::size_t cell;
+            std::uint8_t code;
+            Vec3 shift;
+        };
+        std::array<Around, 27> around;
+        std::size_t arounds = 0, around_of = SIZE_MAX;
         const IndexRange range = team.range(c, std::min(free_end, first_end));
         for (auto i = static_cast<std::uint32_t>(range.begin); i < range.end; ++i) {
             const Vec3& xi = p.position[i];
             const bool i_kinematic = p.is_kinematic(i);
             if (i_kinematic && !near_late_free_[key_[i]]) continue;
+            if (key_[i] != around_of) {
+                around_of = key_[i];
+                arounds = 0;
+                grid.each_neighbor(xi, [&](std::size_t cell, const int* s) {
+                    // d = X_i - X_j + shift: j sits at X_j + s L seen from i,
+                    // so shift = -s L, the image code of (-s).
+                    around[arounds++] = {cell, image_code(-s[0], -s[1], -s[2]), Vec3{s[0] * L.x, s[1] * L.y, s[2] * L.z}};
+                });
+            }
             near.clear();
-            grid.each_neighbor(xi, [&](std::size_t cell, const int* s) {
-                const std::uint8_t code = image_code(-s[0], -s[1], -s[2]);
-                // d = X_i - X_j + shift: j sits at X_j + s L seen from i,
-                // so shift = -s L, the image code of (-s).
-                const Vec3 shift{s[0] * L.x, s[1] * L.y, s[2] * L.z};
-                // A cell's members are in ascending index (a stable
-                // counting sort): those up to i are skipped at once.
-                const std::uint32_t* m = members_.data() + start_[cell];
-                const std::uint32_t* end = members_.data() + start_[cell + 1];
-                for (m = std::upper_bound(m, end, i); m < end; ++m) {
+            for (std::size_t a = 0; a < arounds; ++a) {
+                // A cell's members are in ascending index (a stable counting
+                // sort): a cell with none after i is passed over, and those up
+                // to i are skipped at once.
+                const std::uint32_t* m = members_.data() + start_[around[a].cell];
+                const std::uint32_t* end = members_.data() + start_[around[a].cell + 1];
+                if (m == end || end[-1] <= i) continue;
+                if (*m <= i) m = std::upper_bound(m, end, i);
+                for (; m < end; ++m) {
                     const std::uint32_t j = *m;
                     if (i_kinematic && p.is_kinematic(j)) continue;
-                    const Vec3 d = xi - p.position[j] - shift;
+                    const Vec3 d = xi - p.position[j] - around[a].shift;
                     const double range_ij = p.radius[i] + p.radius[j] + skin;
-                    if (norm2(d) < range_ij * range_ij) near.push_back({j, code});
+                    if (norm2(d) < range_ij * range_ij) near.push_back({j, around[a].code});
                 }
-            });
+            }
             // Ascending j within each i: the pair order does not depend on cell layout.
             std::sort(near.begin(), near.end(), [](const Near& a, const Near& b) { return a.j < b.j; });
             for (const Near& n : near) {

@@ -65,12 +65,15 @@ constexpr double wall_sphere_weight = 0.2;
 
 // The weights of the rebalance, which knows each sphere's pairs: what a
 // step costs per grain, per kinematic sphere and per pair, against a grain.
-// From `perf record` of `tumble bench --case long-drum` on one process
-// (2026-12-01, Intel Xeon family 6 model 167): the pair loop 334 k cycles
-// per pair over the run, a grain's search, kicks and drift 395 k, a wall
-// sphere's motion 94 k.
+// Measured on the long drum (2026-12-01, Intel Xeon family 6 model 167):
+// `perf record` of one process put 334 k cycles per pair over the run in
+// the pair loop and 395 k per grain in its search, kicks and drift (pair
+// 0.85); `perf record` of each of 2 ranks then fitted the wall sphere: with
+// 0.25 (its motion alone) the rank holding 3,402 wall spheres against the
+// other's 1,827 spent 7 % more cycles, most of them in the grain-wall pairs
+// that read the wall spheres; with 0.85 the ranks were within 2 %.
 constexpr double rebalance_grain_weight = 1.0;
-constexpr double rebalance_wall_weight = 0.25;
+constexpr double rebalance_wall_weight = 0.85;
 constexpr double rebalance_pair_weight = 0.85;
 
 // The motion sent each step: position, velocity, spin, half kick.

@@ -59,7 +59,7 @@ public:
     // heaviest slab is more than 2 % above the mean, the inner cuts move to
     // the weighted quantiles of the spheres' present coordinates. A sphere
     // weighs what its step costs (measured, slabs.cpp): a grain 1, a
-    // kinematic sphere 0.25, plus 0.85 for each pair it is the first of.
+    // kinematic sphere 0.85, plus 0.85 for each pair it is the first of.
     // The weights come from a histogram of 1,024 bins summed over the ranks
     // in whole counts, so that every rank finds the same cuts. Each cut
     // moves by at most half the narrower slab beside it (a sphere then
