@@ -199,6 +199,11 @@ snapshot_interval = 0.01
     const fs::path out = dir_ / "stopped";
     const auto stopped = tumble_run("run -q " + scenario.string() + " --out " + out.string() + " --stop-at-step 370");
     ASSERT_EQ(stopped.exit_code, 4) << stopped.output;
+    // --revolutions is a drum run's: refused for this one, before it goes on.
+    const auto lengthened = tumble_run("resume -q " + out.string() + " --revolutions 2");
+    EXPECT_EQ(lengthened.exit_code, 2) << lengthened.output;
+    EXPECT_NE(lengthened.output.find("--revolutions: the run in " + out.string() + " is not a drum run"), std::string::npos)
+        << lengthened.output;
     const auto resumed = tumble_run("resume -q " + out.string());
     ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
     EXPECT_EQ(read_file(dir_ / "full" / "time_series.csv"), read_file(out / "time_series.csv"));
