@@ -71,7 +71,9 @@ constexpr double wall_sphere_weight = 0.2;
 // 0.85); `perf record` of each of 2 ranks then fitted the wall sphere: with
 // 0.25 (its motion alone) the rank holding 3,402 wall spheres against the
 // other's 1,827 spent 7 % more cycles, most of them in the grain-wall pairs
-// that read the wall spheres; with 0.85 the ranks were within 2 %.
+// that read the wall spheres; with 0.85 the ranks were within 2 %. (The
+// start's cuts, made before there is a list, weigh a grain with its pairs
+// as 1 and a wall sphere as wall_sphere_weight against it.)
 constexpr double rebalance_grain_weight = 1.0;
 constexpr double rebalance_wall_weight = 0.85;
 constexpr double rebalance_pair_weight = 0.85;
