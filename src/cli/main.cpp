@@ -121,8 +121,9 @@ int main(int argc, char** argv) {
     CLI::App app{"tumble: discrete-element simulation of visco-elastic spheres (Kohring's contact model)"};
     app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
     app.require_subcommand(1);
-    app.footer("Environment: TUMBLE_ISA=baseline|avx2|avx512 runs the hot loops on that instruction set "
-               "(default: the widest this processor has; docs/BENCHMARKS.md, \"Portable binary\").");
+    app.footer("Environment: TUMBLE_ISA=baseline|avx2|avx512|avx512-wide runs the hot loops on that instruction "
+               "set (default: the widest this processor has, 512-bit vectors only on processors that run them at "
+               "full rate; docs/BENCHMARKS.md, \"Portable binary\").");
 
     RunOptions run;
     CLI::App* run_cmd = app.add_subcommand("run", "Simulate a scenario file (TOML; see docs/SCENARIO.md)");

@@ -4,7 +4,9 @@
 # (the last sample of drum_series.csv, in out/ or in the kept archive), of
 # how many, and the state: finished, ended early on a band-count change
 # (--until-band-change), running, stopped (a checkpoint to resume), kept
-# (in git, not unpacked here) or not started.
+# (in git, not unpacked here) or not started. A run that finished (or
+# ended early) before runs.txt asked for more revolutions is "lengthened":
+# run.sh goes on from its end.
 set -euo pipefail
 cd "$(dirname "$0")"
 last_revolution() {  # the N of the last line of a drum_series.csv on stdin
@@ -15,16 +17,23 @@ echo "|---|---|---|---|"
 awk '/^[AB]_/ { name = $1; of = "?"; for (i = 2; i < NF; ++i) if ($i == "--revolutions") of = $(i + 1); print name, of }' runs.txt |
 while read -r name of; do
   dir=out/$name done="" state="not started"
-  if [[ -f $dir/drum_series.csv ]]; then
-    done=$(last_revolution < "$dir/drum_series.csv")
-    if [[ -f $dir/summary.json ]]; then
+  # A file of the run: from out/NAME, or from its kept archive if not unpacked.
+  file_of() {
+    if [[ -d $dir ]]; then cat "$dir/$1" 2>/dev/null || true
+    else tar -xzOf "kept/$name.tar.gz" "$1" 2>/dev/null || true; fi
+  }
+  if [[ -f $dir/drum_series.csv || (! -d $dir && -f kept/$name.tar.gz) ]]; then
+    done=$(file_of drum_series.csv | last_revolution)
+    summary=$(file_of summary.json)
+    if [[ -n $summary ]]; then
       state=finished
-      grep -q '"ended": true' "$dir/summary.json" && state="ended early: band count changed"
+      grep -q '"ended": true' <<<"$summary" && state="ended early: band count changed"
+      had=$(file_of drum_run.toml | awk -F' = ' '$1 == "revolutions" {print $2}')
+      awk -v a="$of" -v h="$had" 'BEGIN {exit !(a > h)}' && state="$state; lengthened: run.sh goes on"
+    elif [[ ! -d $dir ]]; then state=stopped
     elif pgrep -f "bands/$dir( |$)" >/dev/null; then state=running
     else state=stopped; fi
-  elif [[ -f kept/$name.tar.gz ]]; then
-    done=$(tar -xzOf "kept/$name.tar.gz" drum_series.csv | last_revolution)
-    state="kept, not unpacked"
+    [[ -d $dir ]] || state="$state (kept, not unpacked)"
   fi
   echo "| $name | ${done:--} | $of | $state |"
 done

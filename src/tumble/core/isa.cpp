@@ -4,13 +4,17 @@
 #include <atomic>
 #include <cstdlib>
 
+#if defined(__x86_64__)
+#include <cpuid.h>
+#endif
+
 #include "tumble/core/error.hpp"
 
 namespace tumble {
 
 namespace {
 
-constexpr Isa all_levels[] = {Isa::baseline, Isa::avx2, Isa::avx512};
+constexpr Isa all_levels[] = {Isa::baseline, Isa::avx2, Isa::avx512, Isa::avx512_wide};
 
 // What each level needs of the processor: GCC's names of the x86-64 levels
 // (including the operating system's support of the wider registers).
@@ -20,7 +24,8 @@ bool processor_runs(Isa level) {
     switch (level) {
         case Isa::baseline: return true;
         case Isa::avx2: return __builtin_cpu_supports("x86-64-v3");
-        case Isa::avx512: return __builtin_cpu_supports("x86-64-v4");
+        case Isa::avx512:
+        case Isa::avx512_wide: return __builtin_cpu_supports("x86-64-v4");
     }
     return false;
 #else
@@ -37,7 +42,7 @@ std::string level_list(const std::vector<Isa>& levels) {
 Isa chosen_by_environment() {
     const char* value = std::getenv("TUMBLE_ISA");
     const std::vector<Isa> available = available_isas();
-    if (value == nullptr || *value == '\0') return available.back();
+    if (value == nullptr || *value == '\0') return default_isa(available, processor_has_full_width_512());
     if constexpr (!TUMBLE_ISA_CHOICE)
         throw Error(std::string("TUMBLE_ISA=") + value + ": this tumble has no choice of instruction set: " +
                     isa_description() + "; the default build has one (TUMBLE_ARCH empty, GCC, x86-64)");
@@ -48,7 +53,7 @@ Isa chosen_by_environment() {
                             level_list(available));
             return level;
         }
-    throw Error(std::string("TUMBLE_ISA=") + value + ": unknown; one of baseline, avx2, avx512 (this processor runs " +
+    throw Error(std::string("TUMBLE_ISA=") + value + ": unknown; one of baseline, avx2, avx512, avx512-wide (this processor runs " +
                 level_list(available) + ")");
 }
 
@@ -62,8 +67,29 @@ std::string_view isa_name(Isa level) {
         case Isa::baseline: return "baseline";
         case Isa::avx2: return "avx2";
         case Isa::avx512: return "avx512";
+        case Isa::avx512_wide: return "avx512-wide";
     }
     return "?";
+}
+
+Isa default_isa(const std::vector<Isa>& available, bool full_width_512) {
+    if (available.back() == Isa::avx512_wide && !full_width_512) return Isa::avx512;
+    return available.back();
+}
+
+bool processor_has_full_width_512() {
+#if defined(__x86_64__)
+    unsigned a = 0, b = 0, c = 0, d = 0;
+    if (!__get_cpuid(0, &a, &b, &c, &d)) return false;
+    const bool amd = b == 0x68747541 && d == 0x69746e65 && c == 0x444d4163;  // "AuthenticAMD"
+    if (!amd || !__get_cpuid(1, &a, &b, &c, &d)) return false;
+    // The family: the base field, plus the extended field when the base is 0Fh.
+    const unsigned base = (a >> 8) & 0xf;
+    const unsigned family = base == 0xf ? base + ((a >> 20) & 0xff) : base;
+    return family >= 0x1a;
+#else
+    return false;
+#endif
 }
 
 std::vector<Isa> available_isas() {
@@ -91,7 +117,8 @@ void use_isa(Isa level) {
 
 std::string isa_description() {
 #if TUMBLE_ISA_CHOICE
-    constexpr const char* x86_level[] = {"x86-64", "x86-64-v3", "x86-64-v4"};
+    constexpr const char* x86_level[] = {"x86-64", "x86-64-v3", "x86-64-v4, 256-bit vectors",
+                                         "x86-64-v4, 512-bit vectors"};
     const Isa level = isa_in_use();
     return std::string(isa_name(level)) + " (" + x86_level[static_cast<int>(level)] + "; this processor runs " +
            level_list(available_isas()) + ")";
