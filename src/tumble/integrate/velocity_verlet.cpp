@@ -48,6 +48,33 @@ void drift_range(IndexRange r, const std::int32_t* __restrict motion, const doub
     }
 }
 
+// The particles of motion k in range r turned about its axis from their
+// reference positions (Rodrigues) and carried along it: x = axis point +
+// arm + periodic image shift, v = velocity + omega u x arm, omega u. Others
+// keep their values, again written as a choice.
+void move_range(IndexRange r, std::int32_t k, const MotionNow& m, const std::int32_t* __restrict motion,
+                const double* __restrict reference, const double* __restrict image_shift,
+                double* __restrict position, double* __restrict velocity, double* __restrict angular_velocity,
+                double* __restrict force, double* __restrict torque) {
+    const Vec3 spin = m.angular_velocity * m.turn.u;
+    for (std::size_t i = r.begin; i < r.end; ++i) {
+        const bool mine = motion[i] == k;
+        const Vec3 from{reference[3 * i], reference[3 * i + 1], reference[3 * i + 2]};
+        const Vec3 shift{image_shift[3 * i], image_shift[3 * i + 1], image_shift[3 * i + 2]};
+        const Vec3 arm = rotate(from - m.start_axis_point, m.turn);
+        const Vec3 x = m.axis_point + arm + shift;
+        const Vec3 v = m.velocity + m.angular_velocity * cross(m.turn.u, arm);
+        const double xs[3] = {x.x, x.y, x.z}, vs[3] = {v.x, v.y, v.z}, spins[3] = {spin.x, spin.y, spin.z};
+        for (std::size_t c = 0; c < 3; ++c) {
+            position[3 * i + c] = mine ? xs[c] : position[3 * i + c];
+            velocity[3 * i + c] = mine ? vs[c] : velocity[3 * i + c];
+            angular_velocity[3 * i + c] = mine ? spins[c] : angular_velocity[3 * i + c];
+            force[3 * i + c] = mine ? 0.0 : force[3 * i + c];
+            torque[3 * i + c] = mine ? 0.0 : torque[3 * i + c];
+        }
+    }
+}
+
 template <bool Predict>
 void kick_range(ParticleStore& p, IndexRange r, const Vec3& gravity, double half_dt) {
     kick_range<Predict>(r, p.motion.data(), p.inv_mass.data(), p.inv_inertia.data(), &p.force.data()->x,
@@ -74,6 +101,15 @@ void kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt
     const auto from = static_cast<std::ptrdiff_t>(r.begin), to = static_cast<std::ptrdiff_t>(r.end);
     std::fill(p.force.begin() + from, p.force.begin() + to, Vec3{});
     std::fill(p.torque.begin() + from, p.torque.begin() + to, Vec3{});
+}
+
+void move_kinematic(ParticleStore& p, const std::vector<MotionNow>& now, IndexRange r) {
+    run_for_isa([&] {
+        for (std::size_t k = 0; k < now.size(); ++k)
+            move_range(r, static_cast<std::int32_t>(k), now[k], p.motion.data(), &p.reference_position.data()->x,
+                       &p.image_shift.data()->x, &p.position.data()->x, &p.velocity.data()->x,
+                       &p.angular_velocity.data()->x, &p.force.data()->x, &p.torque.data()->x);
+    });
 }
 
 }  // namespace tumble

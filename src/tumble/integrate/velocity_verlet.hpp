@@ -14,8 +14,11 @@
 // as one.
 #pragma once
 
+#include <vector>
+
 #include "tumble/core/parallel.hpp"
 #include "tumble/particles/particle_store.hpp"
+#include "tumble/particles/rigid_motion.hpp"
 
 namespace tumble {
 
@@ -27,5 +30,10 @@ void kick(ParticleStore& p, const Vec3& gravity, double half_dt, IndexRange r);
 // for free particles (the drift), over range r. The forces and torques are
 // then spent and set to zero, ready for the sums of the next evaluation.
 void kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, IndexRange r);
+
+// The kinematic particles of range r where their motions (now[k] for motion
+// k) put them: x, v and omega prescribed; F = T = 0, ready for the sums of
+// the grains' forces on them.
+void move_kinematic(ParticleStore& p, const std::vector<MotionNow>& now, IndexRange r);
 
 }  // namespace tumble

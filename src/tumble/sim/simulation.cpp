@@ -60,7 +60,7 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
     }
     owned_ = particles_.size();
     for (const RigidMotion& m : scenario_.motions) motions_.push_back({m, 0.0});
-    move_kinematic(motions_now(time_), {0, owned_});
+    move_kinematic(particles_, motions_now(time_), {0, owned_});
     prepare_chunks();
     run_in_team(chunks(), [&](Team& team) {
         rebuild(team);
@@ -180,7 +180,7 @@ void Simulation::step(Team& team, std::int64_t next) {
         char moved = 0;
         for (const IndexRange r : own_parts(team, c)) {
             kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r));  // v(t) -> v(t + dt/2), x(t) -> x(t + dt); F = 0
-            move_kinematic(now, kinematic_part(r));                         // prescribed x, v, omega at t + dt; F = 0
+            move_kinematic(p, now, kinematic_part(r));                      // prescribed x, v, omega at t + dt; F = 0
             moved |= static_cast<char>(neighbors_.moved_far(p, r));
         }
         moved_[static_cast<std::size_t>(c)] = moved;
@@ -350,7 +350,7 @@ void Simulation::add_wall_forces(IndexRange r) {
 
 // Per motion: where the axis is now and the rotation since the motion
 // began, worked out once per step for all its particles.
-std::vector<Simulation::MotionNow> Simulation::motions_now(double time) const {
+std::vector<MotionNow> Simulation::motions_now(double time) const {
     std::vector<MotionNow> now;
     for (const MotionClock& m : motions_) {
         const double elapsed = time - m.start_time;
@@ -361,22 +361,6 @@ std::vector<Simulation::MotionNow> Simulation::motions_now(double time) const {
     return now;
 }
 
-// The kinematic particles of range r where their motions put them now; the
-// sums of the forces the grains exert on them start again from zero.
-void Simulation::move_kinematic(const std::vector<MotionNow>& now, IndexRange r) {
-    ParticleStore& p = particles_;
-    for (std::size_t i = r.begin; i < r.end; ++i) {
-        if (!p.is_kinematic(i)) continue;
-        const MotionNow& m = now[static_cast<std::size_t>(p.motion[i])];
-        const Vec3 arm = rotate(p.reference_position[i] - m.start_axis_point, m.turn);
-        p.position[i] = m.axis_point + arm + p.image_shift[i];
-        p.velocity[i] = m.velocity + m.angular_velocity * cross(m.turn.u, arm);
-        p.angular_velocity[i] = m.angular_velocity * m.turn.u;
-        p.force[i] = Vec3{};
-        p.torque[i] = Vec3{};
-    }
-}
-
 void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
     if (k >= motions_.size()) throw Error("set_motion: no motion " + std::to_string(k));
     if (!(norm(motion.axis_direction) > 0.0)) throw Error("set_motion: axis direction is zero");
@@ -385,7 +369,7 @@ void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
         if (p.motion[i] == static_cast<std::int32_t>(k)) p.reference_position[i] = p.position[i] - p.image_shift[i];
     motions_[k] = {motion, time_};
     scenario_.motions[k] = motion;
-    move_kinematic(motions_now(time_), {0, owned_});
+    move_kinematic(particles_, motions_now(time_), {0, owned_});
 }
 
 SimulationState Simulation::capture() const {

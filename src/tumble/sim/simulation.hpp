@@ -122,20 +122,14 @@ public:
     const std::vector<ContactRecord>& contact_records() const { return records_; }
 
 private:
-    // Where each prescribed motion is at a time (move_kinematic()).
-    struct MotionNow {
-        Vec3 start_axis_point, axis_point, velocity;
-        Rotation turn;
-        double angular_velocity;
-    };
     int chunks() const { return recording_ ? 1 : threads_; }
     void prepare_chunks();
     template <class Then>
     void compute_forces(Team& team, Then&& then);
     void add_wall_forces(IndexRange r);
+    // Where each prescribed motion is at a time (for move_kinematic()).
     std::vector<MotionNow> motions_now(double time) const;
     void step(Team& team, std::int64_t next);
-    void move_kinematic(const std::vector<MotionNow>& now, IndexRange r);
     void locate_kinds(Team& team);
     // The neighbour list anew (shared among ranks: migration and ghosts too).
     // `keep_histories`: histories_ already holds the histories (a state
