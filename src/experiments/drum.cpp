@@ -400,7 +400,7 @@ void lengthen(DrumPlan& plan, double revolutions, std::int64_t done, double dt, 
         throw Error(fmt::format("--revolutions {}: the run in {} has turned {:.4g} revolutions already; ask for more",
                                 revolutions, dir.string(), static_cast<double>(done) * dt / period));
     const bool talk = !quiet && mpi::rank() == 0;
-    if (talk)
+    if (talk && revolutions != info.revolutions)
         fmt::print("tumble resume: the run's length goes from {} to {} revolutions\n", info.revolutions, revolutions);
     info.revolutions = revolutions;
     if (info.until_band_change > 0.0 && info.band_change_since >= 0.0) {
@@ -518,7 +518,11 @@ DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool qui
         throw Error(checkpoint.record.source + ": its record does not fit its state: " + e.what());
     }
     Simulation sim = restore_simulation(checkpoint, dir);
-    if (revolutions > 0.0) remove_summary(dir);
+    if (revolutions > 0.0) {
+        remove_summary(dir);
+        // The run's settings say the new length from now on, not only once it has finished.
+        if (plan.rotating && mpi::rank() == 0) io::write_drum_run_info(dir / "drum_run.toml", plan.info);
+    }
     if (!quiet && mpi::rank() == 0)
         fmt::print("tumble resume: drum run at step {} (t = {:.6g} s, {})\n", sim.step_count(), sim.time(),
                    plan.rotating ? fmt::format("{:.4g} revolutions", turned) : std::string("settling"));

@@ -243,6 +243,27 @@ TEST_F(Resume, AFinishedDrumRunIsLengthenedToTheLongerRun) {
     EXPECT_NE(again.output.find("has finished"), std::string::npos) << again.output;
 }
 
+// A lengthened run's settings (drum_run.toml) say its new length as soon as
+// it goes on, not only when it has finished: stopped on the way, the file
+// says 1 revolution, and a plain resume finishes there.
+TEST_F(Resume, ALengthenedRunSaysItsNewLengthWhileItRuns) {
+    const fs::path out = dir_ / "lengthened";
+    ASSERT_EQ(
+        tumble_run(small_drum + " --revolutions 0.2 --checkpoint-every-revolutions 0.05 --out " + out.string()).exit_code,
+        0);
+    const int last = std::stoi(tumble::io::checkpoint_files(out).back().stem().string());
+    const pid_t child = start("resume -q " + out.string() + " --revolutions 1");
+    wait_for_checkpoint(out, last + 1);
+    kill(child, SIGTERM);
+    ASSERT_EQ(exit_code(child), 4) << "the lengthened run ended before it was stopped";
+    EXPECT_EQ(tumble::io::read_drum_run_info(out / "drum_run.toml").revolutions, 1.0);
+    EXPECT_FALSE(fs::exists(out / "summary.json"));
+    const auto resumed = tumble_run("resume -q " + out.string());
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+    EXPECT_EQ(tumble::io::read_drum_run_info(out / "drum_run.toml").revolutions, 1.0);
+    EXPECT_TRUE(fs::exists(out / "summary.json"));
+}
+
 TEST_F(Resume, AnExistingRunDirectoryIsRefusedWithoutForce) {
     const fs::path out = reference();
     const auto again = tumble_run(small_drum + " --revolutions 0.2 --out " + out.string());
