@@ -231,7 +231,9 @@ TEST(Slabs, CutsFollowThePairs) {
     std::printf("  [measured] rank %d: %g grains, work %g (mean %g)\n", tumble::mpi::rank(), grains, work, mean_work);
     EXPECT_EQ(tumble::mpi::sum(static_cast<std::int64_t>(shared.owned())), 256);
     EXPECT_LE(tumble::mpi::max(std::abs(work - mean_work)), 0.1 * mean_work) << "rank " << tumble::mpi::rank();
-    if (ranks > 1) EXPECT_GE(tumble::mpi::max(grains), 1.2 * mean_grains);
+    if (ranks > 1) {
+        EXPECT_GE(tumble::mpi::max(grains), 1.2 * mean_grains);
+    }
 }
 
 // A grain sliding on a flat floor across the cut between two ranks keeps
