@@ -53,8 +53,9 @@ Isa chosen_by_environment() {
                             level_list(available));
             return level;
         }
-    throw Error(std::string("TUMBLE_ISA=") + value + ": unknown; one of baseline, avx2, avx512, avx512-wide (this processor runs " +
-                level_list(available) + ")");
+    throw Error(std::string("TUMBLE_ISA=") + value +
+                ": unknown; one of baseline, avx2, avx512, avx512-wide (this processor runs " + level_list(available) +
+                ")");
 }
 
 // The level in use, or -1 before the first call of isa_in_use().
