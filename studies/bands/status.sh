@@ -12,16 +12,17 @@ cd "$(dirname "$0")"
 last_revolution() {  # the N of the last line of a drum_series.csv on stdin
   tail -n 1 | cut -d, -f1 | awk '{ printf "%.1f", $1 }'
 }
+# A file of the run $name: from $dir (out/NAME), or from its kept archive
+# if it is not unpacked.
+file_of() {
+  if [[ -d $dir ]]; then cat "$dir/$1" 2>/dev/null || true
+  else tar -xzOf "kept/$name.tar.gz" "$1" 2>/dev/null || true; fi
+}
 echo "| run | revolutions done | of | state |"
 echo "|---|---|---|---|"
 awk '/^[AB]_/ { name = $1; of = "?"; for (i = 2; i < NF; ++i) if ($i == "--revolutions") of = $(i + 1); print name, of }' runs.txt |
 while read -r name of; do
   dir=out/$name done="" state="not started"
-  # A file of the run: from out/NAME, or from its kept archive if not unpacked.
-  file_of() {
-    if [[ -d $dir ]]; then cat "$dir/$1" 2>/dev/null || true
-    else tar -xzOf "kept/$name.tar.gz" "$1" 2>/dev/null || true; fi
-  }
   if [[ -f $dir/drum_series.csv || (! -d $dir && -f kept/$name.tar.gz) ]]; then
     done=$(file_of drum_series.csv | last_revolution)
     summary=$(file_of summary.json)
