@@ -675,8 +675,10 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                       ? Json{{"hold", info.until_band_change},
                              {"ended", info.band_change_since >= 0.0},
                              {"since", info.band_change_since >= 0.0 ? Json(info.band_change_since) : Json()},
-                             {"bands_at_start", info.bands_at_start},
-                             {"bands_at_end", info.bands_at_end}}
+                             // The counts the watch saw when it ended the run; null when it did not
+                             // (the run's own counts are bands.initial and bands.final).
+                             {"bands_at_start", info.band_change_since >= 0.0 ? Json(info.bands_at_start) : Json()},
+                             {"bands_at_end", info.band_change_since >= 0.0 ? Json(info.bands_at_end) : Json()}}
                       : Json()},
                  {"grains", static_cast<std::int64_t>([&] {
                       std::size_t n = 0;

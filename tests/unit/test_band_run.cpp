@@ -231,6 +231,28 @@ TEST_F(BandRun, UntilBandChangeEndsTheRunOnceTheCountHasHeld) {
     EXPECT_EQ(read_file(stopped / "drum_series.csv"), read_file(out / "drum_series.csv"));
 }
 
+TEST_F(BandRun, AWatchedRunThatDidNotEndEarlyReportsNoCountsOfAChange) {
+    // The small drum of the test above keeps its four bands until N = 0.75:
+    // stopped at 0.5, the watch never ends it, and the run turns all it was
+    // asked. summary.json's until_band_change must then not
+    // report band counts the watch never recorded (it said 0 and 0 for
+    // runs that kept their bands); the run's counts are bands.initial and
+    // bands.final.
+    const fs::path out = dir_ / "kept";
+    const auto r = tumble_run("drum -q --grains 300 --length 0.06 --omega 8 --revolutions 0.5 --samples 8 "
+                              "--dt 3.926990816987241e-05 --snapshots 0 --no-plot --arrangement bands --bands 4 "
+                              "--until-band-change 0.25 --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const tumble::io::Json summary = tumble::io::parse_json(read_file(out / "summary.json"));
+    const tumble::io::Json& until = summary["until_band_change"];
+    EXPECT_FALSE(until["ended"].get<bool>());
+    EXPECT_TRUE(until["since"].is_null());
+    EXPECT_TRUE(until["bands_at_start"].is_null());
+    EXPECT_TRUE(until["bands_at_end"].is_null());
+    EXPECT_EQ(summary["bands"]["initial"]["bands"].get<double>(), 4.0);  // the prepared start, as the analysis counts it
+    EXPECT_EQ(read_file(out / "summary.txt").find("ended early"), std::string::npos);
+}
+
 TEST_F(BandRun, BadUntilBandChangeIsRefusedNamingIt) {
     for (const std::string value : {"-1", "12", "nan"}) {
         const auto r = tumble_run("drum -q --revolutions 12 --until-band-change " + value + " --out " +
