@@ -483,14 +483,18 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
         const analysis::EndLayers layers = analysis::end_layers(field, layer_bins);
         const auto left = analysis::difference_blocks(field.revolutions, layers.left, layers.mean);
         const auto right = analysis::difference_blocks(field.revolutions, layers.right, layers.mean);
+        // A block worth fewer than 3 independent revolutions has no interval (NaN bounds).
+        auto with_interval = [](const analysis::DifferenceBlock& b) {
+            return std::isfinite(b.interval.lo) && std::isfinite(b.interval.hi)
+                       ? fmt::format("{:+.3f} [{:+.3f}, {:+.3f}]", b.difference, b.interval.lo, b.interval.hi)
+                       : fmt::format("{:+.3f} (no interval: fewer than 3 independent revolutions)", b.difference);
+        };
         if (!left.empty() && !right.empty())
             text << fmt::format("    end layers ({:.3g} cm at each cap), phi - phi0 over N = {:.3g} to {:.3g}: left "
-                                "{:+.3f} [{:+.3f}, {:+.3f}], right {:+.3f} [{:+.3f}, {:+.3f}] (95 %, revolution means correlated "
-                                "over {:.2g} and {:.2g} revolutions; bands.json end_layers)\n",
-                                100.0 * layer_width, left.back().from, last.revolutions, left.back().difference,
-                                left.back().interval.lo, left.back().interval.hi, right.back().difference,
-                                right.back().interval.lo, right.back().interval.hi, left.back().correlation,
-                                right.back().correlation);
+                                "{}, right {} (95 %, revolution means correlated over {:.2g} and {:.2g} revolutions; "
+                                "bands.json end_layers)\n",
+                                100.0 * layer_width, left.back().from, last.revolutions, with_interval(left.back()),
+                                with_interval(right.back()), left.back().correlation, right.back().correlation);
     }
     text << "    " << describe_crossing(crossing, small_msd, small, large) << "\n";
     text << "    " << describe_edges(edges, small_msd, small, large) << "\n";

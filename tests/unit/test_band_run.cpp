@@ -58,6 +58,14 @@ TEST_F(BandRun, SmallDrumWritesTheKymographAndBandCounts) {
     const tumble::io::Json summary = tumble::io::parse_json(read_file(out / "summary.json"));
     ASSERT_TRUE(summary.contains("bands"));
     EXPECT_EQ(summary["bands"]["samples"], samples);
+    // One revolution is one block of the end layers, too short for an
+    // interval: summary.txt says so instead of printing NaN bounds.
+    const std::string text = read_file(out / "summary.txt");
+    const std::size_t layers = text.find("end layers");
+    ASSERT_NE(layers, std::string::npos) << text;
+    const std::string line = text.substr(layers, text.find('\n', layers) - layers);
+    EXPECT_NE(line.find("no interval: fewer than 3 independent revolutions"), std::string::npos) << line;
+    EXPECT_EQ(line.find("nan"), std::string::npos) << line;
     EXPECT_EQ(summary["bands"]["species"], "material-2");
     EXPECT_EQ(summary["bands"]["initial"]["bands"], 2);
     EXPECT_NE(read_file(out / "summary.txt").find("bands of material-2"), std::string::npos);
