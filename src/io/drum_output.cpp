@@ -661,6 +661,8 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     text << fmt::format("  dynamic angle of repose {:.1f} degrees (mean over the rotation after N = {:.2g})\n",
                         angle_of_repose, std::min(1.0, 0.5 * last_N));
 
+    // --until-band-change: whether the watch ended the run (then since and the counts it saw are known).
+    const bool ended_on_band_change = info.band_change_since >= 0.0;
     Json summary{{"mode", info.mode},
                  {"shear_model", info.shear_model},
                  {"friction_normal", info.friction_normal},
@@ -673,12 +675,11 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                  {"until_band_change",
                   info.until_band_change > 0.0
                       ? Json{{"hold", info.until_band_change},
-                             {"ended", info.band_change_since >= 0.0},
-                             {"since", info.band_change_since >= 0.0 ? Json(info.band_change_since) : Json()},
-                             // The counts the watch saw when it ended the run; null when it did not
-                             // (the run's own counts are bands.initial and bands.final).
-                             {"bands_at_start", info.band_change_since >= 0.0 ? Json(info.bands_at_start) : Json()},
-                             {"bands_at_end", info.band_change_since >= 0.0 ? Json(info.bands_at_end) : Json()}}
+                             {"ended", ended_on_band_change},
+                             // null when the watch did not end the run (its own counts: bands.initial, .final)
+                             {"since", ended_on_band_change ? Json(info.band_change_since) : Json()},
+                             {"bands_at_start", ended_on_band_change ? Json(info.bands_at_start) : Json()},
+                             {"bands_at_end", ended_on_band_change ? Json(info.bands_at_end) : Json()}}
                       : Json()},
                  {"grains", static_cast<std::int64_t>([&] {
                       std::size_t n = 0;
