@@ -12,6 +12,8 @@
 #   --warmup N    untimed steps turning before them (default 2000)
 #   --repeats N   rounds; the table shows medians (default 3)
 #   --np N        also N threads (tumble) and N MPI ranks (LAMMPS); 1: single only (default 2)
+#   --turned R    start both codes from the settled bed turned R revolutions by
+#                 tumble (a bed in steady flow; tumble bench --turned), default 0
 #   --out DIR     logs, the bed and results.jsonl (default build/compare_drum)
 #
 # Both codes start from the same settled bed: tumble bench --case long-drum
@@ -31,6 +33,7 @@ steps=10000
 warmup=2000
 repeats=3
 np=2
+turned=0
 out=""
 
 usage() { awk 'NR > 2 && !/^#/ { exit } NR > 2 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; }
@@ -43,6 +46,8 @@ while [[ $# -gt 0 ]]; do
         --warmup) [[ "${2:-}" =~ ^[0-9]+$ ]] || die "--warmup needs an integer"; warmup=$2; shift 2 ;;
         --repeats) need_int "$1" "${2:-}"; repeats=$2; shift 2 ;;
         --np) need_int "$1" "${2:-}"; np=$2; shift 2 ;;
+        --turned) [[ "${2:-}" =~ ^[0-9]+([.][0-9]+)?$ ]] || die "--turned needs a number of revolutions >= 0, got '${2:-}'"
+                  turned=$2; shift 2 ;;
         --out) [[ -n "${2:-}" ]] || die "--out needs a directory"; out=$2; shift 2 ;;
         -h|--help) usage; exit 0 ;;
         *) die "unknown option '$1' (try --help)" ;;
@@ -87,8 +92,8 @@ results="$out/results.jsonl"
 : > "$results"
 
 # ------------------------------------------------------------------ the bed
-echo "  the settled bed (tumble bench --case long-drum --export)" >&2
-"$tumble" bench --case long-drum --export "$out/bed" > "$out/export.out"
+echo "  the bed (tumble bench --case long-drum --turned $turned --export)" >&2
+"$tumble" bench --case long-drum --turned "$turned" --export "$out/bed" > "$out/export.out"
 python3 "$drum" data "$out/bed/snapshots/000000.csv" "$out/bed/drum.data" >&2
 
 # ------------------------------------------------------------------ runners
@@ -101,7 +106,8 @@ dt=""  # tumble's step, from its first run
 run_tumble() {  # round threads
     local log="$out/tumble_r$1_t$2.out"
     if ! python3 "$lib" exec "$log.time" "$log" "$log.err" -- \
-            "${bind[@]}" "$tumble" bench --case long-drum --json --steps "$steps" --warmup "$warmup" --threads "$2"; then
+            "${bind[@]}" "$tumble" bench --case long-drum --json --steps "$steps" --warmup "$warmup" --threads "$2" \
+            --turned "$turned"; then
         cat "$log.err" >&2
         die "tumble bench failed ($2 threads), see $log.err"
     fi
@@ -135,7 +141,7 @@ echo "machine : ${cpu:-unknown CPU} (family ${family:-?} model ${model:-?}), $(n
 echo "date    : $(date -u '+%Y-%m-%d %H:%M:%S UTC')   load average at start: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "lammps  : $(dpkg-query -W -f='${Package} ${Version}' lammps 2>/dev/null || echo "$lammps_bin")  deck: bench/peers/lammps_drum.in"
 echo "tumble  : $tumble"
-echo "runs    : $steps timed steps after $warmup turning, $repeats rounds, logs in $out"
+echo "runs    : $steps timed steps after $warmup turning, from the bed settled and turned $turned revolutions, $repeats rounds, logs in $out"
 echo
 
 for ((r = 1; r <= repeats; r++)); do

@@ -113,48 +113,67 @@ int cube_bench(const BenchOptions& options) {
     return 0;
 }
 
-// The drum's bed, settled at rest as tumble drum settles it, read from the
-// cache if an earlier run left it there, else made and stored there.
-// `made` tells which.
-Simulation settled_drum(const io::DrumSettings& d, const fs::path& cache, int threads, bool& made) {
-    DrumSetup setup = build_drum(d);
-    // The bed is settled at the step it will run at: the name holds the step,
-    // so a change of the automatic step makes a new bed.
-    const double dt = assess_time_step(setup.scenario).dt;
-    // (Any checkpoint format this tumble reads will do: a new format needs no new bed.)
-    const fs::path file = cache / fmt::format("long-drum-length{}-fill{}-seed{}-dt{:.6g}.tck", d.geometry.length,
-                                              d.fill_fraction, d.seed, dt);
+// A bed kept in the cache as a checkpoint file: read if an earlier run left
+// it there (`made` false), else made by make() and stored there (`made` true).
+template <class Make>
+Simulation cached_bed(const fs::path& file, std::size_t particles, int threads, bool& made, Make&& make) {
     if (std::ifstream in{file, std::ios::binary}) {
         const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
         io::Checkpoint bed = io::decode_checkpoint(bytes, file.string());
-        if (bed.scenario.particles.size() != setup.scenario.particles.size())
+        if (bed.scenario.particles.size() != particles)
             throw Error(file.string() + ": the stored bed has " + std::to_string(bed.scenario.particles.size()) +
-                        " particles, this drum " + std::to_string(setup.scenario.particles.size()) +
-                        "; remove the file to have it made again");
+                        " particles, this drum " + std::to_string(particles) + "; remove the file to have it made again");
         Simulation sim(std::move(bed.scenario), threads);
         sim.restore(std::move(bed.state));
         made = false;
         return sim;
     }
-    Simulation sim(std::move(setup.scenario), threads);
-    const std::int64_t check_every = std::max<std::int64_t>(1, std::llround(1e-3 / sim.dt()));
-    const double fall_time = drum_fall_time(d);
-    while (sim.time() < d.settle_max_time &&
-           (sim.time() < fall_time || rms_grain_speed(sim) >= d.settle_speed))
-        sim.advance(check_every);
-    if (rms_grain_speed(sim) >= d.settle_speed)
-        fmt::print(stderr, "tumble bench: warning: the bed did not settle within {} s\n", d.settle_max_time);
+    Simulation sim = make();
     made = true;
-    if (mpi::rank() != 0) return sim;  // under mpirun every rank settles the same bed; rank 0 stores it
-    fs::create_directories(cache);
+    if (mpi::rank() != 0) return sim;  // under mpirun every rank makes the same bed; rank 0 stores it
+    fs::create_directories(file.parent_path());
     const fs::path part = file.string() + ".tmp";
     {
         std::ofstream out(part, std::ios::binary | std::ios::trunc);
         out << io::encode_checkpoint(checkpoint_of(sim));
-        if (!out.flush()) throw Error(part.string() + ": cannot write the settled bed");
+        if (!out.flush()) throw Error(part.string() + ": cannot write the bed");
     }
     fs::rename(part, file);  // a run killed while writing leaves no partial bed under the real name
     return sim;
+}
+
+// The drum's bed, settled at rest as tumble drum settles it, then turned for
+// `turned` revolutions at the drum's speed (0: not at all); each read from
+// the cache if an earlier run left it there, else made and stored there.
+// `made` tells which.
+Simulation drum_bed(const io::DrumSettings& d, double turned, const fs::path& cache, int threads, bool& made) {
+    DrumSetup setup = build_drum(d);
+    const std::size_t particles = setup.scenario.particles.size();
+    // The bed is settled at the step it will run at: the name holds the step,
+    // so a change of the automatic step makes a new bed.
+    // (Any checkpoint format this tumble reads will do: a new format needs no new bed.)
+    const double dt = assess_time_step(setup.scenario).dt;
+    const std::string stem =
+        fmt::format("long-drum-length{}-fill{}-seed{}-dt{:.6g}", d.geometry.length, d.fill_fraction, d.seed, dt);
+    auto settle = [&] {
+        Simulation sim(std::move(setup.scenario), threads);
+        const std::int64_t check_every = std::max<std::int64_t>(1, std::llround(1e-3 / sim.dt()));
+        const double fall_time = drum_fall_time(d);
+        while (sim.time() < d.settle_max_time &&
+               (sim.time() < fall_time || rms_grain_speed(sim) >= d.settle_speed))
+            sim.advance(check_every);
+        if (rms_grain_speed(sim) >= d.settle_speed)
+            fmt::print(stderr, "tumble bench: warning: the bed did not settle within {} s\n", d.settle_max_time);
+        return sim;
+    };
+    if (turned == 0.0) return cached_bed(cache / (stem + ".tck"), particles, threads, made, settle);
+    return cached_bed(cache / fmt::format("{}-turned{}.tck", stem, turned), particles, threads, made, [&] {
+        bool settled_made = false;
+        Simulation sim = cached_bed(cache / (stem + ".tck"), particles, threads, settled_made, settle);
+        sim.set_motion(0, drum_rotation(d.omega()));
+        sim.advance(std::llround(turned * 2.0 * pi / d.omega() / sim.dt()));
+        return sim;
+    });
 }
 
 fs::path default_cache() {
@@ -175,10 +194,12 @@ int long_drum_bench(const BenchOptions& options) {
     const double resident_before = resident_bytes();
     const fs::path cache = options.cache.empty() ? default_cache() : options.cache;
     bool made = false;
-    Simulation bed = settled_drum(d, cache, threads, made);
+    Simulation bed = drum_bed(d, options.turned, cache, threads, made);
+    const std::string bed_name =
+        options.turned == 0.0 ? std::string("settled") : fmt::format("turned {} revolutions", options.turned);
     if (!options.export_dir.empty()) {  // the start of a peer code's run on the same bed
         const fs::path file = io::write_snapshot(options.export_dir, 0, bed);
-        if (!options.json) fmt::print("tumble bench: the settled bed, before it turns, is in {}\n", file.string());
+        if (!options.json) fmt::print("tumble bench: the bed ({}) is in {}\n", bed_name, file.string());
         return 0;
     }
     // Under mpirun the bed is shared out among the ranks, a slab each.
@@ -192,10 +213,10 @@ int long_drum_bench(const BenchOptions& options) {
     const std::size_t n = sim.scenario().particles.size(), grains = sim.scenario().free_count();
     const double omega = d.omega();
     if (!options.json && talk)
-        fmt::print("tumble bench: long drum, length {} m, fill {}: {} grains, {} wall spheres, {} rad/s; settled bed {}\n",
+        fmt::print("tumble bench: long drum, length {} m, fill {}: {} grains, {} wall spheres, {} rad/s; {} bed {}\n",
                    d.geometry.length, d.fill_fraction, grains, n - grains, omega,
-                   (made ? "made and stored in " : "read from ") + cache.string());
-    sim.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, omega, {0.0, 0.0, 0.0}});
+                   bed_name, (made ? "made and stored in " : "read from ") + cache.string());
+    sim.set_motion(0, drum_rotation(omega));  // (a turned bed turns on: its wall spheres stay where they are)
     sim.advance(warmup);
     const std::int64_t builds_before = sim.neighbors().builds();
     double cpu = 0.0;
@@ -233,7 +254,8 @@ int long_drum_bench(const BenchOptions& options) {
     if (!talk) return 0;
 
     if (!options.json) {
-        fmt::print("  steps              {} (after {} warm-up steps turning)\n", steps, warmup);
+        fmt::print("  steps              {} (after {} warm-up steps turning, from the {} bed)\n", steps, warmup,
+                   bed_name);
         fmt::print("  wall time          {:.3f} s (CPU {:.3f} s)\n", seconds, cpu);
         fmt::print("  grain updates/s    {:.4g}\n", grain_updates);
         fmt::print("  revolutions/hour   {:.4g}  ({:.4g} s per revolution)\n", revolutions_per_hour,
@@ -264,6 +286,7 @@ int long_drum_bench(const BenchOptions& options) {
                                                   {"grains", grains},
                                                   {"particles", n},
                                                   {"bed", made ? "made" : "read"},
+                                                  {"turned", options.turned},
                                                   {"steps", steps},
                                                   {"warmup", warmup},
                                                   {"seconds", seconds},

@@ -162,11 +162,16 @@ int main(int argc, char** argv) {
         ->check(finite_positive);
     auto* fill_opt = bench_cmd->add_option("--fill", bench.fill, "Long drum: fill fraction (default 0.3)")
         ->check(finite_positive);
+    auto* turned_opt = bench_cmd->add_option(
+        "--turned", bench.turned,
+        "Long drum: start from the settled bed turned this many revolutions at the drum's speed, a bed in steady "
+        "flow (made once and kept beside the settled one; default 0: the settled bed)")
+        ->check(finite_non_negative);
     auto* cache_opt = bench_cmd->add_option(
         "--cache", bench.cache, "Long drum: directory of the settled beds (default: bench-cache beside the executable)");
     auto* export_opt = bench_cmd->add_option(
         "--export", bench.export_dir,
-        "Long drum: write the settled bed to DIR/snapshots/000000.csv and stop (the start of the LAMMPS peer, "
+        "Long drum: write the settled (or --turned) bed to DIR/snapshots/000000.csv and stop (the start of the LAMMPS peer, "
         "bench/compare_drum.sh)");
 
     // tumble drum: every setting of the drum file can be given here too.
@@ -390,7 +395,7 @@ int main(int argc, char** argv) {
         if (run_cmd->parsed()) return run_command(run);
         if (bench_cmd->parsed()) {
             const bool drum_case = bench.bench_case == "long-drum";
-            for (CLI::Option* option : {size_opt, seed_opt, length_opt, fill_opt, cache_opt, export_opt})
+            for (CLI::Option* option : {size_opt, seed_opt, length_opt, fill_opt, turned_opt, cache_opt, export_opt})
                 if (option->count() > 0 && (option == size_opt || option == seed_opt) == drum_case)
                     throw tumble::Error("bench: " + option->get_name() + " does not apply to --case " + bench.bench_case);
             return bench_command(bench);

@@ -216,8 +216,7 @@ private:
             fmt::print("{} after {:.3g} s: rms grain speed {:.3g} m/s; fill fraction {:.3f}, solid fraction {:.3f}\n",
                        info.settled ? "settled" : "warning: NOT settled", info.settle_time, speed,
                        info.fill_fraction, info.solid_fraction);
-        sim_.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0},
-                                       drum_angular_velocity(info.omega, info.spin_up_time, 0.0), {0.0, 0.0, 0.0}});
+        sim_.set_motion(0, drum_rotation(drum_angular_velocity(info.omega, info.spin_up_time, 0.0)));
         plan_.rotating = true;
         plan_.rotation_start_step = sim_.step_count();
         if (writer()) {
@@ -285,7 +284,7 @@ private:
     bool spin_up(std::int64_t k) {
         const double omega = spin_up_setting(plan_.info.omega, plan_.info.spin_up_time, sim_.dt(), k);
         if (omega < 0.0) return false;
-        sim_.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, omega, {0.0, 0.0, 0.0}});
+        sim_.set_motion(0, drum_rotation(omega));
         return true;
     }
 

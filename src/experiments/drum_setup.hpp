@@ -41,6 +41,10 @@ inline double rms_grain_speed(const Simulation& sim) {
     return n > 0.0 ? std::sqrt(sum / n) : 0.0;
 }
 
+// The drum's wall turning about the drum's axis (z, through the origin) at
+// omega, rad/s (right-handed about +z); motion 0 of the drum's scenario.
+inline RigidMotion drum_rotation(double omega) { return {{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, omega, {0.0, 0.0, 0.0}}; }
+
 // The bed settles at least this long, s: twice the time to fall the drum's diameter.
 inline double drum_fall_time(const io::DrumSettings& s) { return 2.0 * std::sqrt(2.0 * s.geometry.diameter / 9.81); }
 

@@ -10,6 +10,8 @@
 #include "tumble/core/isa.hpp"
 #include "tumble/core/parallel.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -309,12 +311,56 @@ TEST_F(Cli, BenchLongDrumReportsEveryFieldAndKeepsTheSettledBed) {
     EXPECT_EQ(static_cast<double>(bed.position.size()), j.at("particles").get<double>());
 }
 
+// --turned: the bed turned before the warm-up (steady flow), kept beside
+// the settled one. Its wall has turned by exactly the whole steps it ran,
+// llround(turned x steps per revolution) x dt x omega (rotation is
+// prescribed, so to round-off), and its grains move.
+TEST_F(Cli, BenchLongDrumTurnedBedIsKeptAndHasTurned) {
+    const std::string arguments = "bench --case long-drum --length 0.02 --fill 0.2 --steps 20 --warmup 5 --cache " +
+                                  (dir_ / "cache").string();
+    const Result first = run_tumble(arguments + " --turned 0.05 --json");
+    ASSERT_EQ(first.exit_code, 0) << first.output;
+    const tumble::io::Json j = tumble::io::parse_json(last_line(first.output));
+    EXPECT_EQ(j.value("bed", ""), "made");
+    EXPECT_EQ(j.at("turned").get<double>(), 0.05);
+    const Result again = run_tumble(arguments + " --turned 0.05 --json");
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    EXPECT_EQ(tumble::io::parse_json(last_line(again.output)).value("bed", ""), "read");
+    std::size_t beds = 0;
+    for (const auto& entry : fs::directory_iterator(dir_ / "cache")) beds += entry.path().extension() == ".tck";
+    EXPECT_EQ(beds, 2u);  // the settled bed and the turned one
+
+    ASSERT_EQ(run_tumble(arguments + " --export " + (dir_ / "settled").string()).exit_code, 0);
+    ASSERT_EQ(run_tumble(arguments + " --turned 0.05 --export " + (dir_ / "turned").string()).exit_code, 0);
+    const auto settled = tumble::io::read_snapshot_csv(dir_ / "settled" / "snapshots" / "000000.csv");
+    const auto turned = tumble::io::read_snapshot_csv(dir_ / "turned" / "snapshots" / "000000.csv");
+    ASSERT_EQ(settled.position.size(), turned.position.size());
+    const double dt = j.at("dt").get<double>(), omega = 5.0;
+    const double angle = static_cast<double>(std::llround(0.05 * j.at("steps_per_revolution").get<double>())) * dt * omega;
+    double grain_moved = 0.0;
+    for (std::size_t i = 0; i < settled.position.size(); ++i) {
+        const tumble::Vec3 a = settled.position[i], b = turned.position[i];
+        if (settled.kinematic[i]) {
+            EXPECT_EQ(a.z, b.z);
+            if (std::hypot(a.x, a.y) < 1e-3) continue;  // a cap's sphere on the axis: no angle to see
+            const double turned_by = std::remainder(std::atan2(b.y, b.x) - std::atan2(a.y, a.x), 2.0 * M_PI);
+            EXPECT_NEAR(turned_by, angle, 1e-12) << "wall sphere " << i;
+        } else {
+            grain_moved = std::max(grain_moved, tumble::norm(b - a));
+        }
+    }
+    // A grain at the wall is carried some 0.05 x 2 pi x 4 cm = 1.3 cm.
+    EXPECT_GT(grain_moved, 1e-3);
+}
+
 TEST(CliBench, OptionsOfTheOtherCaseAreRefused) {
     const std::pair<const char*, const char*> cases[] = {{"bench --case long-drum --size 8", "--size"},
                                                          {"bench --length 0.1", "--length"},
                                                          {"bench --case drum", "--case"},
                                                          {"bench --case long-drum --fill 0", "--fill"},
-                                                         {"bench --export bed", "--export"}};
+                                                         {"bench --export bed", "--export"},
+                                                         {"bench --turned 1", "--turned"},
+                                                         {"bench --case long-drum --turned -1", "--turned"}};
     for (const auto& [arguments, option] : cases) {
         const Result r = run_tumble(arguments);
         EXPECT_NE(r.exit_code, 0) << arguments;
