@@ -271,8 +271,10 @@ std::string describe_edges(const analysis::EdgeDiffusion& e, const analysis::Msd
                                 e.boundaries.size(), e.boundaries.size() == 1 ? "boundary" : "boundaries",
                                 analysis::edge_levels[0], large, analysis::edge_levels[1],
                                 analysis::edge_levels[2], small);
+    if (std::none_of(e.D.begin(), e.D.end(), [](double D) { return std::isfinite(D); }))
+        return s + " not measured (" + e.note + ")";
     for (std::size_t l = 0; l < analysis::edge_levels.size(); ++l) {
-        s += fmt::format(" {:.3e}", e.D[l]);
+        s += std::isfinite(e.D[l]) ? fmt::format(" {:.3e}", e.D[l]) : std::string(" none");
         if (e.determined) s += fmt::format(" [{:.3e}, {:.3e}]", e.interval[l].lo, e.interval[l].hi);
     }
     if (!e.determined) s += " (no interval: " + e.note + ")";

@@ -745,27 +745,39 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
             }
             return std::pair{sum, n};
         };
+        // Without a finite D or a filled bin there is nothing to compare:
+        // said so (null in the JSON), not an rms of 0 or NaN.
+        const std::string none = std::isfinite(D_profile) ? "no comparison: every bin is empty"
+                                                          : "no comparison: no finite D";
+        const auto rms_of = [](double sum, std::size_t n) {
+            return n ? Json(std::sqrt(sum / static_cast<double>(n))) : Json(nullptr);
+        };
+        const auto rms_text = [&](const Json& rms, const std::string& what) {
+            return rms.is_null() ? none : fmt::format("{} {:.3f}", what, rms.get<double>());
+        };
         const double last = profiles.revolutions.back();
         for (double fraction : {0.25, 0.5, 1.0}) {
             const std::size_t k = nearest_sample(profiles.revolutions, fraction * last);
             const auto [sum, n] = rms_at(k, true);
-            const double rms = n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+            const Json rms = rms_of(sum, n);
             rms_json.push_back(Json{{"revolutions", profiles.revolutions[k]}, {"rms_difference", rms}});
-            text << fmt::format("  C(z, N = {:.3g}) of {} against Hogg with {}: rms difference {:.3f}\n",
-                                profiles.revolutions[k], info.components[right].name, D_name, rms);
+            text << fmt::format("  C(z, N = {:.3g}) of {} against Hogg with {}: {}\n", profiles.revolutions[k],
+                                info.components[right].name, D_name, rms_text(rms, "rms difference"));
         }
         check_written(out, dir / "profile_comparison.csv");
         summary["profile_comparison"] = rms_json;
         double sum = 0.0;
-        std::size_t n = 0;
+        std::size_t n = 0, late = 0;  // late: the profiles at N >= first_revolution
         for (std::size_t k = 0; k < profiles.revolutions.size(); ++k)
             if (profiles.revolutions[k] >= options.first_revolution) {
                 const auto [s_k, n_k] = rms_at(k, false);
-                sum += s_k, n += n_k;
+                sum += s_k, n += n_k, ++late;
             }
-        const double collapse = n ? std::sqrt(sum / static_cast<double>(n)) : std::nan("");
-        text << fmt::format("  profile collapse of {} (C against z / sqrt(N), N >= {:.3g}) on Hogg with {}: rms {:.3f}\n",
-                            info.components[right].name, options.first_revolution, D_name, collapse);
+        const Json collapse = rms_of(sum, n);
+        text << fmt::format("  profile collapse of {} (C against z / sqrt(N), N >= {:.3g}) on Hogg with {}: {}\n",
+                            info.components[right].name, options.first_revolution, D_name,
+                            late == 0 ? fmt::format("no comparison: no profile at N >= {:.3g}", options.first_revolution)
+                                      : rms_text(collapse, "rms"));
         summary["profile_collapse"] = Json{{"component", info.components[right].name},
                                            {"D", D_profile},
                                            {"D_source", from_msd ? "msd" : "hogg_pinned"},

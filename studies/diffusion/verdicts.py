@@ -245,7 +245,8 @@ def long_runs(lines):
     for mode in ("two-component", "self"):
         for summary_path in sorted((OUT / f"long_{mode}" / "points").glob("*/summary.json")):
             s = json.loads(summary_path.read_text())
-            profile = ", ".join(f"{p['rms_difference']:.3f} ({p['revolutions']:.0f})" for p in s["profile_comparison"])
+            profile = ", ".join(("-" if p["rms_difference"] is None else f"{p['rms_difference']:.3f}")
+                                + f" ({p['revolutions']:.0f})" for p in s["profile_comparison"])
             for c in s["components"]:
                 msd, hogg = c["msd"], c["hogg_free"]
                 lines.append(f"| {mode} | {s['revolutions']:.0f} | {c['name']} | {fmt_interval(msd['D'], msd['D_lo'], msd['D_hi'], 1e-5)} "

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 #include "io/band_output.hpp"
 #include "io/csv_table.hpp"
@@ -66,6 +67,15 @@ TEST_F(BandRun, SmallDrumWritesTheKymographAndBandCounts) {
     const std::string line = text.substr(layers, text.find('\n', layers) - layers);
     EXPECT_NE(line.find("no interval: fewer than 3 independent revolutions"), std::string::npos) << line;
     EXPECT_EQ(line.find("nan"), std::string::npos) << line;
+    // Nor anywhere else: the run is too short for the profile collapse
+    // (no profile at N >= 1 after the start-up) and for the blur of the
+    // start's boundary (no block of 10 revolutions): each says why.
+    EXPECT_FALSE(std::regex_search(text, std::regex("\\bnan\\b"))) << text;
+    EXPECT_NE(text.find("blur of the start's 1 boundary"), std::string::npos) << text;
+    EXPECT_NE(text.find("not measured (no block of 10 revolutions"), std::string::npos) << text;
+    // (The last profile is at N = 0.9999999999999997: steps x dt, below 1.)
+    EXPECT_NE(text.find("no comparison: no profile at N >= 1\n"), std::string::npos) << text;
+    EXPECT_TRUE(summary["profile_collapse"]["rms"].is_null());
     EXPECT_EQ(summary["bands"]["species"], "material-2");
     EXPECT_EQ(summary["bands"]["initial"]["bands"], 2);
     EXPECT_NE(read_file(out / "summary.txt").find("bands of material-2"), std::string::npos);
