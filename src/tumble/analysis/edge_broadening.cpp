@@ -85,7 +85,7 @@ EdgeDiffusion edge_diffusion(const BandField& field, const std::vector<double>& 
         return out;
     }
     if (field.periodic) {
-        out.note = "a periodic axis (its bands wrap): not measured";
+        out.note = "a periodic axis: its bands wrap";
         return out;
     }
     const std::size_t samples = field.revolutions.size();
