@@ -33,7 +33,9 @@ int resume_command(const std::string& directory, bool quiet, double progress_eve
     // one file and keeps its slab; a run of another number of ranks, every
     // rank reads every rank's file (the whole state) and keeps its slab.
     const auto max_bytes = static_cast<std::uintmax_t>(memory_limit_bytes(0.0));
-    const bool shared_files = !io::checkpoint_files(directory, {0, 2}).empty();
+    // (A run that went on on one process after ranks, or the reverse, has
+    // files of both kinds: the newest moment's decide.)
+    const bool shared_files = io::newest_checkpoint_kind(directory, max_bytes).ranks > 1;
     const bool as_many = shared_files && load_newest_ranks(directory, max_bytes) == who.ranks;
     const io::CheckpointRank files = as_many ? who : io::CheckpointRank{};
     io::LoadedCheckpoint loaded = shared_files && !as_many ? io::load_whole_checkpoint(directory, max_bytes)

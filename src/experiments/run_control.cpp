@@ -75,9 +75,9 @@ Checkpointer::Due Checkpointer::due(std::int64_t step, std::int64_t steps_done) 
 void Checkpointer::write(const Simulation& sim, const io::Checkpoint& checkpoint) {
     check_health(sim);
     const io::CheckpointRank who = checkpoint_rank(sim);
-    // Shared among ranks: one number for the files of all ranks (a rank that
-    // joined when a run went on on more ranks has fewer files).
-    long number = io::next_checkpoint_number(directory_, who);
+    // Shared among ranks: one number for the files of all ranks (each rank
+    // looks before any writes).
+    long number = io::next_checkpoint_number(directory_);
     if (sim.shared()) number = static_cast<long>(mpi::max(static_cast<double>(number)));
     io::write_checkpoint(directory_, checkpoint, who, number);
     last_ = std::chrono::steady_clock::now();

@@ -340,9 +340,16 @@ std::vector<fs::path> checkpoint_files(const fs::path& run_directory, Checkpoint
     return files;
 }
 
-long next_checkpoint_number(const fs::path& run_directory, CheckpointRank who) {
-    const std::vector<fs::path> old = checkpoint_files(run_directory, who);
-    return old.empty() ? 1 : checkpoint_number(old.back(), who) + 1;
+long next_checkpoint_number(const fs::path& run_directory) {
+    long newest = 0;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(run_directory / "checkpoints", ec)) {
+        const std::string name = entry.path().filename().string();  // NNNNNN.tck or NNNNNN.rR.tck
+        if (name.size() >= 10 && name.ends_with(".tck") && name[6] == '.' &&
+            std::all_of(name.begin(), name.begin() + 6, ::isdigit))
+            newest = std::max(newest, std::stol(name.substr(0, 6)));
+    }
+    return newest + 1;
 }
 
 fs::path write_checkpoint(const fs::path& run_directory, const Checkpoint& checkpoint, CheckpointRank who,
@@ -352,7 +359,7 @@ fs::path write_checkpoint(const fs::path& run_directory, const Checkpoint& check
     fs::create_directories(folder, ec);
     if (ec) throw Error(folder.string() + ": cannot create the checkpoint folder: " + ec.message());
     std::vector<fs::path> old = checkpoint_files(run_directory, who);
-    if (number <= 0) number = next_checkpoint_number(run_directory, who);
+    if (number <= 0) number = next_checkpoint_number(run_directory);
     const fs::path file = folder / fmt::format("{:06d}{}", number, rank_suffix(who));
     write_file_atomically(file, encode_checkpoint(checkpoint));
     old.push_back(file);
@@ -433,9 +440,24 @@ LoadedCheckpoint load_whole_checkpoint(const fs::path& run_directory, std::uintm
     return first;
 }
 
+CheckpointRank newest_checkpoint_kind(const fs::path& run_directory, std::uintmax_t max_bytes) {
+    const CheckpointRank one{}, ranks{0, 2};
+    if (checkpoint_files(run_directory, ranks).empty()) return one;
+    if (checkpoint_files(run_directory, one).empty()) return ranks;
+    const auto newest_step = [&](CheckpointRank who) -> std::int64_t {
+        try {
+            return load_newest_checkpoint(run_directory, max_bytes, who).checkpoint.state.step;
+        } catch (const Error&) {
+            return -1;  // none of this kind reads back: the other kind's, or the error it gives
+        }
+    };
+    return newest_step(ranks) > newest_step(one) ? ranks : one;
+}
+
 bool resumable(const fs::path& run_directory, std::uintmax_t max_bytes) {
     try {
-        return load_newest_checkpoint(run_directory, max_bytes).checkpoint.record.integer("finished") == 0;
+        return load_newest_checkpoint(run_directory, max_bytes, newest_checkpoint_kind(run_directory, max_bytes))
+                   .checkpoint.record.integer("finished") == 0;
     } catch (const Error&) {
         return false;
     }

@@ -91,11 +91,15 @@ std::vector<std::filesystem::path> checkpoint_files(const std::filesystem::path&
 // Writes the next checkpoint of the run (see above) and removes all but the
 // newest two. Returns its path; tumble::Error naming the file on failure
 // (disk full, no permission), with no partial file left under a valid name.
-// `number`: NNNNNN, by default the next after the rank's newest
-// (next_checkpoint_number()); the ranks of a shared run agree on one.
+// `number`: NNNNNN, by default next_checkpoint_number(); the ranks of a
+// shared run agree on one.
 std::filesystem::path write_checkpoint(const std::filesystem::path& run_directory, const Checkpoint& checkpoint,
                                        CheckpointRank who = {}, long number = 0);
-long next_checkpoint_number(const std::filesystem::path& run_directory, CheckpointRank who = {});
+// One after the highest NNNNNN of any checkpoint file of the run, of one
+// process or of ranks: a run that goes on on another number of ranks (or on
+// one process) numbers on from where it was, so that the names sort in the
+// order of the moments whatever wrote them.
+long next_checkpoint_number(const std::filesystem::path& run_directory);
 
 // The newest checkpoint that reads back intact and whose output files are at
 // least as long as it recorded; `rejected` gets a message for each newer one
@@ -118,6 +122,13 @@ LoadedCheckpoint load_newest_checkpoint(const std::filesystem::path& run_directo
 // tumble::Error if a file is missing or damaged.
 LoadedCheckpoint load_whole_checkpoint(const std::filesystem::path& run_directory,
                                        std::uintmax_t max_bytes = std::numeric_limits<std::uintmax_t>::max());
+
+// The kind of files that holds the run's newest moment: {} (one process,
+// NNNNNN.tck) or {0, 2} (ranks, NNNNNN.rR.tck: rank 0's). A run that went on
+// on one process after ranks, or on ranks after one process, has both; the
+// later step wins (a kind none of whose files reads back loses).
+CheckpointRank newest_checkpoint_kind(const std::filesystem::path& run_directory,
+                                      std::uintmax_t max_bytes = std::numeric_limits<std::uintmax_t>::max());
 
 // True if the run stopped before its end and has an intact checkpoint to go
 // on from (its record's "finished" is 0).

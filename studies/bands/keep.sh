@@ -12,8 +12,12 @@ for dir in out/*/; do
   for f in "$dir"*; do
     [[ -f "$f" ]] && files+=("$(basename "$f")")
   done
-  newest=$(ls "$dir/checkpoints/"*.tck 2>/dev/null | sort | tail -n 1 || true)
-  [[ -n "$newest" ]] && files+=("checkpoints/$(basename "$newest")")
+  # The newest moment: every file of its number (NNNNNN.tck of one process,
+  # NNNNNN.rR.tck of each rank of a run that went on under mpirun).
+  newest=$(ls "$dir/checkpoints/" 2>/dev/null | grep -E '^[0-9]{6}\.(r[0-9]+\.)?tck$' | sort | tail -n 1 | cut -c1-6 || true)
+  if [[ -n "$newest" ]]; then
+    for f in "$dir/checkpoints/$newest".*tck; do files+=("checkpoints/$(basename "$f")"); done
+  fi
   tar -czf "kept/$name.tar.gz" -C "$dir" "${files[@]}"
   echo "kept/$name.tar.gz: $(du -h "kept/$name.tar.gz" | cut -f1)"
 done
