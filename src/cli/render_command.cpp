@@ -141,8 +141,10 @@ ColourBy colour_by(const std::string& option, const std::optional<io::DrumRunInf
 io::render::Orientation orientation_of(const fs::path& directory, bool drum) {
     if (drum) return io::render::drum_orientation();
     try {
+        const auto max_bytes = static_cast<std::uintmax_t>(memory_limit_bytes(0.0));
+        // (Any rank's file holds the scenario: a run of ranks has no file of one process.)
         const io::LoadedCheckpoint loaded =
-            io::load_newest_checkpoint(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0)));
+            io::load_newest_checkpoint(directory, max_bytes, io::newest_checkpoint_kind(directory, max_bytes));
         return io::render::orientation_against(loaded.checkpoint.scenario.gravity);
     } catch (const Error&) {
         return io::render::orientation_against({0.0, 0.0, 0.0});
