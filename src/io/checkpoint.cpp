@@ -241,14 +241,21 @@ std::string rank_suffix(CheckpointRank who) {
     return who.ranks > 1 ? ".r" + std::to_string(who.rank) + ".tck" : ".tck";
 }
 
+// NNNNNN of a checkpoint file of any kind (NNNNNN.tck, NNNNNN.rR.tck), or -1
+// for another file.
+long any_checkpoint_number(const fs::path& file) {
+    const std::string name = file.filename().string();
+    if (name.size() < 10 || !name.ends_with(".tck") || name[6] != '.' ||
+        !std::all_of(name.begin(), name.begin() + 6, ::isdigit))
+        return -1;
+    return std::stol(name.substr(0, 6));
+}
+
 // NNNNNN of RUN/checkpoints/NNNNNN.tck (of a rank: NNNNNN.rR.tck), or -1
 // for another file.
 long checkpoint_number(const fs::path& file, CheckpointRank who) {
     const std::string name = file.filename().string(), suffix = rank_suffix(who);
-    if (name.size() != 6 + suffix.size() || name.substr(6) != suffix ||
-        !std::all_of(name.begin(), name.begin() + 6, ::isdigit))
-        return -1;
-    return std::stol(name.substr(0, 6));
+    return name.size() == 6 + suffix.size() && name.substr(6) == suffix ? any_checkpoint_number(file) : -1;
 }
 
 }  // namespace
@@ -343,12 +350,8 @@ std::vector<fs::path> checkpoint_files(const fs::path& run_directory, Checkpoint
 long next_checkpoint_number(const fs::path& run_directory) {
     long newest = 0;
     std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(run_directory / "checkpoints", ec)) {
-        const std::string name = entry.path().filename().string();  // NNNNNN.tck or NNNNNN.rR.tck
-        if (name.size() >= 10 && name.ends_with(".tck") && name[6] == '.' &&
-            std::all_of(name.begin(), name.begin() + 6, ::isdigit))
-            newest = std::max(newest, std::stol(name.substr(0, 6)));
-    }
+    for (const auto& entry : fs::directory_iterator(run_directory / "checkpoints", ec))
+        newest = std::max(newest, any_checkpoint_number(entry.path()));
     return newest + 1;
 }
 
