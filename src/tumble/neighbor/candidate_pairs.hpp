@@ -66,6 +66,7 @@ private:
     struct Part {
         std::vector<std::uint32_t> first, second;
         std::vector<std::uint8_t> image;
+        std::vector<std::uint64_t> near;  // working array: the candidates of one particle
     };
     // The particles 0 .. particles-1 sorted by bin (key_, set before),
     // stably, into `sorted`; start_ gets each bin's first place in it.
