@@ -516,6 +516,9 @@ std::string analyze_bands_so_far(const fs::path& dir, const analysis::BandOption
         text << "  the run is going on: its newest snapshot and band sample, perhaps half written, are left out\n";
     Json summary = Json::object();
     std::vector<analysis::GrainFrame> frames = read_rotation_frames(dir, info, running ? 1 : 0);
+    const SnapshotCoverage coverage = snapshot_coverage(frames);
+    text << coverage.describe();
+    summary["snapshots"] = coverage.json();
     analyze_band_run(dir, out, info, text, summary, options, frames, nullptr, running);
     write_file_atomically(out / "summary.txt", text.str());
     return text.str();

@@ -278,6 +278,35 @@ std::vector<analysis::GrainFrame> read_rotation_frames(const fs::path& dir, cons
     return frames;
 }
 
+SnapshotCoverage snapshot_coverage(const std::vector<analysis::GrainFrame>& frames) {
+    SnapshotCoverage c;
+    c.count = frames.size();
+    if (frames.empty()) return c;
+    c.first = frames.front().revolutions;
+    c.last = frames.back().revolutions;
+    c.spacing = frames.size() > 1 ? frames[1].revolutions - frames[0].revolutions : 0.0;
+    c.from_start = c.first <= 0.5 * c.spacing + 1e-9;
+    return c;
+}
+
+std::string SnapshotCoverage::describe() const {
+    if (count == 0) return "  particle snapshots of the rotation: none (tumble drum --snapshots)\n";
+    std::string s = fmt::format("  particle snapshots of the rotation: {}, N = {:.4g} to {:.4g}", count, first, last);
+    if (count > 1) s += fmt::format(" (every {:.3g} revolutions)", spacing);
+    if (!from_start)
+        s += fmt::format("; those before N = {:.4g} are missing (a run continued elsewhere from a kept checkpoint "
+                         "keeps its series, not its snapshots), so everything below measured from the snapshots "
+                         "(the grains' axial MSD, the axial motion by depth, the bed structure and energetics, the "
+                         "crossing of bands) covers N >= {:.4g} only",
+                         first, first);
+    return s + "\n";
+}
+
+Json SnapshotCoverage::json() const {
+    return Json{{"count", count}, {"first_revolution", first}, {"last_revolution", last}, {"spacing", spacing},
+                {"from_start", from_start}};
+}
+
 namespace {
 
 // Depth layers of one grain diameter; the last holds everything deeper (a
@@ -553,6 +582,8 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                                      : fmt::format("NOT settled after {:.3g} s", info.settle_time));
 
     const std::vector<analysis::GrainFrame> frames = read_rotation_frames(dir, info);
+    const SnapshotCoverage coverage = snapshot_coverage(frames);
+    text << coverage.describe();
     const std::vector<analysis::MsdBlocks> msd_blocks = axial_msd_of_run(frames, info, options);
     const analysis::MsdOptions msd_opts = msd_options_of_run(frames, info, options);
     write_axial_msd(dir / "axial_msd.csv", frames, info, options);
@@ -672,6 +703,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                  {"froude", info.froude},
                  {"revolutions", series.revolutions.empty() ? 0.0 : series.revolutions.back()},
                  {"revolutions_asked", info.revolutions},
+                 {"snapshots", coverage.json()},
                  {"until_band_change",
                   info.until_band_change > 0.0
                       ? Json{{"hold", info.until_band_change},

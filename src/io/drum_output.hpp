@@ -111,6 +111,20 @@ analysis::GrainFrame read_snapshot_grains(const std::filesystem::path& file, dou
 std::vector<analysis::GrainFrame> read_rotation_frames(const std::filesystem::path& directory, const DrumRunInfo& info,
                                                        std::size_t leave_newest = 0);
 
+// What the particle snapshots of a rotation cover. A run continued from a
+// kept checkpoint on another machine has its series but not its earlier
+// snapshots, and every measurement made from the snapshots then covers the
+// later revolutions only. summary.txt says so (describe()), and
+// summary.json has it under "snapshots" (json()).
+struct SnapshotCoverage {
+    std::size_t count = 0;
+    double first = 0.0, last = 0.0, spacing = 0.0;  // revolutions
+    bool from_start = false;                        // the first at N = 0 (within half a spacing)
+    std::string describe() const;
+    Json json() const;
+};
+SnapshotCoverage snapshot_coverage(const std::vector<analysis::GrainFrame>& frames);
+
 struct AnalyzeOptions {
     // The start-up left out of the fits: revolutions N >= this (the bed
     // spins up and reaches its steady flow within the first revolution at

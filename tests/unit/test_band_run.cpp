@@ -201,6 +201,33 @@ TEST_F(BandRun, SoFarAnalysesAStoppedRunWithoutFinishingIt) {
     EXPECT_TRUE(crossing["msd"].contains("D"));  // with the MSD's D to compare (null: too short to fit)
     EXPECT_NE(read_file(out / "summary.txt").find("crossing of the inner material-1 bands by material-2"),
               std::string::npos);
+
+    // What the snapshots cover: here the whole rotation. A run continued
+    // from a kept checkpoint elsewhere lacks its early snapshots; analyze
+    // then says that everything measured from them covers the later
+    // revolutions only (BANDS.md, "Files written by the analysis").
+    const tumble::io::Json all = tumble::io::parse_json(read_file(out / "summary.json"))["snapshots"];
+    // N = 0, 0.25, 0.5 and 0.75 (a quarter revolution is 0.2500219 of steps
+    // x dt; the run ends just below N = 1, without a snapshot).
+    EXPECT_EQ(all["count"], 4);
+    EXPECT_TRUE(all["from_start"].get<bool>());
+    EXPECT_NE(read_file(out / "summary.txt").find("particle snapshots of the rotation: 4, N = 0 to 0.7501 (every "
+                                                  "0.25 revolutions)\n"),
+              std::string::npos);
+    const std::vector<fs::path> files = tumble::io::list_snapshot_csv(out);
+    ASSERT_GE(files.size(), 2u);
+    fs::remove(files[0]);
+    fs::remove(files[1]);
+    const auto later = tumble_run("analyze " + out.string());
+    ASSERT_EQ(later.exit_code, 0) << later.output;
+    const tumble::io::Json part = tumble::io::parse_json(read_file(out / "summary.json"));
+    EXPECT_EQ(part["snapshots"]["count"], 2);
+    EXPECT_FALSE(part["snapshots"]["from_start"].get<bool>());
+    EXPECT_NEAR(part["snapshots"]["first_revolution"].get<double>(), 0.5, 1e-4);
+    EXPECT_NE(later.output.find("those before N = 0.5 are missing"), std::string::npos) << later.output;
+    EXPECT_NE(later.output.find("covers N >= 0.5 only"), std::string::npos) << later.output;
+    EXPECT_LT(part["bands"]["crossing"]["band_revolutions"].get<double>(),
+              crossing["band_revolutions"].get<double>());
 }
 
 TEST_F(BandRun, UntilBandChangeEndsTheRunOnceTheCountHasHeld) {
