@@ -147,7 +147,9 @@ Simulation cached_bed(const fs::path& file, std::size_t particles, int threads, 
 // the cache if an earlier run left it there, else made and stored there.
 // `made` tells which.
 Simulation drum_bed(const io::DrumSettings& d, double turned, const fs::path& cache, int threads, bool& made) {
-    DrumSetup setup = build_drum(d);
+    io::DrumSettings automatic = d;  // the bed at the automatic skin, whatever --skin asks of the timed steps
+    automatic.skin = 0.0;
+    DrumSetup setup = build_drum(automatic);
     const std::size_t particles = setup.scenario.particles.size();
     // The bed is settled at the step it will run at: the name holds the step,
     // so a change of the automatic step makes a new bed.
@@ -187,9 +189,10 @@ int long_drum_bench(const BenchOptions& options) {
     io::DrumSettings d;  // the paper's drum: two components, 5 rad/s, end caps
     d.geometry.length = options.length;
     d.fill_fraction = options.fill;
+    d.skin = options.skin;  // checked with the rest; drum_bed() settles at the automatic skin
     io::check_drum_settings(d, "command line");
     const int threads = resolve_threads(options.threads);
-    check_memory(drum_memory(d.geometry, static_cast<double>(d.grain_count()), threads), memory_limit_bytes(0.0),
+    check_memory(drum_memory(d.geometry, static_cast<double>(d.grain_count()), threads, options.skin), memory_limit_bytes(0.0),
                  "command line");
     const double resident_before = resident_bytes();
     const fs::path cache = options.cache.empty() ? default_cache() : options.cache;
@@ -202,11 +205,19 @@ int long_drum_bench(const BenchOptions& options) {
         if (!options.json) fmt::print("tumble bench: the bed ({}) is in {}\n", bed_name, file.string());
         return 0;
     }
-    // Under mpirun the bed is shared out among the ranks, a slab each.
+    // Under mpirun the bed is shared out among the ranks, a slab each; with
+    // --skin its list is found anew with that skin (the bed's pairs and their
+    // histories kept, by global id).
     std::optional<Simulation> shared;
-    if (mpi::size() > 1) {
-        shared.emplace(bed.scenario(), threads, Ranks::world);
-        shared->restore(bed.capture());
+    if (mpi::size() > 1 || options.skin > 0.0) {
+        Scenario scenario = bed.scenario();
+        SimulationState state = bed.capture();
+        if (options.skin > 0.0) {
+            scenario.neighbor.skin = options.skin;
+            state.list_from_histories = true;
+        }
+        shared.emplace(std::move(scenario), threads, mpi::size() > 1 ? Ranks::world : Ranks::one);
+        shared->restore(std::move(state));
     }
     Simulation& sim = shared ? *shared : bed;
     const bool talk = mpi::rank() == 0;
@@ -244,7 +255,7 @@ int long_drum_bench(const BenchOptions& options) {
     // among ranks, the sum of the ranks' lists, which both hold a pair
     // across a cut (`contacts` counts it once).
     const double candidate_pairs = mpi::sum(static_cast<double>(sim.neighbors().pairs().size()));
-    if (shared) {
+    if (sim.slabs()) {
         const Slabs::Traffic& t = sim.slabs()->traffic();
         const auto ranks = static_cast<double>(mpi::size());
         update_bytes = mpi::sum(static_cast<double>(t.update_bytes) / static_cast<double>(t.updates)) / ranks;
@@ -262,13 +273,13 @@ int long_drum_bench(const BenchOptions& options) {
                    seconds_per_revolution);
         fmt::print("  steps/revolution   {:.0f}\n", steps_per_revolution);
         fmt::print("  dt                 {:.4g} s, set by {}\n", sim.dt(), limited_by);
-        fmt::print("  list rebuilds      {}\n", builds);
+        fmt::print("  list rebuilds      {} (skin {:.3g} m)\n", builds, sim.neighbors().skin());
         fmt::print("  pairs              {:.0f} in the list, {} of them touching (at the end)\n", candidate_pairs,
                    o.contacts);
         fmt::print("  kinetic energy     {:.4g} J translational, {:.4g} J rotational (grains, at the end)\n",
                    o.kinetic_translational, o.kinetic_rotational);
         fmt::print("  threads            {} (bound to cores: {})\n", sim.threads(), thread_binding());
-        if (shared)
+        if (sim.slabs())
             fmt::print("  MPI ranks          {} (slabs along z): per rank and step {:.0f} bytes of ghost updates, {:.0f} of "
                        "rebuilds, {:.0f} ghosts\n",
                        mpi::size(), update_bytes, rebuild_bytes, ghosts);
@@ -297,6 +308,7 @@ int long_drum_bench(const BenchOptions& options) {
                                                   {"dt", sim.dt()},
                                                   {"dt_limited_by", limited_by},
                                                   {"neighbor_builds", builds},
+                                                  {"skin", sim.neighbors().skin()},
                                                   {"kinetic_translational", o.kinetic_translational},
                                                   {"kinetic_rotational", o.kinetic_rotational},
                                                   {"contacts", o.contacts},

@@ -167,6 +167,11 @@ int main(int argc, char** argv) {
         "Long drum: start from the settled bed turned this many revolutions at the drum's speed, a bed in steady "
         "flow (made once and kept beside the settled one; default 0: the settled bed)")
         ->check(finite_non_negative);
+    auto* skin_opt = bench_cmd->add_option(
+        "--skin", bench.skin,
+        "Long drum: the neighbour-list skin of the timed steps, m (default 0: automatic, 0.2 x the largest radius; "
+        "the bed's list found anew)")
+        ->check(finite_non_negative);
     auto* cache_opt = bench_cmd->add_option(
         "--cache", bench.cache, "Long drum: directory of the settled beds (default: bench-cache beside the executable)");
     auto* export_opt = bench_cmd->add_option(
@@ -242,6 +247,10 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("--small-volume-fraction", small_volume_fraction,
                          "The small grains' share of the grains' volume, 0 < F < 1 (default: equal masses, 0.5)");
     drum_cmd->add_option("--dt", dt, "Time step, s (default: chosen from the materials)");
+    std::optional<double> skin;
+    drum_cmd->add_option("--skin", skin,
+                         "Neighbour-list skin, m: pairs within contact plus this are listed, the list rebuilt when a "
+                         "grain has moved half of it (default 0: 0.2 x the largest radius; speed only)");
     drum_cmd->add_option("--shear", shear, "Reading of the friction limit: paper (default), coulomb or spring (docs/MODEL.md)")
         ->check(CLI::IsMember(tumble::keywords(tumble::shear_models)));
     drum_cmd->add_option("--friction-normal", friction_normal,
@@ -395,7 +404,7 @@ int main(int argc, char** argv) {
         if (run_cmd->parsed()) return run_command(run);
         if (bench_cmd->parsed()) {
             const bool drum_case = bench.bench_case == "long-drum";
-            for (CLI::Option* option : {size_opt, seed_opt, length_opt, fill_opt, turned_opt, cache_opt, export_opt})
+            for (CLI::Option* option : {size_opt, seed_opt, length_opt, fill_opt, turned_opt, skin_opt, cache_opt, export_opt})
                 if (option->count() > 0 && (option == size_opt || option == seed_opt) == drum_case)
                     throw tumble::Error("bench: " + option->get_name() + " does not apply to --case " + bench.bench_case);
             return bench_command(bench);
@@ -459,6 +468,7 @@ int main(int argc, char** argv) {
             if (spin_up_seconds) d.spin_up_time = *spin_up_seconds;
             if (spin_up_revolutions) d.spin_up_time = 2.0 * tumble::pi * *spin_up_revolutions / d.omega();
             if (dt) d.dt = *dt;
+            if (skin) d.skin = *skin;
             if (shear) d.shear = tumble::find_keyword(tumble::shear_models, *shear)->value;
             if (friction_normal) d.friction_normal = tumble::find_keyword(tumble::friction_normals, *friction_normal)->value;
             if (seed) d.seed = static_cast<std::uint64_t>(*seed);

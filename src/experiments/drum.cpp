@@ -434,7 +434,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
                    omega * omega * inner_radius / 9.81);
 
     const int threads = resolve_threads(options.threads);
-    check_memory(drum_memory(s.geometry, static_cast<double>(s.grain_count()), threads),
+    check_memory(drum_memory(s.geometry, static_cast<double>(s.grain_count()), threads, s.skin),
                  memory_limit_bytes(options.max_memory_gib), "command line");  // what the machine cannot do, first
     check_drum_size(s.geometry, static_cast<double>(s.grain_count()), options.large_drum, "command line");
     DrumSetup setup = build_drum(s, options.allow_unsafe_dt);
@@ -458,6 +458,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     info.cap_friction = s.fill.cap_friction.value_or(-1.0);
     info.until_band_change = s.until_band_change;
     info.dt = sim.dt();
+    info.skin = sim.neighbors().skin();
     info.threads = sim.threads();
     info.isa = isa_description();
     info.shear_model = keyword_of(shear_models, s.shear);

@@ -14,10 +14,12 @@
 namespace tumble::experiments {
 
 // The drum of the settings: build_drum_scenario() with the settings' fill,
-// step (0: automatic), shear model and friction normal.
+// step (0: automatic), neighbour skin (0: automatic), shear model and
+// friction normal.
 inline DrumSetup build_drum(const io::DrumSettings& s, bool allow_unsafe_dt = false) {
     DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed, s.fill);
     if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
+    setup.scenario.neighbor.skin = s.skin;
     setup.scenario.model.shear = s.shear;
     setup.scenario.model.friction_normal = s.friction_normal;
     setup.scenario.time_step.allow_unsafe = allow_unsafe_dt;

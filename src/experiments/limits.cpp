@@ -13,6 +13,7 @@
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 #include "tumble/materials/pair_table.hpp"
+#include "tumble/setup/paper_materials.hpp"
 #include "tumble/sim/time_step.hpp"
 
 namespace tumble::experiments {
@@ -130,11 +131,16 @@ void check_stiffness(const Scenario& s, bool allowed, const std::string& source)
     }
 }
 
-MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads) {
+MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads, double skin) {
     const double wall = drum_wall_spheres(g);
-    MemoryNeed need{estimate(grains + wall, 3.0, false, threads), ""};
+    // 3 listed pairs per sphere at the automatic skin (0.2 R of the paper's
+    // large grain); a larger skin lists the pairs within 2 R + skin.
+    const double R = paper::material_1().radius;  // m
+    const double pairs = 3.0 * std::max(1.0, std::pow((2.0 * R + skin) / (2.2 * R), 3));
+    MemoryNeed need{estimate(grains + wall, pairs, false, threads), ""};
     need.driver = wall > grains ? fmt::format("the drum's wall, {:.3g} spheres (--length, --diameter, --wall-radius)", wall)
                                 : fmt::format("{:.3g} grains (--grains, --fill)", grains);
+    if (pairs > 6.0) need.driver += fmt::format(", {:.3g} neighbour pairs each (--skin)", pairs);
     return need;
 }
 

@@ -34,7 +34,8 @@ struct MemoryNeed {
     std::string driver;  // the option or key that makes it large, with the count
 };
 MemoryNeed scenario_memory(const Scenario& s, int threads);
-MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads);
+// skin: the drum's neighbour skin, m (0: automatic).
+MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads, double skin);
 
 // The number of wall spheres build_drum_wall lays out for g, estimated in
 // floating point (no overflow for any size).

@@ -64,6 +64,9 @@ void check_drum_settings(const DrumSettings& s, const std::string& source) {
     for (auto [key, value] : {std::pair{"length", s.geometry.length}, std::pair{"diameter", s.geometry.diameter},
                               std::pair{"wall_radius", s.geometry.wall_radius}})
         if (!(value > 0.0) || !std::isfinite(value)) fail(key, "must be > 0, got " + show(value));
+    if (!(s.skin >= 0.0 && s.skin < s.geometry.diameter))
+        fail("neighbor.skin", "must be >= 0 m (0: automatic, 0.2 x the largest radius) and below the drum's diameter (" +
+                                  show(s.geometry.diameter) + " m), got " + show(s.skin) + " (--skin)");
     if (const auto problem = drum_fill_problem(s.geometry, s.mode, s.fill)) {
         std::string option = problem->key;
         std::replace(option.begin(), option.end(), '_', '-');
@@ -78,7 +81,7 @@ DrumSettings load_drum_settings(const std::filesystem::path& file) {
 DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::path& file) {
     const Reader r(file);
     DrumSettings s;
-    r.only_keys(root, "", {"drum", "fill", "rotation", "measure", "settle", "time_step", "model", "output"});
+    r.only_keys(root, "", {"drum", "fill", "rotation", "measure", "settle", "time_step", "neighbor", "model", "output"});
     if (const toml::table* t = r.table(root, "drum", false)) {
         r.only_keys(*t, "drum", {"length", "diameter", "wall_radius", "periodic_axis", "cap_friction"});
         if (auto mu = r.number(*t, "drum", "cap_friction", Bound::non_negative)) s.fill.cap_friction = *mu;
@@ -144,6 +147,10 @@ DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::
     if (const toml::table* t = r.table(root, "time_step", false)) {
         r.only_keys(*t, "time_step", {"dt"});
         s.dt = r.number(*t, "time_step", "dt", Bound::positive, 0.0);
+    }
+    if (const toml::table* t = r.table(root, "neighbor", false)) {
+        r.only_keys(*t, "neighbor", {"skin"});
+        s.skin = r.number(*t, "neighbor", "skin", Bound::non_negative, 0.0);
     }
     if (const toml::table* t = r.table(root, "model", false)) {
         r.only_keys(*t, "model", {"shear", "friction_normal"});

@@ -49,6 +49,11 @@ struct DrumSettings {
     double settle_speed = 0.01;        // m/s: settled when the rms grain speed is below this
     double settle_max_time = 3.0;      // s: give up settling (with a warning) after this
     double dt = 0.0;                   // s; 0: chosen from the materials
+    // m: the neighbour list's skin, the margin beyond contact within which
+    // pairs are listed; the list is rebuilt when a sphere has moved half of
+    // it (0: 0.2 x the largest radius). Speed only: it changes which pairs
+    // are listed, not the forces (LAMMPS's `neighbor` distance).
+    double skin = 0.0;
     ShearModel shear = ShearModel::Paper;              // the reading of the friction limit (docs/MODEL.md)
     FrictionNormal friction_normal = FrictionNormal::Net;  // which normal force limits friction
     std::filesystem::path output = "drum-out";

@@ -47,6 +47,7 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                         {"solid_fraction", info.solid_fraction},
                         {"fill_fraction", info.fill_fraction},
                         {"dt", info.dt},
+                        {"skin", info.skin},
                         {"samples_per_revolution", info.samples_per_revolution},
                         {"profile_bins", info.profile_bins},
                         {"band_bins", info.band_bins},
@@ -95,6 +96,7 @@ DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
     info.solid_fraction = num("solid_fraction");
     info.fill_fraction = num("fill_fraction");
     info.dt = num("dt");
+    info.skin = t["skin"].value_or(0.0);  // absent before 2026-12-02
     info.samples_per_revolution = static_cast<int>(num("samples_per_revolution"));
     info.profile_bins = static_cast<int>(r.integer(r.required(t, "", "profile_bins"), "profile_bins", 1, 1 << 20));
     info.band_bins = t["band_bins"].value_or(0);  // absent before the band analysis

@@ -68,6 +68,8 @@ def test_arrangement_settings_are_the_command_lines():
     with pytest.raises(tumble.Error, match="cap_friction"):
         tumble.drum_settings(periodic_axis=True, cap_friction=0.5)
     assert tumble.drum_settings(revolutions=150, until_band_change=10).until_band_change == 10
+    assert tumble.drum_settings(skin=0.001).skin == 0.001  # tumble drum --skin, [neighbor] skin
+    assert tumble.drum_settings().skin == 0.0
     assert default.until_band_change == 0
     with pytest.raises(tumble.Error, match="until_band_change"):
         tumble.drum_settings(revolutions=12, until_band_change=12)

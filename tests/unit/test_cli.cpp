@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.hpp"
+#include "io/drum_output.hpp"
 #include "io/json.hpp"
 #include "io/snapshots.hpp"
 #include "io/sweep.hpp"
@@ -432,11 +433,11 @@ TEST_F(Cli, DrumRefusesImpossibleSettingsAndWritesNothing) {
 
 TEST_F(Cli, DrumRunWritesSeriesAndSummaryAndCanBeAnalysedAgain) {
     // A small, short drum: 300 grains, 0.3 revolutions at 8 rad/s sampled
-    // 40 times per revolution, with the spring shear model and the JKR
-    // friction normal. It checks the files, not the physics.
+    // 40 times per revolution, with the spring shear model, the JKR friction
+    // normal and a neighbour skin of 1 mm. It checks the files, not the physics.
     const fs::path run = dir_ / "drum";
     const Result r = run_tumble("drum -q --grains 300 --omega 8 --revolutions 0.3 --samples 40 --snapshots 10 "
-                                "--shear spring --friction-normal jkr --out " + run.string());
+                                "--shear spring --friction-normal jkr --skin 0.001 --out " + run.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
     for (const char* file : {"drum_run.toml", "drum_series.csv", "profiles.csv", "profile_comparison.csv",
                              "depth_mobility.csv", "summary.json", "summary.txt", "time_series.csv"})
@@ -459,6 +460,7 @@ TEST_F(Cli, DrumRunWritesSeriesAndSummaryAndCanBeAnalysedAgain) {
     EXPECT_EQ(j.value("shear_model", ""), "spring") << summary.substr(0, 400);
     EXPECT_EQ(j.value("friction_normal", ""), "jkr");
     EXPECT_NE(read_file(run / "drum_run.toml").find("shear_model = 'spring'"), std::string::npos);
+    EXPECT_EQ(tumble::io::read_drum_run_info(run / "drum_run.toml").skin, 0.001);
 
     fs::remove(run / "summary.json");
     const Result again = run_tumble("analyze " + run.string());

@@ -391,8 +391,8 @@ TEST(DrumArrangement, BadFillsAreRefusedNamingTheKey) {
 }
 
 // The drum file's keys: [fill] arrangement, bands, band_widths, boundaries,
-// ends, small_volume_fraction and [drum] cap_friction; a bad value names the
-// file, the key and the option.
+// ends, small_volume_fraction, [drum] cap_friction and [neighbor] skin; a bad
+// value names the file, the key and the option.
 TEST(DrumArrangement, DrumFileKeys) {
     auto read = [](const std::string& text) {
         return io::read_drum_settings(io::parse_toml(text, "drum.toml"), "drum.toml");
@@ -428,6 +428,13 @@ TEST(DrumArrangement, DrumFileKeys) {
     EXPECT_NE(sum.find("--band-widths"), std::string::npos) << sum;
     EXPECT_NE(message("[fill]\nboundaries = \"0.1\"\n").find("fill.boundaries"), std::string::npos);
     EXPECT_NE(message("[drum]\nperiodic_axis = true\ncap_friction = 0.3\n").find("cap_friction"), std::string::npos);
+    // [neighbor] skin, m (0: automatic), below the drum's diameter.
+    EXPECT_EQ(read("[neighbor]\nskin = 0.001\n").skin, 0.001);
+    EXPECT_EQ(plain.skin, 0.0);
+    EXPECT_NE(message("[neighbor]\nskin = -0.001\n").find("neighbor.skin"), std::string::npos);
+    const std::string wide = message("[neighbor]\nskin = 0.09\n");
+    EXPECT_NE(wide.find("below the drum's diameter"), std::string::npos) << wide;
+    EXPECT_NE(message("[neighbor]\nsort_every = 2\n").find("sort_every"), std::string::npos);
     // The example file.
     const io::DrumSettings example =
         io::load_drum_settings(std::string(TUMBLE_SOURCE_DIR) + "/examples/drum_bands.toml");

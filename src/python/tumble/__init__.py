@@ -72,6 +72,7 @@ DRUM_OPTIONS = {
     "settle_speed": ("settle", "speed"),
     "settle_max_time": ("settle", "max_time"),
     "dt": ("time_step", "dt"),
+    "skin": ("neighbor", "skin"),
     "shear": ("model", "shear"),
     "friction_normal": ("model", "friction_normal"),
     "out": ("output", "directory"),
