@@ -603,8 +603,13 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                 N.push_back(series.revolutions[k]);
                 z.push_back(comp.start_side * series.mean_z[c][k]);
             }
-        text << fmt::format("  {} ({} grains, started at z {} 0): <z>(0) = {:.4g} m (L/4 = {:.4g} m)\n", comp.name,
-                            comp.grains, comp.start_side > 0 ? ">" : "<", z.empty() ? 0.0 : z.front(), L / 4.0);
+        if (info.arrangement == "halves")
+            text << fmt::format("  {} ({} grains, started at z {} 0): <z>(0) = {:.4g} m (L/4 = {:.4g} m)\n",
+                                comp.name, comp.grains, comp.start_side > 0 ? ">" : "<", z.empty() ? 0.0 : z.front(),
+                                L / 4.0);
+        else  // bands, boundaries or mixed: no side to mirror
+            text << fmt::format("  {} ({} grains, {} start): <z>(0) = {:.4g} m\n", comp.name, comp.grains,
+                                info.arrangement, z.empty() ? 0.0 : comp.start_side * z.front());  // unmirrored
 
         // The grains' axial MSD: the headline D.
         msd.push_back(msd_blocks.empty() ? analysis::MsdEstimate{}

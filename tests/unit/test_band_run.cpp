@@ -201,6 +201,11 @@ TEST_F(BandRun, SoFarAnalysesAStoppedRunWithoutFinishingIt) {
     EXPECT_TRUE(crossing["msd"].contains("D"));  // with the MSD's D to compare (null: too short to fit)
     EXPECT_NE(read_file(out / "summary.txt").find("crossing of the inner material-1 bands by material-2"),
               std::string::npos);
+    // A band start has no side of the drum per component: <z>(0) unmirrored,
+    // not "started at z > 0" (the halves' wording).
+    EXPECT_EQ(read_file(out / "summary.txt").find("started at z"), std::string::npos);
+    EXPECT_NE(read_file(out / "summary.txt").find("material-2 ("), std::string::npos);
+    EXPECT_NE(read_file(out / "summary.txt").find(" grains, bands start): <z>(0) = "), std::string::npos);
 
     // What the snapshots cover: here the whole rotation. A run continued
     // from a kept checkpoint elsewhere lacks its early snapshots; analyze
