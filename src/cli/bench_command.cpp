@@ -192,8 +192,8 @@ int long_drum_bench(const BenchOptions& options) {
     d.skin = options.skin;  // checked with the rest; drum_bed() settles at the automatic skin
     io::check_drum_settings(d, "command line");
     const int threads = resolve_threads(options.threads);
-    check_memory(drum_memory(d.geometry, static_cast<double>(d.grain_count()), threads, options.skin), memory_limit_bytes(0.0),
-                 "command line");
+    check_memory(drum_memory(d.geometry, static_cast<double>(d.grain_count()), threads, options.skin),
+                 memory_limit_bytes(0.0), "command line");
     const double resident_before = resident_bytes();
     const fs::path cache = options.cache.empty() ? default_cache() : options.cache;
     bool made = false;

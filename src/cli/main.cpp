@@ -404,7 +404,8 @@ int main(int argc, char** argv) {
         if (run_cmd->parsed()) return run_command(run);
         if (bench_cmd->parsed()) {
             const bool drum_case = bench.bench_case == "long-drum";
-            for (CLI::Option* option : {size_opt, seed_opt, length_opt, fill_opt, turned_opt, skin_opt, cache_opt, export_opt})
+            for (CLI::Option* option :
+                 {size_opt, seed_opt, length_opt, fill_opt, turned_opt, skin_opt, cache_opt, export_opt})
                 if (option->count() > 0 && (option == size_opt || option == seed_opt) == drum_case)
                     throw tumble::Error("bench: " + option->get_name() + " does not apply to --case " + bench.bench_case);
             return bench_command(bench);

@@ -43,7 +43,7 @@ struct DrumRunInfo {
     double solid_fraction = 0.0;   // grain volume / drum volume
     double fill_fraction = 0.0;    // bed cross-section / drum cross-section, measured after settling
     double dt = 0.0;               // s
-    double skin = 0.0;             // m, the neighbour list's (as used: the automatic value when 0 was asked)
+    double skin = 0.0;             // m, the neighbour list's as used (0: not recorded, a run before 2026-12-02)
     int samples_per_revolution = 0;
     int profile_bins = 0;
     int band_bins = 0;             // axial bins of band_profile.csv (0: none, a run from before the band analysis)
