@@ -77,6 +77,22 @@ def test_tracks_hogg_and_msd_of_a_run(tiny_drum):
     assert set(msd) >= {"D", "interval", "lag", "msd", "determined", "note"} and not msd["determined"]
 
 
+def test_hogg_fit_refuses_a_start_other_than_halves(tiny_drum, tmp_path):
+    # Hogg's <z>(N) is that of two halves between caps; a band start's <z> mirrored by start_side would give a
+    # D with no meaning (summary.json says "not applicable"), so the Python fit refuses as the C++ one does.
+    directory, _ = tiny_drum
+    copy = tmp_path / "run"
+    shutil.copytree(directory, copy)
+    info = (copy / "drum_run.toml").read_text()
+    assert "arrangement = 'halves'" in info
+    (copy / "drum_run.toml").write_text(info.replace("arrangement = 'halves'", "arrangement = 'bands'"))
+    with pytest.raises(ValueError, match=r"not applicable to a start other than halves \(bands\)"):
+        tumble.io.Run(copy).fit_hogg(1)
+    (copy / "drum_run.toml").write_text(info.replace("periodic_axis = false", "periodic_axis = true"))
+    with pytest.raises(ValueError, match="not applicable on a periodic axis"):
+        tumble.io.Run(copy).fit_hogg(1)
+
+
 def test_hogg_fit_finds_a_known_D():
     L, D = 0.12, 1.5e-5
     N = np.linspace(0.0, 30.0, 121)
