@@ -253,6 +253,10 @@ int main(int argc, char** argv) {
                          "grain has moved half of it (default 0: 0.2 x the largest radius; speed only)");
     drum_cmd->add_option("--shear", shear, "Reading of the friction limit: paper (default), coulomb or spring (docs/MODEL.md)")
         ->check(CLI::IsMember(tumble::keywords(tumble::shear_models)));
+    std::optional<double> surface_energy;
+    drum_cmd->add_option("--surface-energy", surface_energy,
+                         "Surface energy W of every pair, J/m^2: the attraction and pull-off force (default the "
+                         "paper's 0.2; 0: cohesionless grains)");
     drum_cmd->add_option("--friction-normal", friction_normal,
                          "Normal force that limits friction: net (the paper's, default) or jkr")
         ->check(CLI::IsMember(tumble::keywords(tumble::friction_normals)));
@@ -281,7 +285,7 @@ int main(int argc, char** argv) {
     bool contact_drum = false;
     std::string contact_drum_config;
     std::optional<std::string> contact_mode;
-    std::optional<double> contact_dt, contact_wall_radius;
+    std::optional<double> contact_dt, contact_wall_radius, contact_surface_energy;
     CLI::App* contact_cmd = app.add_subcommand(
         "contact", "Each pair of materials of a scenario or of the drum: collision time, restitution at the step and "
                    "converged, equilibrium overlap, pull-off force, sticking speed, and the time step's criterion "
@@ -294,6 +298,9 @@ int main(int argc, char** argv) {
     contact_cmd->add_option("--wall-radius", contact_wall_radius, "Radius of the drum's wall particles, m (with --drum)")
         ->needs(contact_drum_flag);
     contact_cmd->add_option("--dt", contact_dt, "Time step of the drum, s (with --drum; default: chosen)")
+        ->needs(contact_drum_flag);
+    contact_cmd->add_option("--surface-energy", contact_surface_energy,
+                            "Surface energy W of every pair of the drum, J/m^2 (with --drum; default the paper's 0.2)")
         ->needs(contact_drum_flag);
     contact_cmd->add_flag("--allow-unsafe-dt", contact.allow_unsafe_dt,
                           "Accept a --dt above the safe maximum (to see what a larger step would do)")
@@ -430,6 +437,7 @@ int main(int argc, char** argv) {
             if (contact_mode) d.mode = *contact_mode;
             if (contact_wall_radius) d.geometry.wall_radius = *contact_wall_radius;
             if (contact_dt) d.dt = *contact_dt;
+            if (contact_surface_energy) d.surface_energy = *contact_surface_energy;
             tumble::io::check_drum_settings(d, "command line");
             return contact_command(contact);
         }
@@ -472,6 +480,7 @@ int main(int argc, char** argv) {
             if (skin) d.skin = *skin;
             if (shear) d.shear = tumble::find_keyword(tumble::shear_models, *shear)->value;
             if (friction_normal) d.friction_normal = tumble::find_keyword(tumble::friction_normals, *friction_normal)->value;
+            if (surface_energy) d.surface_energy = *surface_energy;
             if (seed) d.seed = static_cast<std::uint64_t>(*seed);
             if (out) d.output = *out;
             drum.plot = !no_plot;

@@ -14,10 +14,12 @@
 namespace tumble::experiments {
 
 // The drum of the settings: build_drum_scenario() with the settings' fill,
-// step (0: automatic), neighbour skin (0: automatic), shear model and
-// friction normal.
+// step (0: automatic), neighbour skin (0: automatic), shear model, friction
+// normal and surface energy (every pair's W).
 inline DrumSetup build_drum(const io::DrumSettings& s, bool allow_unsafe_dt = false) {
     DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed, s.fill);
+    for (auto& row : setup.scenario.pair_properties)
+        for (PairProperties& pair : row) pair.W = s.surface_energy;
     if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
     setup.scenario.neighbor.skin = s.skin;
     setup.scenario.model.shear = s.shear;

@@ -67,6 +67,9 @@ void check_drum_settings(const DrumSettings& s, const std::string& source) {
     if (!(s.skin >= 0.0 && s.skin < s.geometry.diameter))
         fail("neighbor.skin", "must be >= 0 m (0: automatic, 0.2 x the largest radius) and below the drum's diameter (" +
                                   show(s.geometry.diameter) + " m), got " + show(s.skin) + " (--skin)");
+    if (!(s.surface_energy >= 0.0) || !std::isfinite(s.surface_energy))
+        fail("model.surface_energy",
+             "must be >= 0 J/m^2 (0: no attraction), got " + show(s.surface_energy) + " (--surface-energy)");
     if (const auto problem = drum_fill_problem(s.geometry, s.mode, s.fill)) {
         std::string option = problem->key;
         std::replace(option.begin(), option.end(), '_', '-');
@@ -153,10 +156,11 @@ DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::
         s.skin = r.number(*t, "neighbor", "skin", Bound::non_negative, 0.0);
     }
     if (const toml::table* t = r.table(root, "model", false)) {
-        r.only_keys(*t, "model", {"shear", "friction_normal"});
+        r.only_keys(*t, "model", {"shear", "friction_normal", "surface_energy"});
         if (const toml::node* n = t->get("shear")) s.shear = r.keyword(*n, "model.shear", shear_models)->value;
         if (const toml::node* n = t->get("friction_normal"))
             s.friction_normal = r.keyword(*n, "model.friction_normal", friction_normals)->value;
+        s.surface_energy = r.number(*t, "model", "surface_energy", Bound::non_negative, s.surface_energy);
     }
     if (const toml::table* t = r.table(root, "output", false)) {
         r.only_keys(*t, "output", {"directory"});

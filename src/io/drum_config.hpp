@@ -11,6 +11,7 @@
 
 #include "tumble/contact/contact_law.hpp"
 #include "tumble/setup/drum.hpp"
+#include "tumble/setup/paper_materials.hpp"
 
 namespace tumble::io {
 
@@ -56,6 +57,10 @@ struct DrumSettings {
     double skin = 0.0;
     ShearModel shear = ShearModel::Paper;              // the reading of the friction limit (docs/MODEL.md)
     FrictionNormal friction_normal = FrictionNormal::Net;  // which normal force limits friction
+    // J/m^2: the surface energy W of every pair (grains, wall, caps), which
+    // sets the attraction (eq. 7) and the pull-off force 2 pi W R*; the
+    // paper's 0.2 by default, 0 for cohesionless grains (docs/DRUM.md).
+    double surface_energy = paper::surface_energy;
     std::filesystem::path output = "drum-out";
 
     // Angular velocity in rad/s: from rpm (2 pi / 60) or from the Froude

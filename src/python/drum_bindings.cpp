@@ -80,6 +80,8 @@ void bind_drum(py::module_& m) {
         .def_property_readonly("shear", [](const io::DrumSettings& s) { return keyword_of(shear_models, s.shear); })
         .def_property_readonly("friction_normal",
                                [](const io::DrumSettings& s) { return keyword_of(friction_normals, s.friction_normal); })
+        .def_readonly("surface_energy", &io::DrumSettings::surface_energy,
+                      "J/m^2, every pair's W (the attraction); the paper's 0.2, 0: cohesionless")
         .def_readonly("output", &io::DrumSettings::output, "the run directory");
 
     m.def("load_drum_settings", &io::load_drum_settings, py::arg("path"), "A drum settings file (TOML)");

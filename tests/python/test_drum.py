@@ -70,6 +70,10 @@ def test_arrangement_settings_are_the_command_lines():
     assert tumble.drum_settings(revolutions=150, until_band_change=10).until_band_change == 10
     assert tumble.drum_settings(skin=0.001).skin == 0.001  # tumble drum --skin, [neighbor] skin
     assert tumble.drum_settings().skin == 0.0
+    assert tumble.drum_settings(surface_energy=0.0).surface_energy == 0.0  # --surface-energy, [model] surface_energy
+    assert tumble.drum_settings().surface_energy == 0.2  # the paper's W
+    with pytest.raises(tumble.Error, match="surface_energy"):
+        tumble.drum_settings(surface_energy=-1.0)
     assert default.until_band_change == 0
     with pytest.raises(tumble.Error, match="until_band_change"):
         tumble.drum_settings(revolutions=12, until_band_change=12)

@@ -434,10 +434,11 @@ TEST_F(Cli, DrumRefusesImpossibleSettingsAndWritesNothing) {
 TEST_F(Cli, DrumRunWritesSeriesAndSummaryAndCanBeAnalysedAgain) {
     // A small, short drum: 300 grains, 0.3 revolutions at 8 rad/s sampled
     // 40 times per revolution, with the spring shear model, the JKR friction
-    // normal and a neighbour skin of 1 mm. It checks the files, not the physics.
+    // normal, a neighbour skin of 1 mm and half the paper's surface energy.
+    // It checks the files, not the physics.
     const fs::path run = dir_ / "drum";
     const Result r = run_tumble("drum -q --grains 300 --omega 8 --revolutions 0.3 --samples 40 --snapshots 10 "
-                                "--shear spring --friction-normal jkr --skin 0.001 --out " + run.string());
+                                "--shear spring --friction-normal jkr --skin 0.001 --surface-energy 0.1 --out " + run.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
     for (const char* file : {"drum_run.toml", "drum_series.csv", "profiles.csv", "profile_comparison.csv",
                              "depth_mobility.csv", "summary.json", "summary.txt", "time_series.csv"})
@@ -461,6 +462,9 @@ TEST_F(Cli, DrumRunWritesSeriesAndSummaryAndCanBeAnalysedAgain) {
     EXPECT_EQ(j.value("friction_normal", ""), "jkr");
     EXPECT_NE(read_file(run / "drum_run.toml").find("shear_model = 'spring'"), std::string::npos);
     EXPECT_EQ(tumble::io::read_drum_run_info(run / "drum_run.toml").skin, 0.001);
+    EXPECT_EQ(tumble::io::read_drum_run_info(run / "drum_run.toml").surface_energy, 0.1);
+    EXPECT_EQ(j.value("surface_energy", 0.0), 0.1);
+    EXPECT_NE(read_file(run / "summary.txt").find("surface energy W = 0.1 J/m^2"), std::string::npos);
 
     fs::remove(run / "summary.json");
     const Result again = run_tumble("analyze " + run.string());

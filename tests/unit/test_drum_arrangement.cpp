@@ -391,8 +391,8 @@ TEST(DrumArrangement, BadFillsAreRefusedNamingTheKey) {
 }
 
 // The drum file's keys: [fill] arrangement, bands, band_widths, boundaries,
-// ends, small_volume_fraction, [drum] cap_friction and [neighbor] skin; a bad
-// value names the file, the key and the option.
+// ends, small_volume_fraction, [drum] cap_friction, [neighbor] skin and
+// [model] surface_energy; a bad value names the file, the key and the option.
 TEST(DrumArrangement, DrumFileKeys) {
     auto read = [](const std::string& text) {
         return io::read_drum_settings(io::parse_toml(text, "drum.toml"), "drum.toml");
@@ -435,6 +435,10 @@ TEST(DrumArrangement, DrumFileKeys) {
     const std::string wide = message("[neighbor]\nskin = 0.09\n");
     EXPECT_NE(wide.find("below the drum's diameter"), std::string::npos) << wide;
     EXPECT_NE(message("[neighbor]\nsort_every = 2\n").find("sort_every"), std::string::npos);
+    // [model] surface_energy, J/m^2 (the paper's 0.2 by default, 0: no attraction).
+    EXPECT_EQ(read("[model]\nsurface_energy = 0.0\n").surface_energy, 0.0);
+    EXPECT_EQ(plain.surface_energy, 0.2);
+    EXPECT_NE(message("[model]\nsurface_energy = -0.2\n").find("model.surface_energy"), std::string::npos);
     // The example file.
     const io::DrumSettings example =
         io::load_drum_settings(std::string(TUMBLE_SOURCE_DIR) + "/examples/drum_bands.toml");

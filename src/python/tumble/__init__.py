@@ -75,6 +75,7 @@ DRUM_OPTIONS = {
     "skin": ("neighbor", "skin"),
     "shear": ("model", "shear"),
     "friction_normal": ("model", "friction_normal"),
+    "surface_energy": ("model", "surface_energy"),
     "out": ("output", "directory"),
 }
 # Options that replace each other, as on the command line.

@@ -18,10 +18,13 @@ inline Material material_3() { return material("wall", 3.0e-3); }  // the drum w
 
 inline std::vector<Material> materials() { return {material_1(), material_2(), material_3()}; }
 
+// The surface energy W of every pair of the paper's materials, J/m^2.
+inline constexpr double surface_energy = 0.2;
+
 // mu and W for every pair of materials(): 1-1, 1-2, 2-2, and 0.2 for any
-// pair with the wall; W = 0.2 J/m^2 throughout.
+// pair with the wall; W = surface_energy throughout.
 inline std::vector<std::vector<PairProperties>> pair_properties() {
-    const double W = 0.2;
+    const double W = surface_energy;
     return {{{0.1, W}, {0.2, W}, {0.2, W}},
             {{0.2, W}, {0.5, W}, {0.2, W}},
             {{0.2, W}, {0.2, W}, {0.2, W}}};
