@@ -31,13 +31,14 @@ REPO = STUDY.parent.parent
 
 
 def a_runs():
-    """{speed label: [run names]} of runs.txt's A runs, by their name's fr part."""
+    """{speed label: [run names]} of runs.txt's A runs, by their name's fr part (A_dry_*: without attraction)."""
     speeds = {}
     for line in (STUDY / "runs.txt").read_text().splitlines():
         words = line.split()
         if words and words[0].startswith("A_"):
-            match = re.match(r"A_fr([0-9.]+)_seed(\d+)$", words[0])
-            speeds.setdefault(f"Froude {match.group(1)}" if match else "?", []).append(words[0])
+            match = re.match(r"A_(dry_)?fr([0-9.]+)_seed(\d+)$", words[0])
+            label = f"Froude {match.group(2)}{', no attraction (W = 0)' if match.group(1) else ''}" if match else "?"
+            speeds.setdefault(label, []).append(words[0])
     return speeds
 
 
