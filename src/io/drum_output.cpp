@@ -412,16 +412,6 @@ void write_axial_msd(const fs::path& file, const std::vector<analysis::GrainFram
     check_written(out, file);
 }
 
-// Why the Hogg solution does not describe <z> of this run, or "" if it
-// does: it needs the halves start between end caps (the mean of a wrapped
-// coordinate follows no Hogg law; a mixed or banded start has no step to
-// relax).
-std::string hogg_not_applicable(const DrumRunInfo& info) {
-    if (info.periodic_axis) return "not applicable on a periodic axis";
-    if (info.arrangement != "halves") return "not applicable to a start other than halves (" + info.arrangement + ")";
-    return "";
-}
-
 // A Hogg fit, or an undetermined one with the reason: no samples, or not
 // applicable (hogg_not_applicable).
 analysis::HoggFit fit_hogg_or_note(const std::vector<double>& N, const std::vector<double>& z, double L,
@@ -550,6 +540,12 @@ void analyze_bed_structure(const fs::path& dir, const std::vector<analysis::Grai
 }
 
 }  // namespace
+
+std::string hogg_not_applicable(const DrumRunInfo& info) {
+    if (info.periodic_axis) return "not applicable on a periodic axis";
+    if (info.arrangement != "halves") return "not applicable to a start other than halves (" + info.arrangement + ")";
+    return "";
+}
 
 std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options) {
     const DrumRunInfo info = read_drum_run_info(dir / "drum_run.toml");

@@ -77,6 +77,11 @@ DrumRunInfo read_drum_run_info(const std::filesystem::path& file);
 // The same as TOML text (kept in checkpoints); `name` is used in messages.
 std::string drum_run_info_text(const DrumRunInfo& info);
 DrumRunInfo parse_drum_run_info(std::string_view text, const std::filesystem::path& name);
+// Why the Hogg solution does not describe <z> of this run, or "" if it
+// does: it needs the halves start between end caps (the mean of a wrapped
+// coordinate follows no Hogg law; a mixed or banded start has no step to
+// relax).
+std::string hogg_not_applicable(const DrumRunInfo& info);
 
 class DrumSeriesWriter {
 public:

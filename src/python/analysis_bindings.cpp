@@ -58,6 +58,14 @@ void bind_analysis(py::module_& m) {
         "in m (continuous in time), caps at +-half_length; D in m^2/rev with its 95 % bootstrap interval");
 
     m.def(
+        "hogg_not_applicable",
+        [](const fs::path& directory) {
+            return io::hogg_not_applicable(io::read_drum_run_info(directory / "drum_run.toml"));
+        },
+        py::arg("directory"),
+        "Why the Hogg solution does not describe <z> of a drum run (its start, its axis), or '' if it does");
+
+    m.def(
         "drum_tracks",
         [](const fs::path& directory, int component) {
             const io::DrumRunInfo info = io::read_drum_run_info(directory / "drum_run.toml");

@@ -174,16 +174,12 @@ class Run:
         is that of two halves between end caps: for another start (bands,
         boundaries, mixed) or a periodic axis this raises ValueError, as
         summary.json's fit says "not applicable"."""
-        info = self.info
-        if info.get("periodic_axis", False):
-            raise ValueError(f"{self.directory}: Hogg fit not applicable on a periodic axis")
-        arrangement = info.get("arrangement", "halves")  # absent before the arrangements (2026-11-30)
-        if arrangement != "halves":
-            raise ValueError(f"{self.directory}: Hogg fit not applicable to a start other than halves "
-                             f"({arrangement}); see band_edges for the boundaries' interdiffusion")
+        why = _core.hogg_not_applicable(self.directory)
+        if why:
+            raise ValueError(f"{self.directory}: Hogg fit {why}")
         N, z = self.mean_z(component)
         side = self.components[component]["start_side"]
-        return _core.fit_hogg(N, side * z, info["inner_length"], first_revolution=first_revolution,
+        return _core.fit_hogg(N, side * z, self.info["inner_length"], first_revolution=first_revolution,
                               drift=drift, fixed_D=fixed_D)
 
     def tracks(self, component):
