@@ -6,7 +6,11 @@
 # (--until-band-change), running, stopped (a checkpoint to resume), kept
 # (in git, not unpacked here) or not started. A run that finished (or
 # ended early) before runs.txt asked for more revolutions is "lengthened":
-# run.sh goes on from its end.
+# run.sh goes on from its end. For a run not finished, its rate: the
+# revolutions between the last two progress lines of its log (out/NAME.log,
+# a line a minute: run.sh's --progress-every 60) times 60, in revolutions
+# per hour, and the hours left at that rate (on this machine, with as many
+# runs beside it as then).
 set -euo pipefail
 cd "$(dirname "$0")"
 last_revolution() {  # the N of the last line of a drum_series.csv on stdin
@@ -18,8 +22,13 @@ file_of() {
   if [[ -d $dir ]]; then cat "$dir/$1" 2>/dev/null || true
   else tar -xzOf "kept/$name.tar.gz" "$1" 2>/dev/null || true; fi
 }
-echo "| run | revolutions done | of | state |"
-echo "|---|---|---|---|"
+# Revolutions per hour in the last minute of the log on stdin; empty if unknown.
+last_rate() {
+  grep '^progress: rotation:' | tail -n 2 | sed -n 's/.*revolution \([0-9.]*\) of.*/\1/p' |
+    awk 'NR == 1 { a = $1 } NR == 2 && $1 > a { printf "%.0f", ($1 - a) * 60 }'
+}
+echo "| run | revolutions done | of | state | rev/h (last minute of its log) | hours to go |"
+echo "|---|---|---|---|---|---|"
 awk '/^[AB]_/ { name = $1; of = "?"; for (i = 2; i < NF; ++i) if ($i == "--revolutions") of = $(i + 1); print name, of }' runs.txt |
 while read -r name of; do
   dir=out/$name done="" state="not started"
@@ -36,5 +45,10 @@ while read -r name of; do
     else state=stopped; fi
     [[ -d $dir ]] || state="$state (kept, not unpacked)"
   fi
-  echo "| $name | ${done:--} | $of | $state |"
+  rate="" left=""
+  if [[ $state != finished* && $state != ended* && -f $dir.log ]]; then
+    rate=$(last_rate <"$dir.log")
+    [[ -n $rate ]] && left=$(awk -v o="$of" -v d="${done:-0}" -v r="$rate" 'BEGIN { printf "%.1f", (o - d) / r }')
+  fi
+  echo "| $name | ${done:--} | $of | $state | ${rate:--} | ${left:--} |"
 done
