@@ -75,6 +75,15 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
 // sorted, the ghosts made anew, and the list found with the keyed histories.
 // The store's size changes, and with it the chunks' force arrays.
 void Simulation::rebuild(Team& team, bool keep_histories) {
+    // The chunks' sums on kinematic particles are never added up
+    // (compute_forces()); cleared before the store is sorted anew, so that
+    // no particle that takes such a slot finds them.
+    team.each([&](int c) {
+        const IndexRange r = team.range(c, chunk_force_.size());
+        const auto from = static_cast<std::ptrdiff_t>(r.begin), to = static_cast<std::ptrdiff_t>(r.end);
+        std::fill(chunk_force_.begin() + from, chunk_force_.begin() + to, Vec3{});
+        std::fill(chunk_torque_.begin() + from, chunk_torque_.begin() + to, Vec3{});
+    });
     if (!slabs_ && !keep_histories) {
         neighbors_.rebuild(particles_, team);
         return;
@@ -222,11 +231,12 @@ void Simulation::advance(std::int64_t steps) {
     });
 }
 
-// The arrays each chunk writes on its own, for the current chunk count.
+// The arrays each chunk writes on its own, for the current chunk count
+// (zero when the count or the store's size changes).
 void Simulation::prepare_chunks() {
     const auto count = static_cast<std::size_t>(chunks());
     const std::size_t extra = (count - 1) * particles_.size();
-    if (chunk_force_.size() != extra) {
+    if (chunk_force_.size() != extra || touched_from_.size() != count) {
         chunk_force_.assign(extra, Vec3{});
         chunk_torque_.assign(extra, Vec3{});
     }
@@ -269,6 +279,11 @@ void add_and_clear(double* __restrict sum, double* __restrict part, std::size_t 
 // (touched_from_[c]); its arrays are added from there only, and cleared as
 // they are read, so they are zero between calls. The parts left out are +0
 // (a sum begun at +0 is never -0), so adding them would change nothing.
+// The kinematic particles' sums are not added (their motion is prescribed;
+// nothing reads their forces): with the store sorted they are the wall
+// spheres at its end, most of what chunk c >= 1 touches, and adding them
+// cost 2 threads 3 to 5 % of a step on the long drum (docs/BENCHMARKS.md).
+// They stay in the chunks' arrays until the next rebuild clears them.
 template <class Then>
 void Simulation::compute_forces(Team& team, Then&& then) {
     ParticleStore& p = particles_;
@@ -306,10 +321,11 @@ void Simulation::compute_forces(Team& team, Then&& then) {
         // are only cleared for the next call (no ghost's force is used).
         const IndexRange ghosts = team.range(c, n - owned_);
         add_chunk_sums({owned_ + ghosts.begin, owned_ + ghosts.end});
-        for (const IndexRange own : own_parts(team, c)) {
-            add_chunk_sums(own);
-            if (!wall_history_.empty()) add_wall_forces(own);
-            then(c, own);
+        const std::array<IndexRange, 2> own = own_parts(team, c);  // free, kinematic
+        add_chunk_sums(own[0]);
+        for (const IndexRange part : own) {
+            if (!wall_history_.empty()) add_wall_forces(part);
+            then(c, part);
         }
     });
 }
@@ -464,6 +480,8 @@ void Simulation::restore(SimulationState state) {
     if (!why.empty()) throw Error("restoring a simulation state: " + why);
     particles_ = std::move(state.particles);
     particles_.half_kick.assign(particles_.size(), Vec3{});  // 0 between steps
+    chunk_force_.clear();  // the chunks' sums anew for this store (prepare_chunks())
+    chunk_torque_.clear();
     wall_history_ = std::move(state.wall_history);
     motions_ = std::move(state.motions);
     for (std::size_t k = 0; k < motions_.size(); ++k) scenario_.motions[k] = motions_[k].motion;
