@@ -15,24 +15,16 @@ revolutions per cm^2: a diffusive fading time grows as the width squared
     python3 studies/bands/events.py --runs B_k5_small_seed1 B_k5_large_seed1
 """
 import argparse
-import tarfile
 import tomllib
 from pathlib import Path
 
-from pool_edges import STUDY, finished_bands, study_runs
+from pool_edges import STUDY, finished_bands, run_file, study_runs
 
 
 def run_info(name):
     """drum_run.toml of a run, from out/ or its kept archive, or None."""
-    path = STUDY / "out" / name / "drum_run.toml"
-    if path.is_file():
-        return tomllib.loads(path.read_text())
-    kept = STUDY / "kept" / f"{name}.tar.gz"
-    if kept.is_file():
-        with tarfile.open(kept) as tar:
-            if "drum_run.toml" in tar.getnames():
-                return tomllib.loads(tar.extractfile("drum_run.toml").read().decode())
-    return None
+    text = run_file(name, "drum_run.toml", finished=False)
+    return None if text is None else tomllib.loads(text.decode())
 
 
 def start_pattern(name, bands):

@@ -35,18 +35,26 @@ def t95(dof):
     return T95[dof - 1] if dof <= len(T95) else 1.960 + 2.4 / dof
 
 
-def finished_bands(name):
-    """bands.json of a finished run (summary.json beside it), or None."""
+def run_file(name, member, finished=True):
+    """The bytes of a run's file (member of out/NAME, else of kept/NAME.tar.gz), or None.
+
+    finished: only from a finished run (summary.json beside the file)."""
     out = STUDY / "out" / name
-    if (out / "summary.json").is_file() and (out / "bands.json").is_file():
-        return json.loads((out / "bands.json").read_text())
+    if (out / member).is_file() and (not finished or (out / "summary.json").is_file()):
+        return (out / member).read_bytes()
     kept = STUDY / "kept" / f"{name}.tar.gz"
     if kept.is_file():
         with tarfile.open(kept) as tar:
             names = tar.getnames()
-            if "summary.json" in names and "bands.json" in names:
-                return json.load(tar.extractfile("bands.json"))
+            if member in names and (not finished or "summary.json" in names):
+                return tar.extractfile(member).read()
     return None
+
+
+def finished_bands(name):
+    """bands.json of a finished run, or None."""
+    text = run_file(name, "bands.json")
+    return None if text is None else json.loads(text)
 
 
 def study_runs():

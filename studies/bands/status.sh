@@ -10,7 +10,8 @@
 # revolutions between the last two progress lines of its log (out/NAME.log,
 # a line a minute: run.sh's --progress-every 60) times 60, in revolutions
 # per hour, and the hours left at that rate (on this machine, with as many
-# runs beside it as then).
+# runs beside it as then). The cost so far: steps (revolutions x 2 pi /
+# (omega dt), from drum_run.toml) times grains, in grain updates.
 set -euo pipefail
 cd "$(dirname "$0")"
 last_revolution() {  # the N of the last line of a drum_series.csv on stdin
@@ -27,8 +28,13 @@ last_rate() {
   grep '^progress: rotation:' | tail -n 2 | sed -n 's/.*revolution \([0-9.]*\) of.*/\1/p' |
     awk 'NR == 1 { a = $1 } NR == 2 && $1 > a { printf "%.0f", ($1 - a) * 60 }'
 }
-echo "| run | revolutions done | of | state | rev/h (last minute of its log) | hours to go |"
-echo "|---|---|---|---|---|---|"
+# Grain updates of $1 revolutions of the run whose drum_run.toml is on stdin, e.g. 1.02e+11.
+grain_updates() {
+  awk -F' = ' -v n="$1" '$1 == "dt" { dt = $2 } $1 == "omega" { w = $2 } $1 == "grains" { g += $2 }
+    END { if (dt > 0 && w > 0 && g > 0) printf "%.3g", n * 2 * 3.141592653589793 / (w * dt) * g }'
+}
+echo "| run | revolutions done | of | state | grain updates so far | rev/h (last minute of its log) | hours to go |"
+echo "|---|---|---|---|---|---|---|"
 awk '/^[AB]_/ { name = $1; of = "?"; for (i = 2; i < NF; ++i) if ($i == "--revolutions") of = $(i + 1); print name, of }' runs.txt |
 while read -r name of; do
   dir=out/$name done="" state="not started"
@@ -45,10 +51,12 @@ while read -r name of; do
     else state=stopped; fi
     [[ -d $dir ]] || state="$state (kept, not unpacked)"
   fi
+  cost=""
+  [[ -n $done ]] && cost=$(file_of drum_run.toml | grain_updates "$done")
   rate="" left=""
   if [[ $state != finished* && $state != ended* && -f $dir.log ]]; then
     rate=$(last_rate <"$dir.log")
     [[ -n $rate ]] && left=$(awk -v o="$of" -v d="${done:-0}" -v r="$rate" 'BEGIN { printf "%.1f", (o - d) / r }')
   fi
-  echo "| $name | ${done:--} | $of | $state | ${rate:--} | ${left:--} |"
+  echo "| $name | ${done:--} | $of | $state | ${cost:--} | ${rate:--} | ${left:--} |"
 done
