@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""The band study's figures across runs (docs/BANDS.md, "The study in two figures").
+"""The band study's figures across runs (docs/BANDS.md, "Experiment A complete").
 
 Each run's own figure (fig_bands.png of `tumble analyze`) shows one run;
 these put the runs of an experiment side by side:
@@ -58,7 +58,7 @@ def run_files(name):
 
 
 def blocks(block_list, key):
-    """(N mid, value, lower error, upper error) of the blocks with an interval (N > 0)."""
+    """(N mid, value, lower error, upper error) of the blocks of 3 or more revolutions with an interval."""
     kept = [b for b in block_list if b.get(f"{key}_lo") is not None and b["revolutions"] >= 3]
     mid = [(b["from"] + min(b["to"], b["from"] + b["revolutions"])) / 2 for b in kept]
     value = [b[key] for b in kept]
@@ -103,7 +103,7 @@ def figure_b(out):
 
 
 def figure_a(out):
-    speeds = {label: names for label, names in a_runs().items()}
+    speeds = a_runs()
     columns = sorted({label.split(",")[0] for label in speeds})
     fig, axes = plt.subplots(4, len(columns), figsize=(6 * len(columns), 13), sharex=True, squeeze=False)
     colours = iter(plt.rcParams["axes.prop_cycle"].by_key()["color"])
