@@ -35,10 +35,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from experiment_a import a_runs  # noqa: E402
+from experiment_a import REPO, a_runs  # noqa: E402
 from pool_edges import STUDY, run_file, study_runs  # noqa: E402
 
-REPO = STUDY.parent.parent
 SEED_STYLE = {"1": "-", "2": "--"}
 ENDS_COLOUR = {"small": "tab:blue", "large": "tab:orange"}
 
@@ -123,15 +122,14 @@ def figure_a(out):
             ax = axes[0, column]
             ax.plot(n, series["contrast"], color=colour, linestyle=SEED_STYLE[seed], linewidth=0.8, label=tag)
             ax.plot(n, [0.02 * b for b in series["bands"]], color=colour, linestyle=":", linewidth=1.0)
-            for row, (what, key) in ((1, ("left", "excess")), (2, ("core", "core_excess"))):
-                lists = ([bands["end_layers"]["left"], bands["end_layers"]["right"]] if what == "left"
-                         else [bands["radial_core"]["blocks"]])
-                for side, block_list in zip(("left cap", "right cap") if what == "left" else ("core",), lists):
-                    mid, value, lo, hi = blocks(block_list, key)
-                    marker = "<" if side == "left cap" else (">" if side == "right cap" else "o")
-                    axes[row, column].errorbar(mid, value, yerr=[lo, hi], color=colour, marker=marker,
-                                               linestyle=SEED_STYLE[seed], linewidth=0.8, capsize=2,
-                                               markersize=4, label=f"{tag}, {side}")
+            layers, core = bands["end_layers"], bands["radial_core"]["blocks"]
+            for row, block_list, key, side, marker in ((1, layers["left"], "excess", "left cap", "<"),
+                                                       (1, layers["right"], "excess", "right cap", ">"),
+                                                       (2, core, "core_excess", "core", "o")):
+                mid, value, lo, hi = blocks(block_list, key)
+                axes[row, column].errorbar(mid, value, yerr=[lo, hi], color=colour, marker=marker,
+                                           linestyle=SEED_STYLE[seed], linewidth=0.8, capsize=2, markersize=4,
+                                           label=f"{tag}, {side}")
             axes[3, column].plot(n, [100 * w for w in series["dominant_wavelength"]], color=colour,
                                  linestyle="none", marker=".", markersize=1.5, label=tag)
         axes[0, column].set_title(f"{columns[column]}: contrast (dotted: 0.02 x number of bands)")
