@@ -14,6 +14,9 @@
 #   --np N        also N threads (tumble) and N MPI ranks (LAMMPS); 1: single only (default 2)
 #   --turned R    start both codes from the settled bed turned R revolutions by
 #                 tumble (a bed in steady flow; tumble bench --turned), default 0
+#   --law L       tumble's law in the timed steps: drum (the drum's, the paper's),
+#                 peer (the deck's: no attraction, shear = spring; tumble bench
+#                 --law peer) or both (default: each round runs both)
 #   --out DIR     logs, the bed and results.jsonl (default build/compare_drum)
 #
 # Both codes start from the same settled bed: tumble bench --case long-drum
@@ -34,6 +37,7 @@ warmup=2000
 repeats=3
 np=2
 turned=0
+law=both
 out=""
 
 usage() { awk 'NR > 2 && !/^#/ { exit } NR > 2 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; }
@@ -48,6 +52,8 @@ while [[ $# -gt 0 ]]; do
         --np) need_int "$1" "${2:-}"; np=$2; shift 2 ;;
         --turned) [[ "${2:-}" =~ ^[0-9]+([.][0-9]+)?$ ]] || die "--turned needs a number of revolutions >= 0, got '${2:-}'"
                   turned=$2; shift 2 ;;
+        --law) [[ "${2:-}" =~ ^(drum|peer|both)$ ]] || die "--law needs drum, peer or both, got '${2:-}'"
+               law=$2; shift 2 ;;
         --out) [[ -n "${2:-}" ]] || die "--out needs a directory"; out=$2; shift 2 ;;
         -h|--help) usage; exit 0 ;;
         *) die "unknown option '$1' (try --help)" ;;
@@ -103,13 +109,13 @@ python3 "$drum" data "$out/bed/snapshots/000000.csv" "$out/bed/drum.data" >&2
 # "Threads bound to cores"). OMP_PROC_BIND=false measures them unbound.
 bind=(env "OMP_PROC_BIND=${OMP_PROC_BIND:-close}" "OMP_PLACES=${OMP_PLACES:-cores}")
 dt=""  # tumble's step, from its first run
-run_tumble() {  # round threads
-    local log="$out/tumble_r$1_t$2.out"
+run_tumble() {  # round threads law
+    local log="$out/tumble_r$1_t$2_$3.out"
     if ! python3 "$lib" exec "$log.time" "$log" "$log.err" -- \
             "${bind[@]}" "$tumble" bench --case long-drum --json --steps "$steps" --warmup "$warmup" --threads "$2" \
-            --turned "$turned"; then
+            --turned "$turned" --law "$3"; then
         cat "$log.err" >&2
-        die "tumble bench failed ($2 threads), see $log.err"
+        die "tumble bench failed ($2 threads, law $3), see $log.err"
     fi
     python3 "$drum" tumble "$log" "$2 threads" "$log.time" >> "$results"
     [[ -n "$dt" ]] || dt=$(python3 -c 'import json, sys; print(repr(json.loads(sys.argv[1])["dt"]))' "$(tail -1 "$log")")
@@ -129,6 +135,8 @@ run_lammps() {  # round procs
 
 procs=(1)
 [[ $np -gt 1 ]] && procs+=("$np")
+laws=(drum peer)
+[[ $law != both ]] && laws=("$law")
 
 # ------------------------------------------------------------------ machine
 cpu_jiffies() { awk '/^cpu /{print $2+$3+$4+$5+$6+$7+$8+$9, $9}' /proc/stat 2>/dev/null || echo "0 0"; }
@@ -140,14 +148,16 @@ echo "== tumble vs LAMMPS, the long flowing drum (issue 13)"
 echo "machine : ${cpu:-unknown CPU} (family ${family:-?} model ${model:-?}), $(nproc) logical cores, $(uname -sr)"
 echo "date    : $(date -u '+%Y-%m-%d %H:%M:%S UTC')   load average at start: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "lammps  : $(dpkg-query -W -f='${Package} ${Version}' lammps 2>/dev/null || echo "$lammps_bin")  deck: bench/peers/lammps_drum.in"
-echo "tumble  : $tumble"
+echo "tumble  : $tumble  law: ${laws[*]} (drum: tumble drum's, the paper's; peer: the deck's, no attraction, shear = spring)"
 echo "runs    : $steps timed steps after $warmup turning, from the bed settled and turned $turned revolutions, $repeats rounds, logs in $out"
 echo
 
 for ((r = 1; r <= repeats; r++)); do
-    for p in "${procs[@]}"; do
-        echo "  round $r/$repeats: tumble $p thread(s), load $(cut -d' ' -f1 /proc/loadavg)" >&2
-        run_tumble "$r" "$p"
+    for l in "${laws[@]}"; do
+        for p in "${procs[@]}"; do
+            echo "  round $r/$repeats: tumble $p thread(s), law $l, load $(cut -d' ' -f1 /proc/loadavg)" >&2
+            run_tumble "$r" "$p" "$l"
+        done
     done
     for p in "${procs[@]}"; do
         echo "  round $r/$repeats: LAMMPS $p process(es), load $(cut -d' ' -f1 /proc/loadavg)" >&2

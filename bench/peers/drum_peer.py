@@ -13,11 +13,13 @@ Standard library only.
   drum_peer.py tumble STDOUT CONFIG TIMING one JSON result line from `tumble bench --json`
   drum_peer.py table RESULTS.jsonl         medians per configuration and the ratios
 
-A result line has: code, config, procs, grains, steps, seconds,
+A result line has: code, law, config, procs, grains, steps, seconds,
 grain_updates_per_second (grains x timed steps / wall time of the timed
 steps), cpu_seconds (CPU time of the timed steps, all threads or ranks),
 kinetic_translational and kinetic_rotational (J, grains, at the end),
 contacts, neighbor_builds, and the whole process's cpu/wall (peerlib.py).
+law is LAMMPS's own for LAMMPS ("peer") and `tumble bench --law`'s for
+tumble: "drum" (the paper's) or "peer" (the deck's law: the same work).
 On a loaded machine grains x steps / cpu_seconds is the steadier measure
 of the work per update: a code that waited for a core loses wall time, not
 CPU time (but a thread spinning at a barrier burns CPU time).
@@ -98,7 +100,7 @@ def parse_lammps(path, config):
     builds = peerlib.BUILDS.findall(text)
     cpu_use = CPU_USE.findall(text)  # per rank, averaged over the ranks
     n, seconds, steps, procs = int(grains[-1]), float(seconds), int(steps), int(procs)
-    return {"code": "lammps", "config": config, "procs": procs, "grains": n, "steps": steps,
+    return {"code": "lammps", "law": "peer", "config": config, "procs": procs, "grains": n, "steps": steps,
             "seconds": seconds, "grain_updates_per_second": n * steps / seconds,
             "cpu_seconds": seconds * procs * float(cpu_use[-1][0]) / 100.0,
             "neighbor_builds": int(builds[-1]),
@@ -114,7 +116,7 @@ def parse_tumble(path, config):
         d = json.loads(lines[-1])
     except (IndexError, json.JSONDecodeError):
         peerlib.fail(f"{path}: the last line of `tumble bench --case long-drum --json` is not JSON")
-    return {"code": "tumble", "config": config, "procs": int(d["threads"]), "grains": int(d["grains"]),
+    return {"code": "tumble", "law": d.get("law", "drum"), "config": config, "procs": int(d["threads"]), "grains": int(d["grains"]),
             "steps": int(d["steps"]), "seconds": float(d["seconds"]),
             "grain_updates_per_second": float(d["grain_updates_per_second"]),
             "cpu_seconds": float(d["cpu_seconds"]),
@@ -128,28 +130,28 @@ def table(path):
     groups = {}
     for r in rows:
         r["per_cpu_second"] = r["grains"] * r["steps"] / r["cpu_seconds"]
-        groups.setdefault((r["code"], r["procs"]), []).append(r)
+        groups.setdefault((r["code"], r.get("law", "drum"), r["procs"]), []).append(r)
     med = lambda rs, key: statistics.median(r[key] for r in rs)
     wall = {k: med(rs, "grain_updates_per_second") for k, rs in groups.items()}
     cpu = {k: med(rs, "per_cpu_second") for k, rs in groups.items()}
-    hdr = ("code", "procs", "runs", "grain updates/s", "per core", "min..max", "wall s", "cpu/wall",
+    hdr = ("code", "law", "procs", "runs", "grain updates/s", "per core", "min..max", "wall s", "cpu/wall",
            "per CPU s", "KE trans J", "KE rot J", "contacts", "nbr builds", "tumble/LAMMPS", "by CPU s")
     out = []
-    for (code, procs), rs in sorted(groups.items(), key=lambda kv: (kv[0][0] != "tumble", kv[0][1])):
-        k, t = (code, procs), ("tumble", procs)
+    for (code, law, procs), rs in sorted(groups.items(), key=lambda kv: (kv[0][0] != "tumble", kv[0][1], kv[0][2])):
+        k, peer = (code, law, procs), ("lammps", "peer", procs)
         ups = [r["grain_updates_per_second"] for r in rs]
         use = [r["cpu_seconds"] / (r["seconds"] * procs) for r in rs]
-        peer = code != "tumble" and t in wall
-        out.append((code, str(procs), str(len(rs)), peerlib.fmt_rate(wall[k]), peerlib.fmt_rate(wall[k] / procs),
+        against = code == "tumble" and peer in wall
+        out.append((code, law, str(procs), str(len(rs)), peerlib.fmt_rate(wall[k]), peerlib.fmt_rate(wall[k] / procs),
                     f"{peerlib.fmt_rate(min(ups))}..{peerlib.fmt_rate(max(ups))}", f"{med(rs, 'seconds'):.1f}",
                     f"{min(use):.2f}..{max(use):.2f}", peerlib.fmt_rate(cpu[k]),
                     f"{rs[-1]['kinetic_translational']:.3g}", f"{rs[-1]['kinetic_rotational']:.3g}",
                     f"{rs[-1]['contacts']:.0f}", str(rs[-1]["neighbor_builds"]),
-                    f"{wall[t] / wall[k]:.2f}" if peer else "-", f"{cpu[t] / cpu[k]:.2f}" if peer else "-"))
+                    f"{wall[k] / wall[peer]:.2f}" if against else "-", f"{cpu[k] / cpu[peer]:.2f}" if against else "-"))
     peerlib.print_table(hdr, out)
-    for (code, procs), rs in sorted(groups.items()):
-        if procs > 1 and (code, 1) in wall:
-            print(f"{code}: {procs} cores {wall[(code, procs)] / wall[(code, 1)]:.2f}x one (wall time)")
+    for (code, law, procs), rs in sorted(groups.items()):
+        if procs > 1 and (code, law, 1) in wall:
+            print(f"{code} ({law} law): {procs} cores {wall[(code, law, procs)] / wall[(code, law, 1)]:.2f}x one (wall time)")
         imbalance = [r["imbalance"] for r in rs if r.get("imbalance") is not None]
         if procs > 1 and imbalance:
             print(f"{code} {procs} ranks: load imbalance after the balance command "
@@ -157,8 +159,9 @@ def table(path):
     print("grain updates/s = grains x timed steps / wall time of the timed steps (wall spheres not counted);"
           " per CPU s: the same over the CPU time of the timed steps; cpu/wall: CPU time over wall time x cores"
           " in the timed steps (below 1: it waited for a core); tumble/LAMMPS: medians on as many threads as"
-          " LAMMPS has MPI ranks (per core alike); KE, contacts (touching pairs, wall included) and neighbour"
-          " builds of the last run")
+          " LAMMPS has MPI ranks (per core alike); law: drum = the paper's (attraction, saw-tooth shear),"
+          " peer = the LAMMPS deck's (no attraction, shear = spring), the same work in both codes;"
+          " KE, contacts (touching pairs, wall included) and neighbour builds of the last run")
 
 
 def main(argv):

@@ -207,14 +207,28 @@ int long_drum_bench(const BenchOptions& options) {
     }
     // Under mpirun the bed is shared out among the ranks, a slab each; with
     // --skin its list is found anew with that skin (the bed's pairs and their
-    // histories kept, by global id).
+    // histories kept, by global id); with --law peer the timed steps run the
+    // law of bench/peers/lammps_drum.in, which LAMMPS's pair_style granular
+    // can run: no attraction (W = 0 for every pair: hertz/material has
+    // none) and the tangential spring held at the friction limit (shear =
+    // spring: tangential mindlin; the twisting couple held at its limit, as
+    // twisting marshall), at the bed's step, so that the two codes do the
+    // same work on the same bed (docs/BENCHMARKS.md, "The same law in both
+    // codes").
+    const bool peer_law = options.law == "peer";
     std::optional<Simulation> shared;
-    if (mpi::size() > 1 || options.skin > 0.0) {
+    if (mpi::size() > 1 || options.skin > 0.0 || peer_law) {
         Scenario scenario = bed.scenario();
         SimulationState state = bed.capture();
         if (options.skin > 0.0) {
             scenario.neighbor.skin = options.skin;
             state.list_from_histories = true;
+        }
+        if (peer_law) {
+            for (auto& row : scenario.pair_properties)
+                for (PairProperties& pair : row) pair.W = 0.0;
+            scenario.model.shear = ShearModel::Spring;
+            scenario.time_step.dt = bed.dt();
         }
         shared.emplace(std::move(scenario), threads, mpi::size() > 1 ? Ranks::world : Ranks::one);
         shared->restore(std::move(state));
@@ -224,9 +238,10 @@ int long_drum_bench(const BenchOptions& options) {
     const std::size_t n = sim.scenario().particles.size(), grains = sim.scenario().free_count();
     const double omega = d.omega();
     if (!options.json && talk)
-        fmt::print("tumble bench: long drum, length {} m, fill {}: {} grains, {} wall spheres, {} rad/s; {} bed {}\n",
+        fmt::print("tumble bench: long drum, length {} m, fill {}: {} grains, {} wall spheres, {} rad/s, {}; {} bed {}\n",
                    d.geometry.length, d.fill_fraction, grains, n - grains, omega,
-                   bed_name, (made ? "made and stored in " : "read from ") + cache.string());
+                   peer_law ? "the peer's law (no attraction, shear = spring)" : "the drum's law", bed_name,
+                   (made ? "made and stored in " : "read from ") + cache.string());
     sim.set_motion(0, drum_rotation(omega));  // (a turned bed turns on: its wall spheres stay where they are)
     sim.advance(warmup);
     const std::int64_t builds_before = sim.neighbors().builds();
@@ -243,7 +258,9 @@ int long_drum_bench(const BenchOptions& options) {
     const double seconds_per_revolution = seconds / static_cast<double>(steps) * steps_per_revolution;
     const double revolutions_per_hour = 3600.0 / seconds_per_revolution;
     const TimeStepReport& t = sim.time_step_report();
-    const std::string limited_by = t.automatic ? t.recommended_by : "given (--dt of the stored bed)";
+    const std::string limited_by = t.automatic  ? t.recommended_by
+                                   : peer_law ? "the bed's (the drum's automatic step, kept for --law peer)"
+                                              : "given (--dt of the stored bed)";
     const double bytes_per_particle = (resident_bytes() - resident_before) / static_cast<double>(n);
     const std::string machine = machine_description();
     // Shared among ranks: the bytes each rank sent its neighbours per step
@@ -298,6 +315,7 @@ int long_drum_bench(const BenchOptions& options) {
                                                   {"particles", n},
                                                   {"bed", made ? "made" : "read"},
                                                   {"turned", options.turned},
+                                                  {"law", options.law},
                                                   {"steps", steps},
                                                   {"warmup", warmup},
                                                   {"seconds", seconds},

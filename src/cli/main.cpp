@@ -172,6 +172,12 @@ int main(int argc, char** argv) {
         "Long drum: the neighbour-list skin of the timed steps, m (default 0: automatic, 0.2 x the largest radius; "
         "the bed's list found anew)")
         ->check(finite_non_negative);
+    auto* law_opt = bench_cmd->add_option(
+        "--law", bench.law,
+        "Long drum: the contact law of the timed steps: drum (default: tumble drum's, the paper's) or peer (the "
+        "law of the LAMMPS deck bench/peers/lammps_drum.in: no attraction, the tangential spring held at the "
+        "friction limit; the same bed and step)")
+        ->check(CLI::IsMember({"drum", "peer"}));
     auto* cache_opt = bench_cmd->add_option(
         "--cache", bench.cache, "Long drum: directory of the settled beds (default: bench-cache beside the executable)");
     auto* export_opt = bench_cmd->add_option(
@@ -412,7 +418,7 @@ int main(int argc, char** argv) {
         if (bench_cmd->parsed()) {
             const bool drum_case = bench.bench_case == "long-drum";
             for (CLI::Option* option :
-                 {size_opt, seed_opt, length_opt, fill_opt, turned_opt, skin_opt, cache_opt, export_opt})
+                 {size_opt, seed_opt, length_opt, fill_opt, turned_opt, skin_opt, law_opt, cache_opt, export_opt})
                 if (option->count() > 0 && (option == size_opt || option == seed_opt) == drum_case)
                     throw tumble::Error("bench: " + option->get_name() + " does not apply to --case " + bench.bench_case);
             return bench_command(bench);

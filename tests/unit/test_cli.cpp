@@ -304,6 +304,17 @@ TEST_F(Cli, BenchLongDrumReportsEveryFieldAndKeepsTheSettledBed) {
     EXPECT_EQ(j.at("steps").get<double>(), 20.0);
     EXPECT_EQ(j.at("threads").get<double>(), tumble::parallel_build() ? 2.0 : 1.0);
 
+    // --law peer: the same bed at the same step, the LAMMPS deck's law (no
+    // attraction: the settled bed's adhesive contacts let go, fewer touch).
+    const Result peer = run_tumble(arguments + " --json --law peer");
+    ASSERT_EQ(peer.exit_code, 0) << peer.output;
+    const tumble::io::Json pj = tumble::io::parse_json(last_line(peer.output));
+    EXPECT_EQ(pj.value("law", ""), "peer");
+    EXPECT_EQ(j.value("law", ""), "drum");
+    EXPECT_EQ(pj.at("dt").get<double>(), j.at("dt").get<double>());
+    EXPECT_NE(pj.value("dt_limited_by", "").find("kept for --law peer"), std::string::npos) << peer.output;
+    EXPECT_LT(pj.at("contacts").get<double>(), j.at("contacts").get<double>());
+
     // --export writes the stored bed, grains and wall, for a peer code and runs nothing.
     const Result exported = run_tumble(arguments + " --export " + (dir_ / "bed").string());
     ASSERT_EQ(exported.exit_code, 0) << exported.output;
@@ -361,6 +372,8 @@ TEST(CliBench, OptionsOfTheOtherCaseAreRefused) {
                                                          {"bench --case long-drum --fill 0", "--fill"},
                                                          {"bench --export bed", "--export"},
                                                          {"bench --turned 1", "--turned"},
+                                                         {"bench --law peer", "--law"},
+                                                         {"bench --case long-drum --law lammps", "--law"},
                                                          {"bench --case long-drum --turned -1", "--turned"}};
     for (const auto& [arguments, option] : cases) {
         const Result r = run_tumble(arguments);

@@ -62,8 +62,13 @@ public:
     };
 
 private:
-    // The pairs found in one part of the particles.
-    struct Part {
+    // The pairs found in one part of the particles. Each on its own cache
+    // lines: the chunks' threads push onto their parts at once, and two
+    // parts' vectors sharing a line (96 bytes each) had the threads take
+    // it from each other at every pair found, which made the search 1.5
+    // times slower per thread on two threads than on one
+    // (docs/BENCHMARKS.md, "The search's parts on one cache line").
+    struct alignas(64) Part {
         std::vector<std::uint32_t> first, second;
         std::vector<std::uint8_t> image;
         std::vector<std::uint64_t> near;  // working array: the candidates of one particle
