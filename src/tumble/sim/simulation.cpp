@@ -112,13 +112,13 @@ void Simulation::locate_kinds(Team& team) {
     const ParticleStore& p = particles_;
     team.each([&](int c) {
         const IndexRange r = team.range(c, owned_);
-        IndexRange& kinds = chunk_kinds_[static_cast<std::size_t>(c)];
-        kinds = {owned_, 0};  // first kinematic, one past the last free
+        IndexRange kinds{owned_, 0};  // first kinematic, one past the last free; written once (the chunks' entries share a cache line)
         for (std::size_t i = r.begin; i < r.end; ++i)
             if (p.is_kinematic(i))
                 kinds.begin = std::min(kinds.begin, i);
             else
                 kinds.end = i + 1;
+        chunk_kinds_[static_cast<std::size_t>(c)] = kinds;
     });
     team.one([&] {
         kinematic_begin_ = owned_;
