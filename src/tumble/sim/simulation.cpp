@@ -119,6 +119,14 @@ void Simulation::locate_kinds(Team& team) {
             else
                 kinds.end = i + 1;
         chunk_kinds_[static_cast<std::size_t>(c)] = kinds;
+        const PairList& pairs = neighbors_.pairs();
+        const IndexRange list = team.range(c, pairs.size());
+        std::size_t first_wall = owned_;
+        for (std::size_t k = list.begin; k < list.end; ++k) {
+            const std::size_t j = pairs.second[k];
+            if (j < first_wall && p.is_kinematic(j)) first_wall = j;
+        }
+        chunk_first_wall_[static_cast<std::size_t>(c)] = first_wall;
     });
     team.one([&] {
         kinematic_begin_ = owned_;
@@ -127,6 +135,11 @@ void Simulation::locate_kinds(Team& team) {
             kinematic_begin_ = std::min(kinematic_begin_, kinds.begin);
             free_end_ = std::max(free_end_, kinds.end);
         }
+        const std::size_t split = kinematic_begin_ >= free_end_ ? kinematic_begin_ : owned_;
+        wall_from_[0] = split;
+        for (std::size_t c = 1; c < chunk_first_wall_.size(); ++c)
+            wall_from_[c] = std::clamp(chunk_first_wall_[c], wall_from_[c - 1], owned_);
+        wall_from_.back() = owned_;
     });
 }
 
@@ -139,15 +152,16 @@ IndexRange Simulation::kinematic_part(IndexRange r) const { return {std::max(r.b
 
 // Chunk c's own particles: its part of the free ones and its part of the
 // kinematic ones, which the sort puts after them (when it has not, one
-// range). Each thread kicks a share of the grains and moves a share of the
-// wall, the share near its pairs in the cell order, so that the particle
-// phases are even and a thread's pairs mostly read wall spheres it moved
-// itself (docs/BENCHMARKS.md, "Where two threads lose their tenth").
+// range). Each thread moves the wall spheres from the first its part of
+// the pairs touches (wall_from_), so that its pairs read wall spheres it
+// moved itself, and kicks the share of the grains that evens out the
+// phase (docs/BENCHMARKS.md, "Where two threads lose their tenth" and "The
+// wall moved by the thread that reads it").
 std::array<IndexRange, 2> Simulation::own_parts(const Team& team, int c) const {
     const std::size_t split = kinematic_begin_ >= free_end_ ? kinematic_begin_ : owned_;
-    const IndexRange kinematic = team.range(c, owned_ - split);
+    const auto k = static_cast<std::size_t>(c);
     const IndexRange free{free_boundary(c, team.chunks(), split), free_boundary(c + 1, team.chunks(), split)};
-    return {free, IndexRange{split + kinematic.begin, split + kinematic.end}};
+    return {free, IndexRange{wall_from_[k], wall_from_[k + 1]}};
 }
 
 // Where chunk c's part of the free particles [0, split) begins: the parts
@@ -166,7 +180,17 @@ std::size_t Simulation::free_boundary(int c, int chunks, std::size_t split) cons
             if (x > touched_from_[part]) sum += add_weight * static_cast<double>(x - touched_from_[part]);
         return sum;
     };
-    const double share = cost(split) * c / chunks;
+    // The wall spheres' shares are uneven (wall_from_): the free particles
+    // even out the whole, a wall sphere moved costing wall_weight (on the
+    // long drum moving the 5,229 wall spheres takes as long as kicking the
+    // 6,481 grains twice: docs/BENCHMARKS.md, "The wall moved by the
+    // thread that reads it").
+    constexpr double wall_weight = 1.0;
+    const double total = cost(split) + wall_weight * static_cast<double>(owned_ - split);
+    double share = 0.0;  // the most of the chunks up to c, so that the parts do not cross
+    for (int before = 1; before <= c; ++before)
+        share = std::max(share, total * before / chunks -
+                                    wall_weight * static_cast<double>(wall_from_[static_cast<std::size_t>(before)] - split));
     std::size_t lo = 0, hi = split;  // the first x whose cost reaches the share
     while (lo < hi) {
         const std::size_t mid = lo + (hi - lo) / 2;
@@ -243,6 +267,12 @@ void Simulation::prepare_chunks() {
     touched_from_.resize(count);
     moved_.resize(count);
     chunk_kinds_.resize(count);
+    chunk_first_wall_.resize(count);
+    if (wall_from_.size() != count + 1) {  // a new chunk count: equal shares of the wall until the next rebuild
+        const std::size_t split = kinematic_begin_ >= free_end_ ? kinematic_begin_ : owned_;
+        wall_from_.resize(count + 1);
+        for (std::size_t c = 0; c <= count; ++c) wall_from_[c] = split + (owned_ - split) * c / count;
+    }
 }
 
 namespace {

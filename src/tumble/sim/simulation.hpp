@@ -171,6 +171,11 @@ private:
     // worked out (locate_kinds()).
     std::size_t free_end_ = 0, kinematic_begin_ = 0;
     std::vector<IndexRange> chunk_kinds_;
+    // Where chunk c's share of the kinematic particles begins (the chunk
+    // count + 1 entries, the last owned_): at the first wall sphere its part
+    // of the pairs touches, so that a thread moves the wall spheres its
+    // pairs read; per chunk, that sphere while it is worked out.
+    std::vector<std::size_t> wall_from_, chunk_first_wall_;
     // History of the contacts with the six flat walls, at 6 id + face (ids are
     // dense, 0 .. N-1); empty when the domain has no walls.
     std::vector<ContactHistory> wall_history_;
