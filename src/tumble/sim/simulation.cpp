@@ -135,7 +135,7 @@ void Simulation::locate_kinds(Team& team) {
             kinematic_begin_ = std::min(kinematic_begin_, kinds.begin);
             free_end_ = std::max(free_end_, kinds.end);
         }
-        const std::size_t split = kinematic_begin_ >= free_end_ ? kinematic_begin_ : owned_;
+        const std::size_t split = kinematic_split();
         wall_from_[0] = split;
         for (std::size_t c = 1; c < chunk_first_wall_.size(); ++c)
             wall_from_[c] = std::clamp(chunk_first_wall_[c], wall_from_[c - 1], owned_);
@@ -150,6 +150,10 @@ IndexRange Simulation::free_part(IndexRange r) const {
 
 IndexRange Simulation::kinematic_part(IndexRange r) const { return {std::max(r.begin, kinematic_begin_), r.end}; }
 
+// Where the kinematic particles begin when the sort has put them after the
+// free ones; owned_ when it has not (then the own spheres are one range).
+std::size_t Simulation::kinematic_split() const { return kinematic_begin_ >= free_end_ ? kinematic_begin_ : owned_; }
+
 // Chunk c's own particles: its part of the free ones and its part of the
 // kinematic ones, which the sort puts after them (when it has not, one
 // range). Each thread moves the wall spheres from the first its part of
@@ -158,7 +162,7 @@ IndexRange Simulation::kinematic_part(IndexRange r) const { return {std::max(r.b
 // phase (docs/BENCHMARKS.md, "Where two threads lose their tenth" and "The
 // wall moved by the thread that reads it").
 std::array<IndexRange, 2> Simulation::own_parts(const Team& team, int c) const {
-    const std::size_t split = kinematic_begin_ >= free_end_ ? kinematic_begin_ : owned_;
+    const std::size_t split = kinematic_split();
     const auto k = static_cast<std::size_t>(c);
     const IndexRange free{free_boundary(c, team.chunks(), split), free_boundary(c + 1, team.chunks(), split)};
     return {free, IndexRange{wall_from_[k], wall_from_[k + 1]}};
@@ -269,7 +273,7 @@ void Simulation::prepare_chunks() {
     chunk_kinds_.resize(count);
     chunk_first_wall_.resize(count);
     if (wall_from_.size() != count + 1) {  // a new chunk count: equal shares of the wall until the next rebuild
-        const std::size_t split = kinematic_begin_ >= free_end_ ? kinematic_begin_ : owned_;
+        const std::size_t split = kinematic_split();
         wall_from_.resize(count + 1);
         for (std::size_t c = 0; c <= count; ++c) wall_from_[c] = split + (owned_ - split) * c / count;
     }

@@ -142,6 +142,7 @@ private:
     IndexRange kinematic_part(IndexRange r) const;
     std::array<IndexRange, 2> own_parts(const Team& team, int c) const;
     std::size_t free_boundary(int c, int chunks, std::size_t split) const;
+    std::size_t kinematic_split() const;
 
     Scenario scenario_;
     PairTable pair_table_;
