@@ -55,6 +55,9 @@ struct ContactBlock {
     };
     std::size_t count = 0;
     alignas(64) std::uint32_t pair[capacity];
+    // The pairs of the list found apart while filling the block (gather_contacts()).
+    static constexpr std::size_t apart_capacity = 4 * capacity;
+    alignas(64) std::uint32_t apart[apart_capacity];
     alignas(64) std::uint32_t pair_type[capacity];  // PairTable::index() of the two materials
     // Inputs: X_i - X_j (periodic image applied), its square, v_i - v_j and
     // its predicted change (contact/geometry.hpp), the two spheres' radii
@@ -87,22 +90,35 @@ struct ContactBlock {
 
 // Pass 1: pairs [k, end) of the list into the block until it is full; the
 // pairs found apart drop their history. Returns where it stopped.
+//
+// In two sweeps, without a branch on whether a pair touches (about 3 in 4
+// do, in no order a branch predictor learns; docs/BENCHMARKS.md "The
+// gather in two sweeps"): the first works out every pair's separation and
+// writes it into the block's next free lane, which only a touching pair
+// keeps (`count += touching`), and lists the pairs apart alike (either list
+// full ends the block); the second
+// copies the rest of what the law needs into the lanes kept. The pairs
+// apart then drop their history, where they have one (rarely: only the
+// contacts that ended this step).
 inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std::size_t k, std::size_t end,
                                    const PeriodicImages& images, const PairTable& table, ContactBlock& b) {
-    b.count = 0;
-    for (; k < end && b.count < ContactBlock::capacity; ++k) {
+    std::size_t count = 0, apart = 0;
+    for (; k < end && count < ContactBlock::capacity && apart < ContactBlock::apart_capacity; ++k) {
         const std::uint32_t i = pairs.first[k], j = pairs.second[k];
         const Vec3 d = p.position[i] - p.position[j] + images[pairs.image[k]];
         const double distance2 = norm2(d);
         const double reach = p.radius[i] + p.radius[j];
-        if (distance2 >= reach * reach) {
-            if (!pairs.history(k).is_zero()) pairs.set_history(k, ContactHistory{});  // contact ended
-            continue;
-        }
-        const std::size_t l = b.count++;
-        b.pair[l] = static_cast<std::uint32_t>(k);
-        b.d.set(l, d);
-        b.distance2[l] = distance2;
+        const bool touching = distance2 < reach * reach;
+        b.pair[count] = static_cast<std::uint32_t>(k);
+        b.d.set(count, d);
+        b.distance2[count] = distance2;
+        b.apart[apart] = static_cast<std::uint32_t>(k);
+        count += touching;
+        apart += !touching;
+    }
+    b.count = count;
+    for (std::size_t l = 0; l < count; ++l) {
+        const std::uint32_t i = pairs.first[b.pair[l]], j = pairs.second[b.pair[l]];
         b.R_i[l] = p.radius[i];
         b.R_j[l] = p.radius[j];
         b.inverse_mass_sum[l] = p.inv_mass[i] + p.inv_mass[j];
@@ -111,8 +127,10 @@ inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std:
         b.kick_ij.set(l, p.half_kick[i] - p.half_kick[j]);
         b.omega_i.set(l, p.angular_velocity[i]);
         b.omega_j.set(l, p.angular_velocity[j]);
-        b.load_history(l, pairs, k);
+        b.load_history(l, pairs, b.pair[l]);
     }
+    for (std::size_t a = 0; a < apart; ++a)
+        if (!pairs.history(b.apart[a]).is_zero()) pairs.set_history(b.apart[a], ContactHistory{});  // contact ended
     return k;
 }
 
@@ -151,30 +169,20 @@ template <class Model>
 
 // Pass 3: the block's forces onto the spheres, in pair order (Newton's
 // third law: j gets -force_i), the history back into the pair list, and the
-// records when recording. The list is grouped by the first sphere i, so i's
-// sums are kept in registers while it stays the same; no pair has j = i, so
-// every sphere receives the same additions in the same order as with one
-// contact at a time.
+// records when recording. Every sphere receives the same additions in the
+// same order as with one contact at a time. (Keeping i's sums in registers
+// while the list's first sphere stays the same needs a branch on its
+// change, which a predictor misses: about 1.6 contacts per first sphere.)
 template <bool Record>
 inline void scatter_contacts(const ParticleStore& p, PairList& pairs, const ContactBlock& b, Vec3* force,
                              Vec3* torque, std::vector<ContactRecord>& records) {
-    if (b.count == 0) return;
-    std::uint32_t i = pairs.first[b.pair[0]];
-    Vec3 force_i = force[i], torque_i = torque[i];
     for (std::size_t l = 0; l < b.count; ++l) {
         const std::size_t k = b.pair[l];
-        if (pairs.first[k] != i) {
-            force[i] = force_i;
-            torque[i] = torque_i;
-            i = pairs.first[k];
-            force_i = force[i];
-            torque_i = torque[i];
-        }
-        const std::uint32_t j = pairs.second[k];
+        const std::uint32_t i = pairs.first[k], j = pairs.second[k];
         b.store_history(l, pairs, k);
-        force_i += b.force_i[l];
+        force[i] += b.force_i[l];
         force[j] -= b.force_i[l];
-        torque_i += b.torque_i[l];
+        torque[i] += b.torque_i[l];
         torque[j] += b.torque_j[l];
         if constexpr (Record) {
             const ContactForces f{b.force_i[l], b.torque_i[l], b.torque_j[l], b.normal_force[l],
@@ -182,8 +190,6 @@ inline void scatter_contacts(const ParticleStore& p, PairList& pairs, const Cont
             records.push_back({p.id[i], p.id[j], b.geometry(l), f, pairs.history(k)});
         }
     }
-    force[i] = force_i;
-    torque[i] = torque_i;
 }
 
 // The pair loop over pairs [range.begin, range.end) of the half list: for
