@@ -5,6 +5,7 @@
 #include <cmath>
 #include <utility>
 
+#include "tumble/core/isa.hpp"
 #include "tumble/core/parallel.hpp"
 #include "tumble/neighbor/candidate_pairs.hpp"
 
@@ -33,12 +34,24 @@ void wrap_into_box(ParticleStore& p, const Domain& domain, IndexRange r) {
 VerletList::VerletList(const Domain& domain, double skin, int sort_every)
     : domain_(domain), skin_(skin), sort_every_(sort_every), images_(domain.length()) {}
 
+// Every particle of the range is looked at and those gone far counted, so
+// that the loop runs several particles per instruction (a loop that stops
+// at the first one found ran one at a time, 1.4 % of a step on the long
+// drum).
 bool VerletList::moved_far(const ParticleStore& p, IndexRange r) const {
     if (position_at_build_.size() != p.size()) return true;
     const double limit2 = 0.25 * skin_ * skin_;  // (skin/2)^2
-    for (std::size_t i = r.begin; i < r.end; ++i)
-        if (norm2(p.position[i] - position_at_build_[i]) > limit2) return true;
-    return false;
+    const double* __restrict now = &p.position.data()->x;
+    const double* __restrict then = &position_at_build_.data()->x;
+    std::size_t far = 0;
+    run_for_isa([&] {
+        for (std::size_t i = r.begin; i < r.end; ++i) {
+            const double dx = now[3 * i] - then[3 * i], dy = now[3 * i + 1] - then[3 * i + 1],
+                         dz = now[3 * i + 2] - then[3 * i + 2];
+            far += dx * dx + dy * dy + dz * dz > limit2 ? 1 : 0;
+        }
+    });
+    return far > 0;
 }
 
 void VerletList::rebuild(ParticleStore& p) {
