@@ -93,10 +93,10 @@ struct ContactBlock {
 //
 // In two sweeps, without a branch on whether a pair touches (about 3 in 4
 // do, in no order a branch predictor learns; docs/BENCHMARKS.md "The
-// gather in two sweeps"): the first works out every pair's separation and
-// writes it into the block's next free lane, which only a touching pair
-// keeps (`count += touching`), and lists the pairs apart alike (either list
-// full ends the block); the second
+// gather in two sweeps, the scatter without a branch"): the first works
+// out every pair's separation and writes it into the block's next free
+// lane, which only a touching pair keeps (`count += touching`), and lists
+// the pairs apart alike (either list full ends the block); the second
 // copies the rest of what the law needs into the lanes kept. The pairs
 // apart then drop their history, where they have one (rarely: only the
 // contacts that ended this step).
