@@ -55,7 +55,9 @@ struct ContactBlock {
     };
     std::size_t count = 0;
     alignas(64) std::uint32_t pair[capacity];
-    // The pairs of the list found apart while filling the block (gather_contacts()).
+    // The pairs of the list found apart while filling the block, and how
+    // many (gather_contacts()).
+    std::size_t apart_count = 0;
     static constexpr std::size_t apart_capacity = 4 * capacity;
     alignas(64) std::uint32_t apart[apart_capacity];
     alignas(64) std::uint32_t pair_type[capacity];  // PairTable::index() of the two materials
@@ -88,18 +90,39 @@ struct ContactBlock {
     }
 };
 
+// What the law needs of pair k's two spheres and its history, but their
+// separation, into lane l of the block.
+inline void copy_inputs(const ParticleStore& p, const PairList& pairs, std::size_t k, const PairTable& table,
+                        ContactBlock& b, std::size_t l) {
+    const std::uint32_t i = pairs.first[k], j = pairs.second[k];
+    b.R_i[l] = p.radius[i];
+    b.R_j[l] = p.radius[j];
+    b.inverse_mass_sum[l] = p.inv_mass[i] + p.inv_mass[j];
+    b.pair_type[l] = table.index(p.material[i], p.material[j]);
+    b.v_ij.set(l, p.velocity[i] - p.velocity[j]);
+    b.kick_ij.set(l, p.half_kick[i] - p.half_kick[j]);
+    b.omega_i.set(l, p.angular_velocity[i]);
+    b.omega_j.set(l, p.angular_velocity[j]);
+    b.load_history(l, pairs, k);
+}
+
 // Pass 1: pairs [k, end) of the list into the block until it is full; the
 // pairs found apart drop their history. Returns where it stopped.
 //
-// In two sweeps, without a branch on whether a pair touches (about 3 in 4
-// do, in no order a branch predictor learns; docs/BENCHMARKS.md "The
-// gather in two sweeps, the scatter without a branch"): the first works
-// out every pair's separation and writes it into the block's next free
-// lane, which only a touching pair keeps (`count += touching`), and lists
-// the pairs apart alike (either list full ends the block); the second
-// copies the rest of what the law needs into the lanes kept. The pairs
-// apart then drop their history, where they have one (rarely: only the
-// contacts that ended this step).
+// Two ways, the same result (docs/BENCHMARKS.md "The gather in two sweeps,
+// the scatter without a branch"):
+//   Branch: a pair apart is passed over by a branch, a touching one copied
+//     in at once. Best where the branch predicts well: where (nearly)
+//     every pair touches, as in a static packing.
+//   not Branch: two sweeps, without a branch on whether a pair touches
+//     (on the long drum about 3 in 4 do, in no order a predictor learns).
+//     The first works out every pair's separation and writes it into the
+//     block's next free lane, which only a touching pair keeps (`count +=
+//     touching`), and lists the pairs apart alike (either list full ends
+//     the block); the second copies the rest into the lanes kept. The
+//     pairs apart then drop their history, where they have one (rarely:
+//     the contacts that ended this step).
+template <bool Branch>
 inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std::size_t k, std::size_t end,
                                    const PeriodicImages& images, const PairTable& table, ContactBlock& b) {
     std::size_t count = 0, apart = 0;
@@ -109,28 +132,31 @@ inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std:
         const double distance2 = norm2(d);
         const double reach = p.radius[i] + p.radius[j];
         const bool touching = distance2 < reach * reach;
+        if constexpr (Branch) {
+            if (!touching) {
+                if (!pairs.history(k).is_zero()) pairs.set_history(k, ContactHistory{});  // contact ended
+                ++apart;
+                continue;
+            }
+        }
         b.pair[count] = static_cast<std::uint32_t>(k);
         b.d.set(count, d);
         b.distance2[count] = distance2;
-        b.apart[apart] = static_cast<std::uint32_t>(k);
-        count += touching;
-        apart += !touching;
+        if constexpr (Branch) {
+            copy_inputs(p, pairs, k, table, b, count++);
+        } else {
+            b.apart[apart] = static_cast<std::uint32_t>(k);
+            count += touching;
+            apart += !touching;
+        }
     }
     b.count = count;
-    for (std::size_t l = 0; l < count; ++l) {
-        const std::uint32_t i = pairs.first[b.pair[l]], j = pairs.second[b.pair[l]];
-        b.R_i[l] = p.radius[i];
-        b.R_j[l] = p.radius[j];
-        b.inverse_mass_sum[l] = p.inv_mass[i] + p.inv_mass[j];
-        b.pair_type[l] = table.index(p.material[i], p.material[j]);
-        b.v_ij.set(l, p.velocity[i] - p.velocity[j]);
-        b.kick_ij.set(l, p.half_kick[i] - p.half_kick[j]);
-        b.omega_i.set(l, p.angular_velocity[i]);
-        b.omega_j.set(l, p.angular_velocity[j]);
-        b.load_history(l, pairs, b.pair[l]);
+    b.apart_count = apart;
+    if constexpr (!Branch) {
+        for (std::size_t l = 0; l < count; ++l) copy_inputs(p, pairs, b.pair[l], table, b, l);
+        for (std::size_t a = 0; a < apart; ++a)
+            if (!pairs.history(b.apart[a]).is_zero()) pairs.set_history(b.apart[a], ContactHistory{});  // contact ended
     }
-    for (std::size_t a = 0; a < apart; ++a)
-        if (!pairs.history(b.apart[a]).is_zero()) pairs.set_history(b.apart[a], ContactHistory{});  // contact ended
     return k;
 }
 
@@ -203,8 +229,11 @@ void add_contact_forces(const ParticleStore& p, PairList& pairs, IndexRange rang
                         const PairTable& table, const Model& model, double dt, Vec3* force, Vec3* torque,
                         std::vector<ContactRecord>& records) {
     ContactBlock block;
+    bool all_touched = false;  // by the last block's pairs: then the branch on touching predicts well
     for (std::size_t k = range.begin; k < range.end;) {
-        k = gather_contacts(p, pairs, k, range.end, images, table, block);
+        k = all_touched ? gather_contacts<true>(p, pairs, k, range.end, images, table, block)
+                        : gather_contacts<false>(p, pairs, k, range.end, images, table, block);
+        all_touched = block.apart_count == 0;
         apply_contact_law(block, table.columns(), model, dt);
         scatter_contacts<Record>(p, pairs, block, force, torque, records);
     }
