@@ -108,7 +108,7 @@ python3 "$drum" data "$out/bed/snapshots/000000.csv" "$out/bed/drum.data" >&2
 # the long drum 1 to 3.5 % slower on an Intel Xeon (docs/BENCHMARKS.md,
 # "Threads bound to cores"). OMP_PROC_BIND=false measures them unbound.
 bind=(env "OMP_PROC_BIND=${OMP_PROC_BIND:-close}" "OMP_PLACES=${OMP_PLACES:-cores}")
-dt=""  # tumble's step, from its first run
+dt="" skin=""  # tumble's step and neighbour skin, from its first run
 run_tumble() {  # round threads law
     local log="$out/tumble_r$1_t$2_$3.out"
     if ! python3 "$lib" exec "$log.time" "$log" "$log.err" -- \
@@ -119,13 +119,14 @@ run_tumble() {  # round threads law
     fi
     python3 "$drum" tumble "$log" "$2 threads" "$log.time" >> "$results"
     [[ -n "$dt" ]] || dt=$(python3 -c 'import json, sys; print(repr(json.loads(sys.argv[1])["dt"]))' "$(tail -1 "$log")")
+    [[ -n "$skin" ]] || skin=$(python3 -c 'import json, sys; print(repr(json.loads(sys.argv[1])["skin"]))' "$(tail -1 "$log")")
 }
 
 run_lammps() {  # round procs
     local log="$out/lammps_r$1_p$2.log" cmd=()
     [[ $2 -gt 1 ]] && cmd+=("${mpirun_cmd[@]}")
     cmd+=("$lammps_bin" -in "$deck" -log "$log" -screen none -nocite -var start "$out/bed/drum.data"
-          -var dt "$dt" -var steps "$steps" -var warmup "$warmup")
+          -var dt "$dt" -var skin "$skin" -var steps "$steps" -var warmup "$warmup")
     if ! (cd "$out" && python3 "$lib" exec "$log.time" "$log.screen" "$log.screen" -- "${cmd[@]}"); then
         tail -5 "$log" >&2 || true
         die "LAMMPS failed ($2 procs), see $log"

@@ -151,12 +151,12 @@ Simulation drum_bed(const io::DrumSettings& d, double turned, const fs::path& ca
     automatic.skin = 0.0;
     DrumSetup setup = build_drum(automatic);
     const std::size_t particles = setup.scenario.particles.size();
-    // The bed is settled at the step it will run at: the name holds the step,
-    // so a change of the automatic step makes a new bed.
+    // The bed is settled at the step and skin it will run at: the name holds
+    // both, so a change of the automatic step or skin makes a new bed.
     // (Any checkpoint format this tumble reads will do: a new format needs no new bed.)
     const double dt = assess_time_step(setup.scenario).dt;
-    const std::string stem =
-        fmt::format("long-drum-length{}-fill{}-seed{}-dt{:.6g}", d.geometry.length, d.fill_fraction, d.seed, dt);
+    const std::string stem = fmt::format("long-drum-length{}-fill{}-seed{}-dt{:.6g}-skin{:.6g}", d.geometry.length,
+                                         d.fill_fraction, d.seed, dt, setup.scenario.neighbor.skin);
     auto settle = [&] {
         Simulation sim(std::move(setup.scenario), threads);
         const std::int64_t check_every = std::max<std::int64_t>(1, std::llround(1e-3 / sim.dt()));

@@ -169,8 +169,8 @@ int main(int argc, char** argv) {
         ->check(finite_non_negative);
     auto* skin_opt = bench_cmd->add_option(
         "--skin", bench.skin,
-        "Long drum: the neighbour-list skin of the timed steps, m (default 0: automatic, 0.2 x the largest radius; "
-        "the bed's list found anew)")
+        "Long drum: the neighbour-list skin of the timed steps, m (default 0: the drum's automatic skin, 0.3 x the "
+        "largest radius; the bed's list found anew)")
         ->check(finite_non_negative);
     auto* law_opt = bench_cmd->add_option(
         "--law", bench.law,
@@ -256,7 +256,7 @@ int main(int argc, char** argv) {
     std::optional<double> skin;
     drum_cmd->add_option("--skin", skin,
                          "Neighbour-list skin, m: pairs within contact plus this are listed, the list rebuilt when a "
-                         "grain has moved half of it (default 0: 0.2 x the largest radius; speed only)");
+                         "grain has moved half of it (default 0: 0.3 x the largest radius; speed only)");
     drum_cmd->add_option("--shear", shear, "Reading of the friction limit: paper (default), coulomb or spring (docs/MODEL.md)")
         ->check(CLI::IsMember(tumble::keywords(tumble::shear_models)));
     std::optional<double> surface_energy;

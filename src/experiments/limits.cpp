@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "experiments/drum_setup.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 #include "tumble/materials/pair_table.hpp"
@@ -133,10 +134,12 @@ void check_stiffness(const Scenario& s, bool allowed, const std::string& source)
 
 MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads, double skin) {
     const double wall = drum_wall_spheres(g);
-    // 3 listed pairs per sphere at the automatic skin (0.2 R of the paper's
-    // large grain); a larger skin lists the pairs within 2 R + skin.
+    // 3 listed pairs per sphere at a skin of 0.2 R of the paper's large
+    // grain; a larger skin lists the pairs within 2 R + skin (0: the drum's
+    // automatic skin, drum_skin_per_radius x R).
     const double R = paper::material_1().radius;  // m
-    const double pairs = 3.0 * std::max(1.0, std::pow((2.0 * R + skin) / (2.2 * R), 3));
+    const double listed = skin > 0.0 ? skin : drum_skin_per_radius * R;  // m
+    const double pairs = 3.0 * std::max(1.0, std::pow((2.0 * R + listed) / (2.2 * R), 3));
     MemoryNeed need{estimate(grains + wall, pairs, false, threads), ""};
     need.driver = wall > grains ? fmt::format("the drum's wall, {:.3g} spheres (--length, --diameter, --wall-radius)", wall)
                                 : fmt::format("{:.3g} grains (--grains, --fill)", grains);

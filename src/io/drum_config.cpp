@@ -65,7 +65,7 @@ void check_drum_settings(const DrumSettings& s, const std::string& source) {
                               std::pair{"wall_radius", s.geometry.wall_radius}})
         if (!(value > 0.0) || !std::isfinite(value)) fail(key, "must be > 0, got " + show(value));
     if (!(s.skin >= 0.0 && s.skin < s.geometry.diameter))
-        fail("neighbor.skin", "must be >= 0 m (0: automatic, 0.2 x the largest radius) and below the drum's diameter (" +
+        fail("neighbor.skin", "must be >= 0 m (0: automatic, 0.3 x the largest radius) and below the drum's diameter (" +
                                   show(s.geometry.diameter) + " m), got " + show(s.skin) + " (--skin)");
     if (!(s.surface_energy >= 0.0) || !std::isfinite(s.surface_energy))
         fail("model.surface_energy",

@@ -52,7 +52,8 @@ struct DrumSettings {
     double dt = 0.0;                   // s; 0: chosen from the materials
     // m: the neighbour list's skin, the margin beyond contact within which
     // pairs are listed; the list is rebuilt when a sphere has moved half of
-    // it (0: 0.2 x the largest radius). Speed only: it changes which pairs
+    // it (0: 0.3 x the largest radius, drum_skin_per_radius of
+    // experiments/drum_setup.hpp). Speed only: it changes which pairs
     // are listed, not the forces (LAMMPS's `neighbor` distance).
     double skin = 0.0;
     ShearModel shear = ShearModel::Paper;              // the reading of the friction limit (docs/MODEL.md)

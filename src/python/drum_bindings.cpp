@@ -76,7 +76,7 @@ void bind_drum(py::module_& m) {
         .def_readonly("profile_bins", &io::DrumSettings::profile_bins)
         .def_readonly("snapshots_per_revolution", &io::DrumSettings::snapshots_per_revolution)
         .def_readonly("dt", &io::DrumSettings::dt, "s; 0: chosen from the materials")
-        .def_readonly("skin", &io::DrumSettings::skin, "m, the neighbour list's; 0: 0.2 x the largest radius")
+        .def_readonly("skin", &io::DrumSettings::skin, "m, the neighbour list's; 0: 0.3 x the largest radius")
         .def_property_readonly("shear", [](const io::DrumSettings& s) { return keyword_of(shear_models, s.shear); })
         .def_property_readonly("friction_normal",
                                [](const io::DrumSettings& s) { return keyword_of(friction_normals, s.friction_normal); })

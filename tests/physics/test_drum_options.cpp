@@ -117,9 +117,10 @@ TEST(SpinUp, WallTurnsAtFullSpeedAfterTheRampWithTheRampsAngle) {
 
 // The drum's neighbour skin (tumble drum --skin, [neighbor] skin) sets which
 // pairs are listed and how often the list is rebuilt, never a force: the
-// bed falling into the turning drum with twice the automatic skin (0.2 x the
-// largest radius, 0.72 mm) follows the automatic run to round-off (the
-// sums over a sphere's contacts come in another order), with fewer builds.
+// bed falling into the turning drum with twice the drum's automatic skin
+// (0.3 x the largest radius, 1.08 mm; not the 0.2 x of other scenarios)
+// follows the automatic run to round-off (the sums over a sphere's
+// contacts come in another order), with fewer builds.
 TEST(NeighbourSkin, ChangesTheRebuildsNotTheMotion) {
     struct Outcome {
         std::vector<Vec3> position;  // by global id
@@ -140,9 +141,17 @@ TEST(NeighbourSkin, ChangesTheRebuildsNotTheMotion) {
         for (std::size_t i = 0; i < p.size(); ++i) out.position[static_cast<std::size_t>(p.id[i])] = p.position[i];
         return out;
     };
-    const Outcome automatic = run(0.0), wide = run(1.44e-3);
-    EXPECT_DOUBLE_EQ(automatic.skin, 0.72e-3);
-    EXPECT_DOUBLE_EQ(wide.skin, 1.44e-3);
+    const Outcome automatic = run(0.0), wide = run(2.16e-3);
+    EXPECT_DOUBLE_EQ(automatic.skin, 0.3 * 3.6e-3);  // the large grain's radius
+    EXPECT_DOUBLE_EQ(wide.skin, 2.16e-3);
+    {  // A drum checkpointed before the drum had its own skin holds skin 0
+       // (automatic): it goes on at the engine's 0.2 x, as its list was built.
+        io::DrumSettings s;
+        s.grains = 400;
+        DrumSetup old = experiments::build_drum(s);
+        old.scenario.neighbor.skin = 0.0;
+        EXPECT_DOUBLE_EQ(Simulation(old.scenario).neighbors().skin(), 0.2 * 3.6e-3);
+    }
     // Half the skin moved before a build falls due, twice as far: at most
     // two thirds of the builds (about half, where the fastest grain keeps
     // its speed).
