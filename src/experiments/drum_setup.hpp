@@ -3,7 +3,6 @@
 // turns (tumble drum, tumble bench --case long-drum, tumble contact --drum).
 #pragma once
 
-#include <algorithm>
 #include <cmath>
 
 #include "io/drum_config.hpp"
@@ -30,9 +29,7 @@ inline DrumSetup build_drum(const io::DrumSettings& s, bool allow_unsafe_dt = fa
     for (auto& row : setup.scenario.pair_properties)
         for (PairProperties& pair : row) pair.W = s.surface_energy;
     if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
-    double largest = 0.0;  // m
-    for (const ParticleSpec& p : setup.scenario.particles) largest = std::max(largest, p.radius);
-    setup.scenario.neighbor.skin = s.skin > 0.0 ? s.skin : drum_skin_per_radius * largest;
+    setup.scenario.neighbor.skin = s.skin > 0.0 ? s.skin : drum_skin_per_radius * setup.scenario.largest_radius();
     setup.scenario.model.shear = s.shear;
     setup.scenario.model.friction_normal = s.friction_normal;
     setup.scenario.time_step.allow_unsafe = allow_unsafe_dt;

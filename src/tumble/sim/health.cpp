@@ -70,8 +70,7 @@ std::string contact_problem(const Simulation& sim, const HealthLimits& limits) {
 HealthLimits default_health_limits(const Scenario& s) {
     HealthLimits limits;
     limits.max_speed = 100.0 * s.time_step.reference_speed;
-    double largest = 0.0;
-    for (const ParticleSpec& p : s.particles) largest = std::max(largest, p.radius);
+    const double largest = s.largest_radius();
     limits.bounded = s.domain.walls;
     limits.lo = s.domain.lo - Vec3{largest, largest, largest};
     limits.hi = s.domain.hi + Vec3{largest, largest, largest};

@@ -3,6 +3,7 @@
 // Simulation from it; readers of file formats (src/io) fill it in.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -66,6 +67,12 @@ struct Scenario {
         std::size_t n = 0;
         for (const ParticleSpec& p : particles) n += p.motion == free_motion;
         return n;
+    }
+    // The largest particle radius, m (0 with no particles).
+    double largest_radius() const {
+        double largest = 0.0;
+        for (const ParticleSpec& p : particles) largest = std::max(largest, p.radius);
+        return largest;
     }
 };
 

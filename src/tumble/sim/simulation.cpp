@@ -19,13 +19,7 @@ namespace tumble {
 
 namespace {
 
-double largest_radius(const Scenario& s) {
-    double largest = 0.0;
-    for (const auto& p : s.particles) largest = std::max(largest, p.radius);
-    return largest;
-}
-
-double default_skin(const Scenario& s) { return 0.2 * largest_radius(s); }
+double default_skin(const Scenario& s) { return 0.2 * s.largest_radius(); }
 
 // The axis a domain is cut along when shared among ranks: its longest (a
 // drum's rotation axis z; z, then y, on a tie).
@@ -52,7 +46,7 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
     if (walls[0] || walls[1] || walls[2]) wall_history_.resize(6 * particles_.size());  // by global id
     if (ranks == Ranks::world && mpi::size() > 1) {
         const int axis = decomposition_axis(scenario_.domain);
-        slabs_ = std::make_unique<Slabs>(scenario_.domain, axis, particles_, 2.0 * largest_radius(scenario_) + skin);
+        slabs_ = std::make_unique<Slabs>(scenario_.domain, axis, particles_, 2.0 * scenario_.largest_radius() + skin);
         slabs_->keep_own(particles_);
         neighbors_ = VerletList(slabs_->local_domain(), skin, scenario_.neighbor.sort_every);
     } else {
