@@ -11,7 +11,8 @@
 #   --steps N     timed steps per run (default 10000, tumble bench's)
 #   --warmup N    untimed steps turning before them (default 2000)
 #   --repeats N   rounds; the table shows medians (default 3)
-#   --np N        also N threads (tumble) and N MPI ranks (LAMMPS); 1: single only (default 2)
+#   --np N        also N threads and N MPI ranks of one thread (tumble) and N MPI
+#                 ranks (LAMMPS); 1: single only (default 2)
 #   --turned R    start both codes from the settled bed turned R revolutions by
 #                 tumble (a bed in steady flow; tumble bench --turned), default 0
 #   --law L       tumble's law in the timed steps: drum (the drum's, the paper's),
@@ -109,15 +110,18 @@ python3 "$drum" data "$out/bed/snapshots/000000.csv" "$out/bed/drum.data" >&2
 # "Threads bound to cores"). OMP_PROC_BIND=false measures them unbound.
 bind=(env "OMP_PROC_BIND=${OMP_PROC_BIND:-close}" "OMP_PLACES=${OMP_PLACES:-cores}")
 dt="" skin=""  # tumble's step and neighbour skin, from its first run
-run_tumble() {  # round threads law
-    local log="$out/tumble_r$1_t$2_$3.out"
+run_tumble() {  # round threads law [ranks]: N > 1 ranks of one thread each under mpirun
+    local ranks=${4:-1} cmd=("${bind[@]}") config="$2 threads"
+    local log="$out/tumble_r$1_t$2_n${ranks}_$3.out"
+    # mpirun binds its ranks itself (as it does LAMMPS's)
+    [[ $ranks -gt 1 ]] && cmd=("${mpirun_cmd[@]}") config="$ranks ranks"
     if ! python3 "$lib" exec "$log.time" "$log" "$log.err" -- \
-            "${bind[@]}" "$tumble" bench --case long-drum --json --steps "$steps" --warmup "$warmup" --threads "$2" \
+            "${cmd[@]}" "$tumble" bench --case long-drum --json --steps "$steps" --warmup "$warmup" --threads "$2" \
             --turned "$turned" --law "$3"; then
         cat "$log.err" >&2
-        die "tumble bench failed ($2 threads, law $3), see $log.err"
+        die "tumble bench failed ($config, law $3), see $log.err"
     fi
-    python3 "$drum" tumble "$log" "$2 threads" "$log.time" >> "$results"
+    python3 "$drum" tumble "$log" "$config" "$log.time" >> "$results"
     [[ -n "$dt" ]] || dt=$(python3 -c 'import json, sys; print(repr(json.loads(sys.argv[1])["dt"]))' "$(tail -1 "$log")")
     [[ -n "$skin" ]] || skin=$(python3 -c 'import json, sys; print(repr(json.loads(sys.argv[1])["skin"]))' "$(tail -1 "$log")")
 }
@@ -159,6 +163,10 @@ for ((r = 1; r <= repeats; r++)); do
             echo "  round $r/$repeats: tumble $p thread(s), law $l, load $(cut -d' ' -f1 /proc/loadavg)" >&2
             run_tumble "$r" "$p" "$l"
         done
+        if [[ $np -gt 1 ]]; then
+            echo "  round $r/$repeats: tumble $np MPI ranks of 1 thread, law $l, load $(cut -d' ' -f1 /proc/loadavg)" >&2
+            run_tumble "$r" 1 "$l" "$np"
+        fi
     done
     for p in "${procs[@]}"; do
         echo "  round $r/$repeats: LAMMPS $p process(es), load $(cut -d' ' -f1 /proc/loadavg)" >&2

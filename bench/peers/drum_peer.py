@@ -13,7 +13,8 @@ Standard library only.
   drum_peer.py tumble STDOUT CONFIG TIMING one JSON result line from `tumble bench --json`
   drum_peer.py table RESULTS.jsonl         medians per configuration and the ratios
 
-A result line has: code, law, config, procs, grains, steps, seconds,
+A result line has: code, law, config, procs (cores: threads x ranks; tumble
+also gives ranks), grains, steps, seconds,
 grain_updates_per_second (grains x timed steps / wall time of the timed
 steps), cpu_seconds (CPU time of the timed steps, all threads or ranks),
 kinetic_translational and kinetic_rotational (J, grains, at the end),
@@ -116,7 +117,9 @@ def parse_tumble(path, config):
         d = json.loads(lines[-1])
     except (IndexError, json.JSONDecodeError):
         peerlib.fail(f"{path}: the last line of `tumble bench --case long-drum --json` is not JSON")
-    return {"code": "tumble", "law": d.get("law", "drum"), "config": config, "procs": int(d["threads"]), "grains": int(d["grains"]),
+    ranks = int(d.get("ranks", 1))
+    return {"code": "tumble", "law": d.get("law", "drum"), "config": config, "procs": int(d["threads"]) * ranks,
+            "ranks": ranks, "grains": int(d["grains"]),
             "steps": int(d["steps"]), "seconds": float(d["seconds"]),
             "grain_updates_per_second": float(d["grain_updates_per_second"]),
             "cpu_seconds": float(d["cpu_seconds"]),
@@ -125,43 +128,53 @@ def parse_tumble(path, config):
             "dt": float(d["dt"]), "neighbor_builds": d["neighbor_builds"]}
 
 
+def split(r):
+    """How a run's cores were used: "" on one core, else "threads" or "ranks"."""
+    if r["procs"] == 1:
+        return ""
+    return "ranks" if r["code"] == "lammps" or r.get("ranks", 1) > 1 else "threads"
+
+
 def table(path):
     rows = [json.loads(l) for l in open(path, encoding="utf-8") if l.strip()]
     groups = {}
     for r in rows:
         r["per_cpu_second"] = r["grains"] * r["steps"] / r["cpu_seconds"]
-        groups.setdefault((r["code"], r.get("law", "drum"), r["procs"]), []).append(r)
+        groups.setdefault((r["code"], r.get("law", "drum"), r["procs"], split(r)), []).append(r)
     med = lambda rs, key: statistics.median(r[key] for r in rs)
     wall = {k: med(rs, "grain_updates_per_second") for k, rs in groups.items()}
     cpu = {k: med(rs, "per_cpu_second") for k, rs in groups.items()}
-    hdr = ("code", "law", "procs", "runs", "grain updates/s", "per core", "min..max", "wall s", "cpu/wall",
+    hdr = ("code", "law", "cores", "runs", "grain updates/s", "per core", "min..max", "wall s", "cpu/wall",
            "per CPU s", "KE trans J", "KE rot J", "contacts", "nbr builds", "tumble/LAMMPS", "by CPU s")
     out = []
-    for (code, law, procs), rs in sorted(groups.items(), key=lambda kv: (kv[0][0] != "tumble", kv[0][1], kv[0][2])):
-        k, peer = (code, law, procs), ("lammps", "peer", procs)
+    order = lambda kv: (kv[0][0] != "tumble", kv[0][1], kv[0][2], kv[0][3])
+    for (code, law, procs, how), rs in sorted(groups.items(), key=order):
+        k, peer = (code, law, procs, how), ("lammps", "peer", procs, "ranks" if procs > 1 else "")
         ups = [r["grain_updates_per_second"] for r in rs]
         use = [r["cpu_seconds"] / (r["seconds"] * procs) for r in rs]
         against = code == "tumble" and peer in wall
-        out.append((code, law, str(procs), str(len(rs)), peerlib.fmt_rate(wall[k]), peerlib.fmt_rate(wall[k] / procs),
+        out.append((code, law, f"{procs} {how}".strip(), str(len(rs)), peerlib.fmt_rate(wall[k]),
+                    peerlib.fmt_rate(wall[k] / procs),
                     f"{peerlib.fmt_rate(min(ups))}..{peerlib.fmt_rate(max(ups))}", f"{med(rs, 'seconds'):.1f}",
                     f"{min(use):.2f}..{max(use):.2f}", peerlib.fmt_rate(cpu[k]),
                     f"{rs[-1]['kinetic_translational']:.3g}", f"{rs[-1]['kinetic_rotational']:.3g}",
                     f"{rs[-1]['contacts']:.0f}", str(rs[-1]["neighbor_builds"]),
                     f"{wall[k] / wall[peer]:.2f}" if against else "-", f"{cpu[k] / cpu[peer]:.2f}" if against else "-"))
     peerlib.print_table(hdr, out)
-    for (code, law, procs), rs in sorted(groups.items()):
-        if procs > 1 and (code, law, 1) in wall:
-            print(f"{code} ({law} law): {procs} cores {wall[(code, law, procs)] / wall[(code, law, 1)]:.2f}x one (wall time)")
+    for (code, law, procs, how), rs in sorted(groups.items()):
+        if procs > 1 and (code, law, 1, "") in wall:
+            print(f"{code} ({law} law): {procs} {how} {wall[(code, law, procs, how)] / wall[(code, law, 1, '')]:.2f}x"
+                  " one core (wall time)")
         imbalance = [r["imbalance"] for r in rs if r.get("imbalance") is not None]
         if procs > 1 and imbalance:
             print(f"{code} {procs} ranks: load imbalance after the balance command "
                   f"{min(imbalance):.2f}..{max(imbalance):.2f}")
     print("grain updates/s = grains x timed steps / wall time of the timed steps (wall spheres not counted);"
           " per CPU s: the same over the CPU time of the timed steps; cpu/wall: CPU time over wall time x cores"
-          " in the timed steps (below 1: it waited for a core); tumble/LAMMPS: medians on as many threads as"
-          " LAMMPS has MPI ranks (per core alike); law: drum = the paper's (attraction, saw-tooth shear),"
-          " peer = the LAMMPS deck's (no attraction, shear = spring), the same work in both codes;"
-          " KE, contacts (touching pairs, wall included) and neighbour builds of the last run")
+          " in the timed steps (below 1: it waited for a core); tumble/LAMMPS: medians against LAMMPS on as"
+          " many MPI ranks as tumble has cores (threads or ranks; per core alike); law: drum = the paper's"
+          " (attraction, saw-tooth shear), peer = the LAMMPS deck's (no attraction, shear = spring), the same"
+          " work in both codes; KE, contacts (touching pairs, wall included) and neighbour builds of the last run")
 
 
 def main(argv):
