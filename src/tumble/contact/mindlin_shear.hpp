@@ -67,6 +67,15 @@ inline double slip_length_after_slipping(ShearModel model, double length, double
     return model == ShearModel::Paper ? excess : held;
 }
 
+// The step's window [lo, hi] = [x - step/2, x + step/2], not below 0.
+struct SlipWindow {
+    double lo = 0.0, hi = 0.0, width = 0.0;
+};
+inline SlipWindow slip_window(double x, double step) {
+    const double lo = std::max(x - 0.5 * step, 0.0), hi = x + 0.5 * step;
+    return {lo, hi, hi - lo};
+}
+
 // The paper's saw-tooth as the force law sees it: the slip length x (the
 // force is k (x mod held)) averaged over the step's window [x - step/2,
 // x + step/2], step = the slip of one step. Where the window holds no
@@ -77,7 +86,11 @@ inline double slip_length_after_slipping(ShearModel model, double length, double
 // with a tooth shorter than a step (sampling it at the steps alone aliases:
 // 8 % off at the automatic step at 0.1 m/s). Meaningless for held = 0
 // (no friction), where the callers use no saw-tooth.
-inline double sawtooth_in_window(double x, double step, double held, double per_held) {
+// per_width: 1 / the window's width, from the caller (the shear has it
+// from the one division it makes anyway, mindlin_shear_force(): each
+// division counts, see above); any value for width 0, which happens only
+// at x = step = 0, where mean = 0 = at_step.
+inline double sawtooth_in_window(double x, const SlipWindow& w, double per_width, double held, double per_held) {
     // Every value is computed and the result chosen, without branches, so
     // that the pair loop still runs several contacts per instruction.
     // The integral of (y mod held) from 0 to y.
@@ -85,12 +98,14 @@ inline double sawtooth_in_window(double x, double step, double held, double per_
         const double teeth = std::floor(y * per_held), rest = y - teeth * held;
         return 0.5 * (teeth * held * held + rest * rest);
     };
-    const double lo = std::max(x - 0.5 * step, 0.0), hi = x + 0.5 * step;
-    const double width = hi - lo;
-    const double mean = (integral(hi) - integral(lo)) / (width > 0.0 ? width : 1.0);
+    const double mean = (integral(w.hi) - integral(w.lo)) * per_width;
     const double at_step = x - std::floor(x * per_held) * held;
-    // (width = 0 only at x = step = 0, where mean = 0 = at_step.)
-    return hi > held ? mean : at_step;
+    return w.hi > held ? mean : at_step;
+}
+// The same, dividing by the width itself (twisting.hpp).
+inline double sawtooth_in_window(double x, double step, double held, double per_held) {
+    const SlipWindow w = slip_window(x, step);
+    return sawtooth_in_window(x, w, 1.0 / (w.width > 0.0 ? w.width : 1.0), held, per_held);
 }
 
 // Tangential force on i, N:
@@ -120,18 +135,25 @@ inline Vec3 mindlin_shear_force(ShearModel model, const SlipLimits& limits, cons
     // choices between values rather than branches, so that the pair loop
     // still runs several contacts per instruction.
     const double length = norm(slip), speed = norm(v_t);
-    // 1/length and 1/speed (0 for 0) from one division.
+    // The step's window of the saw-tooth (the paper's reading).
+    const SlipWindow w = slip_window(length, speed * dt);
+    // 1/length, 1/speed (0 for 0) and 1 / the window's width from one
+    // division (the product stays far above the smallest double for any
+    // slip, speed and step a contact has).
     const double length_or_1 = length > 0.0 ? length : 1.0, speed_or_1 = speed > 0.0 ? speed : 1.0;
-    const double per_both = 1.0 / (length_or_1 * speed_or_1);
+    const double width_or_1 = w.width > 0.0 ? w.width : 1.0;
+    const double per_all = 1.0 / (length_or_1 * speed_or_1 * width_or_1);
+    const double per_both = width_or_1 * per_all;  // 1 / (length_or_1 speed_or_1)
     const double per_length = length > 0.0 ? speed_or_1 * per_both : 0.0;
     const double per_speed = speed > 0.0 ? length_or_1 * per_both : 0.0;
+    const double per_width = length_or_1 * speed_or_1 * per_all;
     const bool slides = length > held;
     const bool along_velocity = model != ShearModel::Spring && speed > v_reg;
     const double after = slip_length_after_slipping(model, length, held, per_held);
     // The force's length along the same direction: the paper's reading feels
     // its saw-tooth over the step's window (which is the slip's own length
     // away from a tooth's edge), the others the slip.
-    const double window = held > 0.0 ? sawtooth_in_window(length, speed * dt, held, per_held) : 0.0;
+    const double window = held > 0.0 ? sawtooth_in_window(length, w, per_width, held, per_held) : 0.0;
     const double felt = model == ShearModel::Paper ? window : (slides ? after : length);
     // slip <- keep slip + turn v_t, and the force -stiffness (keep_felt slip +
     // turn_felt v_t); one comparison per choice (GCC 12 does not vectorise a

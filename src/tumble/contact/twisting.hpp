@@ -29,14 +29,21 @@ inline double twisting_couple(ShearModel model, const SlipLimits& limits, double
     const double held = limits.twist_held, per_held = limits.per_twist_held;  // rad
     const double length = std::abs(angular_slip);
     const bool along_spin = model != ShearModel::Spring && std::abs(w_n) * a > v_reg;
-    const double sign = (along_spin ? w_n : angular_slip) < 0.0 ? -1.0 : 1.0;
+    const bool slides = length > held;
+    // The sign of the slip after this step: w_n's where it slid along the
+    // spin, else the slip's own. (Choices, not branches, as in
+    // mindlin_shear.hpp.)
+    const double sign = (slides ? (along_spin ? w_n : angular_slip) : angular_slip) < 0.0 ? -1.0 : 1.0;
     const double after = slip_length_after_slipping(model, length, held, per_held);
-    angular_slip = length > held ? sign * after : angular_slip;  // a choice, not a branch (as in mindlin_shear.hpp)
-    // The paper's reading feels its saw-tooth over the step's window.
-    const double step = std::abs(w_n) * dt;
-    const double window = sawtooth_in_window(length, step, held, per_held);
-    const double scale = model == ShearModel::Paper ? (after > 0.0 ? window / after : 1.0) : 1.0;  // as for the shear
-    return -stiffness * scale * angular_slip;
+    angular_slip = slides ? sign * after : angular_slip;
+    // The couple's length: the paper's reading feels its saw-tooth over the
+    // step's window (where the slip is not 0 after restarting; the window's
+    // own length away from a tooth's edge, as for the shear), the others
+    // the slip, |angular_slip| (after or length).
+    const double window = sawtooth_in_window(length, std::abs(w_n) * dt, held, per_held);
+    const double slip_length = std::abs(angular_slip);
+    const double felt = model == ShearModel::Paper ? (after > 0.0 ? window : slip_length) : slip_length;
+    return -stiffness * sign * felt;
 }
 
 }  // namespace tumble
