@@ -36,12 +36,12 @@ inline double twisting_couple(ShearModel model, const SlipLimits& limits, double
     const double sign = (slides ? (along_spin ? w_n : angular_slip) : angular_slip) < 0.0 ? -1.0 : 1.0;
     const double after = slip_length_after_slipping(model, length, held, per_held);
     angular_slip = slides ? sign * after : angular_slip;
-    // The couple's length: the paper's reading feels its saw-tooth over the
-    // step's window (where the slip is not 0 after restarting; the window's
-    // own length away from a tooth's edge, as for the shear), the others
-    // the slip, |angular_slip| (after or length).
+    // The couple's length along `sign`: the paper's reading feels its
+    // saw-tooth over the step's window (where the slip is not 0 after
+    // restarting; the window's own length away from a tooth's edge, as for
+    // the shear), the others the slip's length (after or length).
     const double window = sawtooth_in_window(length, std::abs(w_n) * dt, held, per_held);
-    const double slip_length = std::abs(angular_slip);
+    const double slip_length = slides ? after : length;
     const double felt = model == ShearModel::Paper ? (after > 0.0 ? window : slip_length) : slip_length;
     return -stiffness * sign * felt;
 }
