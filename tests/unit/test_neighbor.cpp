@@ -49,7 +49,7 @@ std::set<PairKey> key_set(const ParticleStore& p, const PairList& list) {
 // Independent reference: every pair not both kinematic, every periodic image
 // on the periodic axes, |X_i - X_j + shift| < R_i + R_j + skin.
 std::set<PairKey> reference_pairs(const ParticleStore& p, const Domain& domain, double skin) {
-    const PeriodicImages images(domain.length());
+    const PeriodicImages images(domain);
     std::set<PairKey> keys;
     for (std::uint32_t i = 0; i < p.size(); ++i)
         for (std::uint32_t j = i + 1; j < p.size(); ++j) {

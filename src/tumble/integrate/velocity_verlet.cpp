@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "tumble/integrate/velocity_verlet.hpp"
 
-#include <algorithm>
-
 #include "tumble/core/isa.hpp"
 
 namespace tumble {
@@ -15,36 +13,44 @@ namespace {
 // as a choice between the new and the old value rather than a skipped
 // update. Both let the compiler run the loops on several particles per
 // instruction, compiled for the instruction set in use (run_for_isa).
-// The velocity change of the kick is also written to half_kick: after the
-// first half kick it is the change predicted for the second (0 for kinematic
-// particles); after the second, 0.
-template <bool Predict>
+// Kicks = 1: the kick, v += dv with dv = half_dt (F/m + g), and omega +=
+// half_dt T/I. Kicks = 2: the kick that ends a step and the one that begins
+// the next, with the same F and T (dv added twice, rounded as two calls of
+// the single kick round it). With Drift, then x += dt v (the drift), the
+// velocity change is written to half_kick (the change predicted for the
+// step's second kick; 0 for kinematic particles) and the forces and torques
+// are spent (set to zero); without, half_kick = 0.
+template <int Kicks, bool Drift>
 void kick_range(IndexRange r, const std::int32_t* __restrict motion, const double* __restrict inv_mass,
-                const double* __restrict inv_inertia, const double* __restrict force,
-                const double* __restrict torque, double* __restrict velocity, double* __restrict angular_velocity,
-                double* __restrict half_kick, Vec3 gravity, double half_dt) {
+                const double* __restrict inv_inertia, double* __restrict force, double* __restrict torque,
+                double* __restrict velocity, double* __restrict angular_velocity, double* __restrict half_kick,
+                double* __restrict position, Vec3 gravity, double half_dt, double dt) {
     for (std::size_t i = r.begin; i < r.end; ++i) {
         const bool free = motion[i] == free_motion;
         const double spin_factor = half_dt * inv_inertia[i];
+        // A kinematic particle drifts by 0 times its velocity
+        // (Simulation::move_kinematic() sets its position right after). The
+        // choice of the factor, not of the step, lets GCC vectorise the loop.
+        const double step = free ? dt : 0.0;
         for (std::size_t c = 0; c < 3; ++c) {
             const double v = velocity[3 * i + c], omega = angular_velocity[3 * i + c];
             const double dv = half_dt * (inv_mass[i] * force[3 * i + c] + gravity[static_cast<int>(c)]);
-            const double omega_kicked = omega + spin_factor * torque[3 * i + c];
-            velocity[3 * i + c] = free ? v + dv : v;
+            const double domega = spin_factor * torque[3 * i + c];
+            double v_kicked = v + dv, omega_kicked = omega + domega;
+            if constexpr (Kicks == 2) {
+                v_kicked += dv;
+                omega_kicked += domega;
+            }
+            const double v_new = free ? v_kicked : v;
+            velocity[3 * i + c] = v_new;
             angular_velocity[3 * i + c] = free ? omega_kicked : omega;
-            half_kick[3 * i + c] = free && Predict ? dv : 0.0;
+            half_kick[3 * i + c] = free && Drift ? dv : 0.0;
+            if constexpr (Drift) {
+                position[3 * i + c] += step * v_new;
+                force[3 * i + c] = 0.0;
+                torque[3 * i + c] = 0.0;
+            }
         }
-    }
-}
-
-void drift_range(IndexRange r, const std::int32_t* __restrict motion, const double* __restrict velocity,
-                 double* __restrict position, double dt) {
-    for (std::size_t i = r.begin; i < r.end; ++i) {
-        // A kinematic particle moves by 0 times its velocity
-        // (Simulation::move_kinematic() sets its position right after). The
-        // choice of the factor, not of the step, lets GCC vectorise the loop.
-        const double step = motion[i] == free_motion ? dt : 0.0;
-        for (std::size_t c = 0; c < 3; ++c) position[3 * i + c] += step * velocity[3 * i + c];
     }
 }
 
@@ -75,32 +81,28 @@ void move_range(IndexRange r, std::int32_t k, const MotionNow& m, const std::int
     }
 }
 
-template <bool Predict>
-void kick_range(ParticleStore& p, IndexRange r, const Vec3& gravity, double half_dt) {
-    kick_range<Predict>(r, p.motion.data(), p.inv_mass.data(), p.inv_inertia.data(), &p.force.data()->x,
-                        &p.torque.data()->x, &p.velocity.data()->x, &p.angular_velocity.data()->x,
-                        &p.half_kick.data()->x, gravity, half_dt);
-}
-
-void drift_range(ParticleStore& p, IndexRange r, double dt) {
-    drift_range(r, p.motion.data(), &p.velocity.data()->x, &p.position.data()->x, dt);
+template <int Kicks, bool Drift>
+void kick_range(ParticleStore& p, IndexRange r, const Vec3& gravity, double half_dt, double dt) {
+    run_for_isa([&] {
+        kick_range<Kicks, Drift>(r, p.motion.data(), p.inv_mass.data(), p.inv_inertia.data(), &p.force.data()->x,
+                                 &p.torque.data()->x, &p.velocity.data()->x, &p.angular_velocity.data()->x,
+                                 &p.half_kick.data()->x, &p.position.data()->x, gravity, half_dt, dt);
+    });
 }
 
 }  // namespace
 
 // The loops run in the copy for the processor's instruction set (core/isa.hpp).
 void kick(ParticleStore& p, const Vec3& gravity, double half_dt, IndexRange r) {
-    run_for_isa([&] { kick_range<false>(p, r, gravity, half_dt); });
+    kick_range<1, false>(p, r, gravity, half_dt, 0.0);
 }
 
 void kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, IndexRange r) {
-    run_for_isa([&] {
-        kick_range<true>(p, r, gravity, half_dt);
-        drift_range(p, r, dt);
-    });
-    const auto from = static_cast<std::ptrdiff_t>(r.begin), to = static_cast<std::ptrdiff_t>(r.end);
-    std::fill(p.force.begin() + from, p.force.begin() + to, Vec3{});
-    std::fill(p.torque.begin() + from, p.torque.begin() + to, Vec3{});
+    kick_range<1, true>(p, r, gravity, half_dt, dt);
+}
+
+void kick_kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, IndexRange r) {
+    kick_range<2, true>(p, r, gravity, half_dt, dt);
 }
 
 void move_kinematic(ParticleStore& p, const std::vector<MotionNow>& now, IndexRange r) {

@@ -31,6 +31,11 @@ void kick(ParticleStore& p, const Vec3& gravity, double half_dt, IndexRange r);
 // then spent and set to zero, ready for the sums of the next evaluation.
 void kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, IndexRange r);
 
+// kick(), then kick_drift() with the same forces, in one pass over range r:
+// the end of a step and the beginning of the next (the same numbers as the
+// two calls, read and written once).
+void kick_kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, IndexRange r);
+
 // The kinematic particles of range r where their motions (now[k] for motion
 // k) put them: x, v and omega prescribed; F = T = 0, ready for the sums of
 // the grains' forces on them.

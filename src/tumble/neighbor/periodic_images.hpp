@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 
+#include "tumble/core/domain.hpp"
 #include "tumble/core/vec3.hpp"
 
 namespace tumble {
@@ -20,16 +21,21 @@ inline constexpr std::uint8_t image_code(int sx, int sy, int sz) {
 class PeriodicImages {
 public:
     PeriodicImages() = default;
-    explicit PeriodicImages(const Vec3& box_length) {
+    explicit PeriodicImages(const Domain& domain) : periodic_(domain.periodic[0] || domain.periodic[1] || domain.periodic[2]) {
+        const Vec3 L = domain.length();
         for (int sz = -1; sz <= 1; ++sz)
             for (int sy = -1; sy <= 1; ++sy)
                 for (int sx = -1; sx <= 1; ++sx)
-                    shift_[image_code(sx, sy, sz)] = {sx * box_length.x, sy * box_length.y, sz * box_length.z};
+                    shift_[image_code(sx, sy, sz)] = {sx * L.x, sy * L.y, sz * L.z};
     }
     const Vec3& operator[](std::uint8_t code) const { return shift_[code]; }
+    // Whether the domain has a periodic axis; if not, every pair's code is
+    // no_shift, and the pair loop leaves the shift out.
+    bool periodic() const { return periodic_; }
 
 private:
     std::array<Vec3, 27> shift_{};
+    bool periodic_ = false;
 };
 
 }  // namespace tumble

@@ -32,7 +32,7 @@ void wrap_into_box(ParticleStore& p, const Domain& domain, IndexRange r) {
 }  // namespace
 
 VerletList::VerletList(const Domain& domain, double skin, int sort_every)
-    : domain_(domain), skin_(skin), sort_every_(sort_every), images_(domain.length()) {}
+    : domain_(domain), skin_(skin), sort_every_(sort_every), images_(domain) {}
 
 // Every particle of the range is looked at and those gone far counted, so
 // that the loop runs several particles per instruction (a loop that stops

@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "tumble/contact/contact_law.hpp"
@@ -122,13 +123,16 @@ inline void copy_inputs(const ParticleStore& p, const PairList& pairs, std::size
 //     the block); the second copies the rest into the lanes kept. The
 //     pairs apart then drop their history, where they have one (rarely:
 //     the contacts that ended this step).
-template <bool Branch>
+//
+// Periodic: whether the domain has a periodic axis; if not, no pair has a
+// shift to add, and its code and shift are not read.
+template <bool Branch, bool Periodic>
 inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std::size_t k, std::size_t end,
                                    const PeriodicImages& images, const PairTable& table, ContactBlock& b) {
     std::size_t count = 0, apart = 0;
     for (; k < end && count < ContactBlock::capacity && apart < ContactBlock::apart_capacity; ++k) {
         const std::uint32_t i = pairs.first[k], j = pairs.second[k];
-        const Vec3 d = p.position[i] - p.position[j] + images[pairs.image[k]];
+        const Vec3 d = Periodic ? p.position[i] - p.position[j] + images[pairs.image[k]] : p.position[i] - p.position[j];
         const double distance2 = norm2(d);
         const double reach = p.radius[i] + p.radius[j];
         const bool touching = distance2 < reach * reach;
@@ -153,7 +157,16 @@ inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std:
     b.count = count;
     b.apart_count = apart;
     if constexpr (!Branch) {
-        for (std::size_t l = 0; l < count; ++l) copy_inputs(p, pairs, b.pair[l], table, b, l);
+        // One contact at a time: GCC 12 runs this loop on two contacts per
+        // instruction, loading each lane on its own and keeping the arrays'
+        // addresses on the stack, which is slower (docs/BENCHMARKS.md, "The
+        // kicks in one pass, the gather's copy one contact at a time").
+        // The empty asm hides how l runs, so the loop is not vectorised
+        // (GCC 12 has no pragma for that).
+        for (std::size_t l = 0; l < count; ++l) {
+            asm("" : "+r"(l));
+            copy_inputs(p, pairs, b.pair[l], table, b, l);
+        }
         for (std::size_t a = 0; a < apart; ++a)
             if (!pairs.history(b.apart[a]).is_zero()) pairs.set_history(b.apart[a], ContactHistory{});  // contact ended
     }
@@ -228,15 +241,22 @@ template <bool Record, class Model>
 void add_contact_forces(const ParticleStore& p, PairList& pairs, IndexRange range, const PeriodicImages& images,
                         const PairTable& table, const Model& model, double dt, Vec3* force, Vec3* torque,
                         std::vector<ContactRecord>& records) {
-    ContactBlock block;
-    bool all_touched = false;  // by the last block's pairs: then the branch on touching predicts well
-    for (std::size_t k = range.begin; k < range.end;) {
-        k = all_touched ? gather_contacts<true>(p, pairs, k, range.end, images, table, block)
-                        : gather_contacts<false>(p, pairs, k, range.end, images, table, block);
-        all_touched = block.apart_count == 0;
-        apply_contact_law(block, table.columns(), model, dt);
-        scatter_contacts<Record>(p, pairs, block, force, torque, records);
-    }
+    const auto loop = [&](auto periodic) {
+        constexpr bool Periodic = decltype(periodic)::value;
+        ContactBlock block;
+        bool all_touched = false;  // by the last block's pairs: then the branch on touching predicts well
+        for (std::size_t k = range.begin; k < range.end;) {
+            k = all_touched ? gather_contacts<true, Periodic>(p, pairs, k, range.end, images, table, block)
+                            : gather_contacts<false, Periodic>(p, pairs, k, range.end, images, table, block);
+            all_touched = block.apart_count == 0;
+            apply_contact_law(block, table.columns(), model, dt);
+            scatter_contacts<Record>(p, pairs, block, force, torque, records);
+        }
+    };
+    if (images.periodic())
+        loop(std::true_type{});
+    else
+        loop(std::false_type{});
 }
 
 // The same for a model given at run time: the paper's model (every term on)

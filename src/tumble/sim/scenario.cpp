@@ -93,7 +93,7 @@ OverlapReport largest_overlap(const Scenario& s) {
     const ParticleStore store = make_particle_store(s);
     PairList pairs;
     cell_list_pairs(store, s.domain, 0.0, pairs);
-    const PeriodicImages images(s.domain.length());
+    const PeriodicImages images(s.domain);
     OverlapReport worst;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const std::uint32_t i = pairs.first[k], j = pairs.second[k];

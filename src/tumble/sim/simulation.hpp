@@ -129,7 +129,10 @@ private:
     void add_wall_forces(IndexRange r);
     // Where each prescribed motion is at a time (for move_kinematic()).
     std::vector<MotionNow> motions_now(double time) const;
-    void step(Team& team, std::int64_t next);
+    // What follows a step in its team: another step, or the end of the
+    // team (then the step ends at v(t + dt)).
+    enum class After { step, stop };
+    void step(Team& team, std::int64_t next, bool drifted, After after);
     void locate_kinds(Team& team);
     // The neighbour list anew (shared among ranks: migration and ghosts too).
     // `keep_histories`: histories_ already holds the histories (a state
