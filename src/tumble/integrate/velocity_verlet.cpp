@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "tumble/integrate/velocity_verlet.hpp"
 
+#include <algorithm>
+#include <type_traits>
+
 #include "tumble/core/isa.hpp"
 
 namespace tumble {
@@ -57,19 +60,26 @@ void kick_range(IndexRange r, const std::int32_t* __restrict motion, const doubl
 // The particles of motion k in range r turned about its axis from their
 // reference positions (Rodrigues) and carried along it: x = axis point +
 // arm + periodic image shift, v = velocity + omega u x arm, omega u. Others
-// keep their values, again written as a choice.
+// keep their values, again written as a choice. With All (every particle of
+// r has motion k, as the drum's wall spheres) there is no choice to make:
+// GCC then runs the loop on several particles per instruction, which it
+// does not with the choice (the loads it would mask), nor without the
+// motion copied (docs/BENCHMARKS.md, "The wall's motion several spheres per
+// instruction").
+template <bool All>
 void move_range(IndexRange r, std::int32_t k, const MotionNow& m, const std::int32_t* __restrict motion,
                 const double* __restrict reference, const double* __restrict image_shift,
                 double* __restrict position, double* __restrict velocity, double* __restrict angular_velocity,
                 double* __restrict force, double* __restrict torque) {
-    const Vec3 spin = m.angular_velocity * m.turn.u;
+    const MotionNow now = m;  // a copy: GCC cannot tell that no array written here holds m
+    const Vec3 spin = now.angular_velocity * now.turn.u;
     for (std::size_t i = r.begin; i < r.end; ++i) {
-        const bool mine = motion[i] == k;
+        const bool mine = All || motion[i] == k;
         const Vec3 from{reference[3 * i], reference[3 * i + 1], reference[3 * i + 2]};
         const Vec3 shift{image_shift[3 * i], image_shift[3 * i + 1], image_shift[3 * i + 2]};
-        const Vec3 arm = rotate(from - m.start_axis_point, m.turn);
-        const Vec3 x = m.axis_point + arm + shift;
-        const Vec3 v = m.velocity + m.angular_velocity * cross(m.turn.u, arm);
+        const Vec3 arm = rotate(from - now.start_axis_point, now.turn);
+        const Vec3 x = now.axis_point + arm + shift;
+        const Vec3 v = now.velocity + now.angular_velocity * cross(now.turn.u, arm);
         const double xs[3] = {x.x, x.y, x.z}, vs[3] = {v.x, v.y, v.z}, spins[3] = {spin.x, spin.y, spin.z};
         for (std::size_t c = 0; c < 3; ++c) {
             position[3 * i + c] = mine ? xs[c] : position[3 * i + c];
@@ -106,11 +116,18 @@ void kick_kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, doub
 }
 
 void move_kinematic(ParticleStore& p, const std::vector<MotionNow>& now, IndexRange r) {
+    const auto move = [&](auto all, std::size_t k) {
+        move_range<decltype(all)::value>(r, static_cast<std::int32_t>(k), now[k], p.motion.data(),
+                                         &p.reference_position.data()->x, &p.image_shift.data()->x,
+                                         &p.position.data()->x, &p.velocity.data()->x,
+                                         &p.angular_velocity.data()->x, &p.force.data()->x, &p.torque.data()->x);
+    };
+    const bool one_motion = now.size() == 1 && std::all_of(p.motion.begin() + static_cast<std::ptrdiff_t>(r.begin),
+                                                           p.motion.begin() + static_cast<std::ptrdiff_t>(r.end),
+                                                           [](std::int32_t m) { return m == 0; });
     run_for_isa([&] {
-        for (std::size_t k = 0; k < now.size(); ++k)
-            move_range(r, static_cast<std::int32_t>(k), now[k], p.motion.data(), &p.reference_position.data()->x,
-                       &p.image_shift.data()->x, &p.position.data()->x, &p.velocity.data()->x,
-                       &p.angular_velocity.data()->x, &p.force.data()->x, &p.torque.data()->x);
+        if (one_motion) return move(std::true_type{}, 0);
+        for (std::size_t k = 0; k < now.size(); ++k) move(std::false_type{}, k);
     });
 }
 
