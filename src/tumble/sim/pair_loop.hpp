@@ -121,8 +121,8 @@ inline void copy_inputs(const ParticleStore& p, const PairList& pairs, std::size
 //     block's next free lane, which only a touching pair keeps (`count +=
 //     touching`), and lists the pairs apart alike (either list full ends
 //     the block); the second copies the rest into the lanes kept. The
-//     pairs apart then drop their history, where they have one (rarely:
-//     the contacts that ended this step).
+//     pairs apart then drop their history (which only the contacts that
+//     ended this step have).
 //
 // Periodic: whether the domain has a periodic axis; if not, no pair has a
 // shift to add, and its code and shift are not read.
@@ -167,8 +167,15 @@ inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std:
             asm("" : "+r"(l));
             copy_inputs(p, pairs, b.pair[l], table, b, l);
         }
-        for (std::size_t a = 0; a < apart; ++a)
-            if (!pairs.history(b.apart[a]).is_zero()) pairs.set_history(b.apart[a], ContactHistory{});  // contact ended
+        // The pairs apart: every one's history zeroed, without reading it
+        // first (rarely is there one to drop: the contacts that ended this
+        // step); the stores cost less than the loads and the test
+        // (docs/BENCHMARKS.md, "The pairs apart zeroed without a look").
+        // One at a time, as the copy above.
+        for (std::size_t a = 0; a < apart; ++a) {
+            asm("" : "+r"(a));
+            pairs.set_history(b.apart[a], ContactHistory{});
+        }
     }
     return k;
 }
