@@ -64,8 +64,8 @@ void kick_range(IndexRange r, const std::int32_t* __restrict motion, const doubl
 // r has motion k, as the drum's wall spheres) there is no choice to make:
 // GCC then runs the loop on several particles per instruction, which it
 // does not with the choice (the loads it would mask), nor without the
-// motion copied (docs/BENCHMARKS.md, "The wall's motion several spheres per
-// instruction").
+// motion copied (docs/BENCHMARKS.md, "The wall's motion on several spheres
+// per instruction, the pairs apart zeroed without a look").
 template <bool All>
 void move_range(IndexRange r, std::int32_t k, const MotionNow& m, const std::int32_t* __restrict motion,
                 const double* __restrict reference, const double* __restrict image_shift,
