@@ -160,6 +160,31 @@ TEST(Neighbor, CellListMatchesBruteForceInTheSmallestPeriodicBox) {
     expect_same_pairs(random_store(d, 150, r_min, r_max, 5), d, skin);
 }
 
+// The store as the Verlet list leaves it at every build (sorted by cell,
+// the free particles first): the search then takes the particles of a row
+// of cells as one stretch of the store, which the shuffled stores above
+// never reach. The order is checked to be the search's own (cell_order() of
+// the sorted store is the identity), so that the test cannot pass on the
+// cell-by-cell path alone.
+ParticleStore in_cell_order(const ParticleStore& shuffled, const Domain& domain) {
+    ParticleStore p = shuffled;
+    p.permute(cell_order(shuffled, domain, skin));
+    std::vector<std::uint32_t> identity(p.size());
+    std::iota(identity.begin(), identity.end(), 0u);
+    EXPECT_EQ(cell_order(p, domain, skin), identity);
+    return p;
+}
+
+TEST(Neighbor, CellListMatchesBruteForceOnAStoreInCellOrder) {
+    for (const auto periodic : {std::array<bool, 3>{false, false, false}, std::array<bool, 3>{true, false, false},
+                                std::array<bool, 3>{true, true, true}}) {
+        const Domain d = box(edge, periodic);
+        expect_same_pairs(in_cell_order(random_store(d, 1000, r_min, r_max, 12), d), d, skin);
+    }
+    const Domain smallest = box(10e-3, {true, true, true});  // every row of cells wraps somewhere
+    expect_same_pairs(in_cell_order(random_store(smallest, 150, r_min, r_max, 13), smallest), smallest, skin);
+}
+
 TEST(Neighbor, CellListRefusesAPeriodicAxisShorterThanThreeRanges) {
     const Domain d = box(9e-3, {false, true, false});  // 9 mm < 3 x 3.3 mm
     const ParticleStore p = random_store(d, 20, r_min, r_max, 6);
@@ -173,22 +198,25 @@ TEST(Neighbor, CellListRefusesAPeriodicAxisShorterThanThreeRanges) {
 // the sort order are those of one chunk, element for element (each chunk
 // counts and places its own particles, the parts are joined in order). The
 // store is shuffled, with kinematic particles among the free ones, so that
-// the pairs of a part start anywhere.
+// the pairs of a part start anywhere, and then in cell order (the search's
+// path by rows of cells, whose check of the order spans the chunks).
 TEST(Neighbor, CellListAndOrderDoNotDependOnTheChunkCount) {
     for (const auto periodic : {std::array<bool, 3>{false, false, false}, std::array<bool, 3>{true, false, true}}) {
         const Domain d = box(edge, periodic);
-        const ParticleStore p = random_store(d, 1000, r_min, r_max, 11);
-        PairList one;
-        cell_list_pairs(p, d, skin, one);
-        ASSERT_GT(one.size(), p.size() / 4);  // pairs must exist, or the comparison proves nothing
-        const std::vector<std::uint32_t> order = cell_order(p, d, skin);
-        for (int chunks : {2, 3, 7}) {
-            PairList many;
-            cell_list_pairs(p, d, skin, many, chunks);
-            EXPECT_EQ(many.first, one.first) << chunks << " chunks";
-            EXPECT_EQ(many.second, one.second) << chunks << " chunks";
-            EXPECT_EQ(many.image, one.image) << chunks << " chunks";
-            EXPECT_EQ(cell_order(p, d, skin, chunks), order) << chunks << " chunks";
+        const ParticleStore shuffled = random_store(d, 1000, r_min, r_max, 11);
+        for (const ParticleStore& p : {shuffled, in_cell_order(shuffled, d)}) {
+            PairList one;
+            cell_list_pairs(p, d, skin, one);
+            ASSERT_GT(one.size(), p.size() / 4);  // pairs must exist, or the comparison proves nothing
+            const std::vector<std::uint32_t> order = cell_order(p, d, skin);
+            for (int chunks : {2, 3, 7}) {
+                PairList many;
+                cell_list_pairs(p, d, skin, many, chunks);
+                EXPECT_EQ(many.first, one.first) << chunks << " chunks";
+                EXPECT_EQ(many.second, one.second) << chunks << " chunks";
+                EXPECT_EQ(many.image, one.image) << chunks << " chunks";
+                EXPECT_EQ(cell_order(p, d, skin, chunks), order) << chunks << " chunks";
+            }
         }
     }
 }

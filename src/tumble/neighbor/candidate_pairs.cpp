@@ -114,6 +114,12 @@ struct CellGrid {
     std::size_t cells() const { return static_cast<std::size_t>(count[0]) * count[1] * count[2]; }
 };
 
+// The bin of particle i: its cell, the kinematic particles in a second set
+// of cells after the first, so that they come after all the free ones.
+std::uint32_t bin_of(const ParticleStore& p, const CellGrid& grid, std::size_t i) {
+    return static_cast<std::uint32_t>(grid.cell_of(p.position[i]) + (p.is_kinematic(i) ? grid.cells() : 0));
+}
+
 double largest_radius(const std::vector<CellSearch::Extent>& extents) {
     double r = 0.0;
     for (const CellSearch::Extent& e : extents) r = std::max(r, e.largest_radius);
@@ -149,6 +155,7 @@ void CellSearch::measure(const ParticleStore& p, Team& team) {
         parts_.resize(extents_.size());
         count_.resize(extents_.size());
         chunk_total_.resize(extents_.size());
+        chunk_in_order_.resize(extents_.size());
         key_.resize(p.size());
         members_.resize(p.size());
     });
@@ -222,12 +229,9 @@ void CellSearch::sort_order(const ParticleStore& p, const Domain& domain, double
                             std::vector<std::uint32_t>& order) {
     measure(p, team);
     const CellGrid grid(extents_, p.size(), domain, 2.0 * largest_radius(extents_) + skin);
-    // Bin: the cell, the kinematic particles in a second set of cells after
-    // the first, so that they come after all the free ones.
     team.each([&](int c) {
         const IndexRange r = team.range(c, p.size());
-        for (std::size_t i = r.begin; i < r.end; ++i)
-            key_[i] = static_cast<std::uint32_t>(grid.cell_of(p.position[i]) + (p.is_kinematic(i) ? grid.cells() : 0));
+        for (std::size_t i = r.begin; i < r.end; ++i) key_[i] = bin_of(p, grid, i);
         if (c == 0) order.resize(p.size());
     });
     counting_sort(p.size(), 2 * grid.cells(), team, order);
@@ -237,11 +241,32 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
                             Team& team, PairList& out) {
     measure(p, team);
     const CellGrid grid(extents_, p.size(), domain, 2.0 * largest_radius(extents_) + skin);
+    const std::size_t cells = grid.cells();
+    // Whether the store is in the order of its bins, as cell_order() leaves
+    // it (the Verlet list sorts it so before every search, unless told not
+    // to): then the particles of a bin are a stretch of the store, and
+    // those of a row of bins too. Each chunk looks at its part, and at its
+    // first particle's bin against that of the particle before.
     team.each([&](int c) {
         const IndexRange r = team.range(c, p.size());
-        for (std::size_t i = r.begin; i < r.end; ++i) key_[i] = static_cast<std::uint32_t>(grid.cell_of(p.position[i]));
+        bool in_order = true;
+        for (std::size_t i = r.begin; i < r.end; ++i) {
+            key_[i] = bin_of(p, grid, i);
+            in_order = in_order && (i == r.begin ? i == 0 || bin_of(p, grid, i - 1) <= key_[i] : key_[i - 1] <= key_[i]);
+        }
+        chunk_in_order_[static_cast<std::size_t>(c)] = in_order;
     });
-    counting_sort(p.size(), grid.cells(), team, members_);
+    in_order_ = std::all_of(chunk_in_order_.begin(), chunk_in_order_.end(), [](char in_order) { return in_order; });
+    // If not (an MPI rank's ghosts follow its own spheres, or the store was
+    // sorted in an older grid), the bins are the cells alone, free and
+    // kinematic particles together: fewer bins to look into one by one.
+    if (!in_order_)
+        team.each([&](int c) {
+            const IndexRange r = team.range(c, p.size());
+            for (std::size_t i = r.begin; i < r.end; ++i)
+                if (key_[i] >= cells) key_[i] -= static_cast<std::uint32_t>(cells);
+        });
+    counting_sort(p.size(), (in_order_ ? 2 : 1) * cells, team, members_);
     // A pair has a free particle and j > i: no pair starts after the last
     // free particle (with the store in cell_order(), the kinematic ones).
     std::size_t free_end = 0, first_kinematic = SIZE_MAX;
@@ -255,7 +280,7 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
     // kinematic particle elsewhere is passed over (on a rank of the long
     // drum, half its spheres are wall spheres, most of them far from a ghost).
     team.one([&] {
-        near_late_free_.assign(grid.cells(), 0);
+        near_late_free_.assign(cells, 0);
         for (std::size_t j = first_kinematic; j < free_end; ++j)
             if (!p.is_kinematic(j)) grid.each_neighbor(p.position[j], [&](std::size_t cell, const int*) { near_late_free_[cell] = 1; });
     });
@@ -268,59 +293,81 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
         // The candidates j > i of one particle i, as j << 8 | image code
         // (one code per j: a cell is one of the 27 around i only once).
         std::vector<std::uint64_t>& near = part.near;
-        // The cells around the last particle's cell: the store is sorted by
-        // cell, so the particles of a cell follow each other and share them.
-        struct Around {
-            std::size_t cell;
+        // The cells around the last particle's cell, as runs of cells next
+        // to each other in the grid's numbering (along x) seen through the
+        // same periodic image: 9 runs of 3 inside the grid. The store is
+        // sorted by cell, so the particles of a cell follow each other and
+        // share them.
+        struct Run {
+            std::size_t first, last;  // cells
             std::uint8_t code;
             Vec3 shift;
         };
-        std::array<Around, 27> around;
-        std::size_t arounds = 0, around_of = SIZE_MAX;
+        std::array<Run, 27> runs;
+        std::size_t run_count = 0, runs_of = SIZE_MAX;
         const Vec3* x = p.position.data();
         const double* radius = p.radius.data();
-        const std::int32_t* motion = p.motion.data();
+        const std::uint32_t* member = members_.data();
+        std::size_t count = 0;
+        // Members [from, to) of bins, all after i: every one is written, and
+        // kept (count moves on) if it is in range and not a second kinematic
+        // particle (`kinds`: i is kinematic, the bins hold both kinds); no
+        // branch on the outcome, which is mostly "no" (one in 12 on the
+        // long drum).
+        const auto scan = [&](const Vec3& xi, double ri, bool kinds, std::size_t from, std::size_t to, const Run& run) {
+            if (from >= to) return;
+            if (near.size() < count + (to - from)) near.resize(2 * (count + (to - from)));
+            std::uint64_t* candidate = near.data();
+            for (std::size_t m = from; m < to; ++m) {
+                const std::uint32_t j = member[m];
+                const Vec3 d = xi - x[j] - run.shift;
+                const double range_ij = ri + radius[j] + skin;
+                candidate[count] = std::uint64_t{j} << 8 | run.code;
+                count += norm2(d) < range_ij * range_ij && !(kinds && p.is_kinematic(j)) ? 1 : 0;
+            }
+        };
         const IndexRange range = team.range(c, std::min(free_end, first_end));
         for (auto i = static_cast<std::uint32_t>(range.begin); i < range.end; ++i) {
             const Vec3 xi = x[i];
             const double ri = radius[i];
-            const bool i_kinematic = motion[i] != free_motion;
-            if (i_kinematic && !near_late_free_[key_[i]]) continue;
-            if (key_[i] != around_of) {
-                around_of = key_[i];
-                arounds = 0;
-                grid.each_neighbor(xi, [&](std::size_t cell, const int* s) {
+            const bool i_kinematic = p.is_kinematic(i);
+            const std::size_t cell = key_[i] >= cells ? key_[i] - cells : key_[i];
+            if (i_kinematic && !near_late_free_[cell]) continue;
+            if (cell != runs_of) {
+                runs_of = cell;
+                run_count = 0;
+                grid.each_neighbor(xi, [&](std::size_t around, const int* s) {
                     // d = X_i - X_j + shift: j sits at X_j + s L seen from i,
                     // so shift = -s L, the image code of (-s).
-                    around[arounds++] = {cell, image_code(-s[0], -s[1], -s[2]), Vec3{s[0] * L.x, s[1] * L.y, s[2] * L.z}};
+                    const std::uint8_t code = image_code(-s[0], -s[1], -s[2]);
+                    if (run_count > 0 && runs[run_count - 1].last + 1 == around && runs[run_count - 1].code == code)
+                        runs[run_count - 1].last = around;
+                    else
+                        runs[run_count++] = {around, around, code, Vec3{s[0] * L.x, s[1] * L.y, s[2] * L.z}};
                 });
             }
-            std::size_t count = 0;
-            for (std::size_t a = 0; a < arounds; ++a) {
-                // A cell's members are in ascending index (a stable counting
-                // sort): a cell with none after i is passed over, and those up
-                // to i are skipped at once.
-                const std::uint32_t* m = members_.data() + start_[around[a].cell];
-                const std::uint32_t* end = members_.data() + start_[around[a].cell + 1];
-                if (m == end || end[-1] <= i) continue;
-                if (*m <= i) m = std::upper_bound(m, end, i);
-                const auto room = count + static_cast<std::size_t>(end - m);
-                if (near.size() < room) near.resize(2 * room);
-                // Every member is written, and kept (count moves on) if it
-                // is in range and not a second kinematic particle: no
-                // branch on the outcome, which is mostly "no" (one in 12 on
-                // the long drum).
-                std::uint64_t* out = near.data();
-                const Vec3 shift = around[a].shift;
-                const std::uint64_t code = around[a].code;
-                for (; m < end; ++m) {
-                    const std::uint32_t j = *m;
-                    const Vec3 d = xi - x[j] - shift;
-                    const double range_ij = ri + radius[j] + skin;
-                    const bool pair = norm2(d) < range_ij * range_ij && !(i_kinematic && motion[j] != free_motion);
-                    out[count] = std::uint64_t{j} << 8 | code;
-                    count += pair ? 1 : 0;
-                }
+            count = 0;
+            if (in_order_) {
+                // members_[m] = m: a run's particles of one kind are one
+                // stretch of the store, those after i at once. The free
+                // ones, then the kinematic ones (none for a kinematic i).
+                for (std::size_t bins = 0; bins < (i_kinematic ? 1u : 2u) * cells; bins += cells)
+                    for (std::size_t r = 0; r < run_count; ++r)
+                        scan(xi, ri, false, std::max<std::size_t>(start_[bins + runs[r].first], i + 1),
+                             start_[bins + runs[r].last + 1], runs[r]);
+            } else {
+                // Cell by cell, each in ascending index (a stable counting
+                // sort): a cell with none after i is passed over, and those
+                // up to i are skipped at once.
+                for (std::size_t r = 0; r < run_count; ++r)
+                    for (std::size_t bin = runs[r].first; bin <= runs[r].last; ++bin) {
+                        const std::uint32_t* m = member + start_[bin];
+                        const std::uint32_t* end = member + start_[bin + 1];
+                        if (m == end || end[-1] <= i) continue;
+                        if (*m <= i) m = std::upper_bound(m, end, i);
+                        scan(xi, ri, i_kinematic, static_cast<std::size_t>(m - member),
+                             static_cast<std::size_t>(end - member), runs[r]);
+                    }
             }
             // Ascending j within each i: the pair order does not depend on cell layout.
             std::sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(count));
