@@ -185,6 +185,44 @@ TEST(Neighbor, CellListMatchesBruteForceOnAStoreInCellOrder) {
     expect_same_pairs(in_cell_order(random_store(smallest, 150, r_min, r_max, 13), smallest), smallest, skin);
 }
 
+// An MPI rank's search (CellSearch::find_pairs with first_end): its own
+// spheres, then ghosts, some beyond the own spheres' bounding box, which
+// the grid spans. Every pair with an own sphere is found, no pair of two
+// ghosts, whether the own spheres are in cell order (runs of cells) or
+// shuffled (cell by cell), on 1 and 3 chunks.
+TEST(Neighbor, CellListOfARankPairsItsOwnSpheresWithGhostsBeyondItsGrid) {
+    for (const auto periodic : {std::array<bool, 3>{false, false, false}, std::array<bool, 3>{true, true, false}}) {
+        const Domain d = box(edge, periodic);
+        const ParticleStore cloud = random_store(d, 1000, r_min, r_max, 14);
+        const double cut = d.lo.z + 0.6 * edge;  // own below, ghosts in the 3 interaction ranges above
+        std::vector<std::uint32_t> own_indices;
+        for (std::uint32_t i = 0; i < cloud.size(); ++i)
+            if (cloud.position[i].z < cut) own_indices.push_back(i);
+        ParticleStore own = cloud;
+        own.keep(own_indices);
+        for (const ParticleStore& mine : {own, in_cell_order(own, d)}) {
+            ParticleStore p = mine;
+            std::set<std::int64_t> own_ids(p.id.begin(), p.id.end());
+            for (std::uint32_t i = 0; i < cloud.size(); ++i)
+                if (cloud.position[i].z >= cut && cloud.position[i].z < cut + 3 * (2 * r_max + skin)) p.append(cloud, i);
+            const std::size_t first_end = mine.size();
+            ASSERT_GT(p.size(), first_end + 50);  // ghosts must exist, or the test proves nothing
+            std::set<PairKey> expected;
+            for (const PairKey& k : reference_pairs(p, d, skin))
+                if (own_ids.count(std::get<0>(k)) || own_ids.count(std::get<1>(k))) expected.insert(k);
+            ASSERT_GT(expected.size(), first_end / 4);
+            for (int chunks : {1, 3}) {
+                PairList found;
+                CellSearch search;
+                run_in_team(chunks, [&](Team& team) { search.find_pairs(p, d, skin, first_end, team, found); });
+                EXPECT_EQ(key_set(p, found), expected) << chunks << " chunks";
+                EXPECT_EQ(found.size(), expected.size()) << chunks << " chunks";
+                for (std::size_t k = 0; k < found.size(); ++k) EXPECT_LT(found.first[k], first_end);
+            }
+        }
+    }
+}
+
 TEST(Neighbor, CellListRefusesAPeriodicAxisShorterThanThreeRanges) {
     const Domain d = box(9e-3, {false, true, false});  // 9 mm < 3 x 3.3 mm
     const ParticleStore p = random_store(d, 20, r_min, r_max, 6);

@@ -15,9 +15,10 @@ bool both_kinematic(const ParticleStore& p, std::size_t i, std::size_t j) {
     return p.is_kinematic(i) && p.is_kinematic(j);
 }
 
-// The cell grid: on periodic axes it spans the box, on open axes the
-// particles' bounding box (the union of the chunks' extents). Cells are at
-// least `cutoff` wide.
+// The cell grid: on periodic axes it spans the box, on open axes the own
+// particles' bounding box (the union of the chunks' extents; an MPI rank's
+// ghosts outside it are put in the cells at its edge, see
+// CellSearch::measure()). Cells are at least `cutoff` wide.
 struct CellGrid {
     Vec3 origin;
     Vec3 cell_size;
@@ -29,13 +30,13 @@ struct CellGrid {
         Vec3 lo = domain.lo, hi = domain.hi;
         bool any = false, finite = true;
         for (const CellSearch::Extent& e : extents) {
+            finite = finite && e.finite;
             if (e.empty) continue;
             for (int k = 0; k < 3; ++k) {
                 if (domain.periodic[k]) continue;
                 lo[k] = any ? std::min(lo[k], e.lo[k]) : e.lo[k];
                 hi[k] = any ? std::max(hi[k], e.hi[k]) : e.hi[k];
             }
-            finite = finite && e.finite;
             any = true;
         }
         for (int k = 0; k < 3; ++k) {
@@ -114,10 +115,12 @@ struct CellGrid {
     std::size_t cells() const { return static_cast<std::size_t>(count[0]) * count[1] * count[2]; }
 };
 
-// The bin of particle i: its cell, the kinematic particles in a second set
-// of cells after the first, so that they come after all the free ones.
-std::uint32_t bin_of(const ParticleStore& p, const CellGrid& grid, std::size_t i) {
-    return static_cast<std::uint32_t>(grid.cell_of(p.position[i]) + (p.is_kinematic(i) ? grid.cells() : 0));
+// The bin of particle i: its cell, in the first set of cells for a free
+// own particle, in the second for a kinematic one (so that they come after
+// all the free ones), in the third for a ghost (i >= own_end).
+[[gnu::always_inline]] inline std::uint32_t bin_of(const ParticleStore& p, const CellGrid& grid, std::size_t i, std::size_t own_end) {
+    const std::size_t set = i >= own_end ? 2 : p.is_kinematic(i) ? 1 : 0;
+    return static_cast<std::uint32_t>(grid.cell_of(p.position[i]) + set * grid.cells());
 }
 
 double largest_radius(const std::vector<CellSearch::Extent>& extents) {
@@ -149,7 +152,7 @@ void brute_force_pairs(const ParticleStore& p, const Domain& domain, double skin
     }
 }
 
-void CellSearch::measure(const ParticleStore& p, Team& team) {
+void CellSearch::measure(const ParticleStore& p, std::size_t own_end, Team& team) {
     team.one([&] {
         extents_.resize(static_cast<std::size_t>(team.chunks()));
         parts_.resize(extents_.size());
@@ -162,13 +165,15 @@ void CellSearch::measure(const ParticleStore& p, Team& team) {
     team.each([&](int c) {
         const IndexRange r = team.range(c, p.size());
         Extent e;
-        e.empty = r.begin == r.end;
+        e.empty = r.begin >= std::min(r.end, own_end);
         if (!e.empty) e.lo = e.hi = p.position[r.begin];
         for (std::size_t i = r.begin; i < r.end; ++i) {
             const Vec3& x = p.position[i];
             for (int k = 0; k < 3; ++k) {
-                e.lo[k] = std::min(e.lo[k], x[k]);
-                e.hi[k] = std::max(e.hi[k], x[k]);
+                if (i < own_end) {
+                    e.lo[k] = std::min(e.lo[k], x[k]);
+                    e.hi[k] = std::max(e.hi[k], x[k]);
+                }
                 e.finite = e.finite && std::isfinite(x[k]);  // min and max pass over a NaN
             }
             e.largest_radius = std::max(e.largest_radius, p.radius[i]);
@@ -227,11 +232,11 @@ void CellSearch::counting_sort(std::size_t particles, std::size_t bins, Team& te
 
 void CellSearch::sort_order(const ParticleStore& p, const Domain& domain, double skin, Team& team,
                             std::vector<std::uint32_t>& order) {
-    measure(p, team);
+    measure(p, p.size(), team);
     const CellGrid grid(extents_, p.size(), domain, 2.0 * largest_radius(extents_) + skin);
     team.each([&](int c) {
         const IndexRange r = team.range(c, p.size());
-        for (std::size_t i = r.begin; i < r.end; ++i) key_[i] = bin_of(p, grid, i);
+        for (std::size_t i = r.begin; i < r.end; ++i) key_[i] = bin_of(p, grid, i, p.size());
         if (c == 0) order.resize(p.size());
     });
     counting_sort(p.size(), 2 * grid.cells(), team, order);
@@ -239,34 +244,41 @@ void CellSearch::sort_order(const ParticleStore& p, const Domain& domain, double
 
 void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double skin, std::size_t first_end,
                             Team& team, PairList& out) {
-    measure(p, team);
-    const CellGrid grid(extents_, p.size(), domain, 2.0 * largest_radius(extents_) + skin);
+    // The grid spans the own particles (first_end), the grid in which
+    // cell_order() sorted them; the ghosts after them are binned apart.
+    measure(p, first_end, team);
+    const CellGrid grid(extents_, first_end, domain, 2.0 * largest_radius(extents_) + skin);
     const std::size_t cells = grid.cells();
-    // Whether the store is in the order of its bins, as cell_order() leaves
-    // it (the Verlet list sorts it so before every search, unless told not
-    // to): then the particles of a bin are a stretch of the store, and
-    // those of a row of bins too. Each chunk looks at its part, and at its
-    // first particle's bin against that of the particle before.
+    const bool ghosts = first_end < p.size();
+    // Whether the own particles are in the order of their bins, as
+    // cell_order() leaves them (the Verlet list, and an MPI rank for its own
+    // spheres, sort them so before every search, unless told not to): then
+    // the particles of a bin are a stretch of the store, and those of a row
+    // of bins too. Each chunk looks at its part, and at its first
+    // particle's bin against that of the particle before.
     team.each([&](int c) {
         const IndexRange r = team.range(c, p.size());
         bool in_order = true;
         for (std::size_t i = r.begin; i < r.end; ++i) {
-            key_[i] = bin_of(p, grid, i);
-            in_order = in_order && (i == r.begin ? i == 0 || bin_of(p, grid, i - 1) <= key_[i] : key_[i - 1] <= key_[i]);
+            key_[i] = bin_of(p, grid, i, first_end);
+            if (i >= first_end || i == 0) continue;
+            in_order = in_order && (i == r.begin ? bin_of(p, grid, i - 1, first_end) : key_[i - 1]) <= key_[i];
         }
         chunk_in_order_[static_cast<std::size_t>(c)] = in_order;
     });
     in_order_ = std::all_of(chunk_in_order_.begin(), chunk_in_order_.end(), [](char in_order) { return in_order; });
-    // If not (an MPI rank's ghosts follow its own spheres, or the store was
-    // sorted in an older grid), the bins are the cells alone, free and
-    // kinematic particles together: fewer bins to look into one by one.
+    // If not (sorted in an older grid: sort_every above 1), the own
+    // particles' bins are their cells alone, free and kinematic together:
+    // fewer bins to look into one by one. The ghosts then take the second
+    // set.
     if (!in_order_)
         team.each([&](int c) {
             const IndexRange r = team.range(c, p.size());
             for (std::size_t i = r.begin; i < r.end; ++i)
-                if (key_[i] >= cells) key_[i] -= static_cast<std::uint32_t>(cells);
+                key_[i] = static_cast<std::uint32_t>(key_[i] % cells + (i >= first_end ? cells : 0));
         });
-    counting_sort(p.size(), (in_order_ ? 2 : 1) * cells, team, members_);
+    const std::size_t own_sets = in_order_ ? 2 : 1, ghost_bins = own_sets * cells;
+    counting_sort(p.size(), (own_sets + (ghosts ? 1 : 0)) * cells, team, members_);
     // A pair has a free particle and j > i: no pair starts after the last
     // free particle (with the store in cell_order(), the kinematic ones).
     std::size_t free_end = 0, first_kinematic = SIZE_MAX;
@@ -331,7 +343,7 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
             const Vec3 xi = x[i];
             const double ri = radius[i];
             const bool i_kinematic = p.is_kinematic(i);
-            const std::size_t cell = key_[i] >= cells ? key_[i] - cells : key_[i];
+            const std::size_t cell = key_[i] % cells;
             if (i_kinematic && !near_late_free_[cell]) continue;
             if (cell != runs_of) {
                 runs_of = cell;
@@ -348,8 +360,8 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
             }
             count = 0;
             if (in_order_) {
-                // members_[m] = m: a run's particles of one kind are one
-                // stretch of the store, those after i at once. The free
+                // members_[m] = m: a run's own particles of one kind are
+                // one stretch of the store, those after i at once. The free
                 // ones, then the kinematic ones (none for a kinematic i).
                 for (std::size_t bins = 0; bins < (i_kinematic ? 1u : 2u) * cells; bins += cells)
                     for (std::size_t r = 0; r < run_count; ++r)
@@ -369,6 +381,11 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
                              static_cast<std::size_t>(end - member), runs[r]);
                     }
             }
+            // The ghosts, all after i: a run's are one stretch of members_.
+            if (ghosts)
+                for (std::size_t r = 0; r < run_count; ++r)
+                    scan(xi, ri, i_kinematic, start_[ghost_bins + runs[r].first], start_[ghost_bins + runs[r].last + 1],
+                         runs[r]);
             // Ascending j within each i: the pair order does not depend on cell layout.
             std::sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(count));
             for (std::size_t k = 0; k < count; ++k) {

@@ -53,7 +53,7 @@ public:
 
     // What a chunk of the particles spans (for the cell grid).
     struct Extent {
-        bool empty = true;
+        bool empty = true;  // no own particle (lo, hi unset)
         Vec3 lo, hi;
         bool finite = true;
         double largest_radius = 0.0;
@@ -76,15 +76,19 @@ private:
     // The particles 0 .. particles-1 sorted by bin (key_, set before),
     // stably, into `sorted`; start_ gets each bin's first place in it.
     void counting_sort(std::size_t particles, std::size_t bins, Team& team, std::vector<std::uint32_t>& sorted);
-    // Sizes the arrays; extents_ of each chunk of the particles.
-    void measure(const ParticleStore& p, Team& team);
+    // Sizes the arrays; extents_ of each chunk of the particles, their
+    // bounding box that of the first own_end only (an MPI rank's own
+    // spheres: the grid is then the one its own were sorted in, and a
+    // ghost outside it falls in a cell at its edge, which is next to the
+    // cell of every own sphere within one cell width of it).
+    void measure(const ParticleStore& p, std::size_t own_end, Team& team);
 
     std::vector<Extent> extents_;                  // per chunk
     std::vector<std::uint32_t> key_;               // per particle: its bin
     std::vector<std::vector<std::uint32_t>> count_;  // per chunk, per bin: its particles, then where they go
     std::vector<std::size_t> chunk_total_;         // per chunk of the bins: the particles in them
     std::vector<char> chunk_in_order_;             // per chunk: its particles' bins do not decrease
-    bool in_order_ = false;                        // the store in bin order: members_[k] = k (find_pairs)
+    bool in_order_ = false;                        // the own particles in bin order: members_[k] = k (find_pairs)
     std::vector<std::uint32_t> start_, members_;   // per bin: first place in members_; particles by bin
     std::vector<std::uint8_t> near_late_free_;     // per cell: next to a free particle after a kinematic one
     std::vector<Part> parts_;                      // per chunk
