@@ -10,7 +10,8 @@
 # Options:
 #   --steps N     timed steps per run (default 10000, tumble bench's)
 #   --warmup N    untimed steps turning before them (default 2000)
-#   --repeats N   rounds; the table shows medians (default 3)
+#   --repeats N   rounds; the table shows medians (default 3), and the ratios
+#                 paired within each round with a 95 % t interval (2 or more)
 #   --np N        also N threads and N MPI ranks of one thread (tumble) and N MPI
 #                 ranks (LAMMPS); 1: single only (default 2)
 #   --turned R    start both codes from the settled bed turned R revolutions by
@@ -121,7 +122,7 @@ run_tumble() {  # round threads law [ranks]: N > 1 ranks of one thread each unde
         cat "$log.err" >&2
         die "tumble bench failed ($config, law $3), see $log.err"
     fi
-    python3 "$drum" tumble "$log" "$config" "$log.time" >> "$results"
+    python3 "$drum" tumble "$log" "$config" "$log.time" "$1" >> "$results"
     [[ -n "$dt" ]] || dt=$(python3 -c 'import json, sys; print(repr(json.loads(sys.argv[1])["dt"]))' "$(tail -1 "$log")")
     [[ -n "$skin" ]] || skin=$(python3 -c 'import json, sys; print(repr(json.loads(sys.argv[1])["skin"]))' "$(tail -1 "$log")")
 }
@@ -135,7 +136,7 @@ run_lammps() {  # round procs
         tail -5 "$log" >&2 || true
         die "LAMMPS failed ($2 procs), see $log"
     fi
-    python3 "$drum" lammps "$log" "$2 procs" "$log.time" >> "$results"
+    python3 "$drum" lammps "$log" "$2 procs" "$log.time" "$1" >> "$results"
 }
 
 procs=(1)

@@ -13,7 +13,8 @@
 #   --size N        lattice edge (repeatable; default 21)
 #   --steps N       timed steps per run (default 2000)
 #   --warmup N      untimed steps before them (default 200)
-#   --repeats N     rounds; the table shows medians (default 3)
+#   --repeats N     rounds; the table shows medians (default 3), and the ratios
+#                   paired within each round with a 95 % t interval (2 or more)
 #   --np N          also N threads (tumble) and N MPI ranks (peers); 1: single only (default 2)
 #   --peers-only    skip tumble
 #   --no-liggghts   skip LIGGGHTS
@@ -131,7 +132,7 @@ run_tumble() {  # size round threads
         cat "$log.err" >&2
         die "tumble bench failed (size $1, $3 threads), see $log.err"
     fi
-    python3 "$lib" tumble "$log" tumble "$label" "$log.time" >> "$results"
+    python3 "$lib" tumble "$log" tumble "$label" "$log.time" "$2" >> "$results"
 }
 
 run_peer() {  # size round config-name rolling np label code
@@ -149,7 +150,7 @@ run_peer() {  # size round config-name rolling np label code
         tail -5 "$log" >&2 || true
         die "$7 failed (size $1, $3), see $log"
     fi
-    python3 "$lib" liggghts "$log" "$7" "$6" "$log.time" >> "$results"
+    python3 "$lib" liggghts "$log" "$7" "$6" "$log.time" "$2" >> "$results"
 }
 
 # code|name|rolling|procs|label

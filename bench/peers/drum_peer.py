@@ -9,16 +9,18 @@ Standard library only.
         (DIR/snapshots/000000.csv) as a LAMMPS data file (atom_style sphere):
         type 1 material-1, 2 material-2, 3 the wall spheres; atom id = tumble
         id + 1; velocities and spins as tumble has them
-  drum_peer.py lammps LOG CONFIG TIMING    one JSON result line from a LAMMPS log
-  drum_peer.py tumble STDOUT CONFIG TIMING one JSON result line from `tumble bench --json`
-  drum_peer.py table RESULTS.jsonl         medians per configuration and the ratios
+  drum_peer.py lammps LOG CONFIG TIMING [ROUND]    one JSON result line from a LAMMPS log
+  drum_peer.py tumble STDOUT CONFIG TIMING [ROUND] one JSON result line from `tumble bench --json`
+  drum_peer.py table RESULTS.jsonl         medians per configuration and the ratios,
+                                           and the ratios round by round with intervals
 
 A result line has: code, law, config, procs (cores: threads x ranks; tumble
 also gives ranks), grains, steps, seconds,
 grain_updates_per_second (grains x timed steps / wall time of the timed
 steps), cpu_seconds (CPU time of the timed steps, all threads or ranks),
 kinetic_translational and kinetic_rotational (J, grains, at the end),
-contacts, neighbor_builds, and the whole process's cpu/wall (peerlib.py).
+contacts, neighbor_builds, the whole process's cpu/wall (peerlib.py), and
+the round it ran in (when given).
 law is LAMMPS's own for LAMMPS ("peer") and `tumble bench --law`'s for
 tumble: "drum" (the paper's) or "peer" (the deck's law: the same work).
 On a loaded machine grains x steps / cpu_seconds is the steadier measure
@@ -135,6 +137,27 @@ def split(r):
     return "ranks" if r["code"] == "lammps" or r.get("ranks", 1) > 1 else "threads"
 
 
+def print_rounds(rows):
+    """The ratios paired within each round (every round runs every
+    configuration once, one after the other), with their geometric mean and
+    95 % t interval (peerlib.ratio_interval): tumble against LAMMPS on as
+    many cores, and each code's several cores against its one."""
+    rounds = {}
+    for r in rows:
+        if "round" in r:
+            rounds.setdefault(r["round"], {})[(r["code"], r.get("law", "drum"), r["procs"], split(r))] = r
+    configs = sorted({k for runs in rounds.values() for k in runs}, key=lambda k: (k[0] != "tumble", k[1], k[2], k[3]))
+    pairs = []
+    for k in configs:
+        code, law, procs, how = k
+        if code == "tumble":
+            pairs.append((f"tumble {law} law, {procs} {how} / LAMMPS {procs}".replace("  ", " "), k,
+                          ("lammps", "peer", procs, "ranks" if procs > 1 else "")))
+        if procs > 1:
+            pairs.append((f"{code} {law} law, {procs} {how} / 1 core", k, (code, law, 1, "")))
+    peerlib.print_round_ratios(rounds, pairs, "grain_updates_per_second")
+
+
 def table(path):
     rows = [json.loads(l) for l in open(path, encoding="utf-8") if l.strip()]
     groups = {}
@@ -161,6 +184,7 @@ def table(path):
                     f"{rs[-1]['contacts']:.0f}", str(rs[-1]["neighbor_builds"]),
                     f"{wall[k] / wall[peer]:.2f}" if against else "-", f"{cpu[k] / cpu[peer]:.2f}" if against else "-"))
     peerlib.print_table(hdr, out)
+    print_rounds(rows)
     for (code, law, procs, how), rs in sorted(groups.items()):
         if procs > 1 and (code, law, 1, "") in wall:
             print(f"{code} ({law} law): {procs} {how} {wall[(code, law, procs, how)] / wall[(code, law, 1, '')]:.2f}x"
@@ -180,9 +204,12 @@ def table(path):
 def main(argv):
     if len(argv) == 4 and argv[1] == "data":
         write_data(argv[2], argv[3])
-    elif len(argv) == 5 and argv[1] in ("lammps", "tumble"):
+    elif len(argv) in (5, 6) and argv[1] in ("lammps", "tumble"):
         f = parse_lammps if argv[1] == "lammps" else parse_tumble
-        print(json.dumps(peerlib.add_timing(f(argv[2], argv[3]), argv[4])))
+        result = peerlib.add_timing(f(argv[2], argv[3]), argv[4])
+        if len(argv) == 6:
+            result["round"] = int(argv[5])
+        print(json.dumps(result))
     elif len(argv) == 3 and argv[1] == "table":
         table(argv[2])
     else:

@@ -5,9 +5,11 @@
   peerlib.py exec TIMING STDOUT STDERR -- CMD...
                                         run CMD, write {"wall", "cpu"} of the whole
                                         process tree to TIMING; exit status of CMD
-  peerlib.py liggghts LOG CODE CONFIG [TIMING]   one JSON result line from a LIGGGHTS log
-  peerlib.py tumble STDOUT CODE CONFIG [TIMING]  one JSON result line from `tumble bench --json`
-  peerlib.py table RESULTS.jsonl        the comparison table (medians per config)
+  peerlib.py liggghts LOG CODE CONFIG [TIMING [ROUND]]   one JSON result line from a LIGGGHTS
+                                        (or LAMMPS) log
+  peerlib.py tumble STDOUT CODE CONFIG [TIMING [ROUND]]  one JSON result line from `tumble bench --json`
+  peerlib.py table RESULTS.jsonl        the comparison table (medians per config), and the
+                                        ratios round by round with intervals
 
 cpu/wall of a whole process (setup and warm-up included) is the contention
 indicator: about 1 per process when it had a core to itself, lower when it
@@ -18,6 +20,7 @@ updates_per_second, contacts_per_particle, neighbor_builds, procs.
 updates/s = particles * steps / wall time of the timed run.
 """
 import json
+import math
 import os
 import re
 import resource
@@ -33,6 +36,49 @@ DANGEROUS = re.compile(r"Dangerous builds = (\d+)")
 MEMORY = re.compile(r"(?:Memory usage per processor = |Per MPI rank memory allocation \(min/avg/max\) = [0-9.]+ \| )"
                     r"([0-9.]+)")
 THERMO_HEAD = re.compile(r"^\s*Step\s+Atoms\s+KinEng\s+(c_)?rke\s+(c_)?zavg\s*$")  # LIGGGHTS, LAMMPS
+
+
+# Two-sided 95 % quantiles of Student's t for 1 to 30 degrees of freedom.
+T_975 = (12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160, 2.145, 2.131,
+         2.120, 2.110, 2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042)
+
+
+def ratio_interval(ratios):
+    """The geometric mean of ratios paired round by round (each from two runs
+    of the same round, so that the host's speed of the hour cancels), with its
+    95 % t interval on their logarithms: (mean, low, high); low and high are
+    None for fewer than 2 ratios."""
+    logs = [math.log(x) for x in ratios]
+    mean = statistics.fmean(logs)
+    if len(logs) < 2:
+        return math.exp(mean), None, None
+    dof = len(logs) - 1
+    half = (T_975[dof - 1] if dof <= len(T_975) else 1.96) * statistics.stdev(logs) / math.sqrt(len(logs))
+    return math.exp(mean), math.exp(mean - half), math.exp(mean + half)
+
+
+def fmt_interval(ratios):
+    mean, low, high = ratio_interval(ratios)
+    return f"{mean:.3f}" if low is None else f"{mean:.3f} [{low:.3f}, {high:.3f}]"
+
+
+def print_round_ratios(rounds, pairs, rate):
+    """The ratios of pairs of configurations within each round: rounds maps
+    a round to {configuration: result}, pairs lists (name, numerator
+    configuration, denominator configuration), rate names the result's
+    speed. Each ratio with the rounds that ran both, their geometric mean
+    and 95 % t interval (ratio_interval), median and values."""
+    out = []
+    for name, top, bottom in pairs:
+        ratios = [runs[top][rate] / runs[bottom][rate] for _, runs in sorted(rounds.items())
+                  if top in runs and bottom in runs]
+        if ratios:
+            out.append((name, str(len(ratios)), fmt_interval(ratios), f"{statistics.median(ratios):.3f}",
+                        " ".join(f"{x:.3f}" for x in ratios)))
+    if out:
+        print()
+        print_table(("round by round", "rounds", "geometric mean [95 % t]", "median", "by round"), out)
+        print()
 
 
 def fail(msg):
@@ -180,6 +226,20 @@ def table(path):
                     "?" if s["builds"] is None else str(s["builds"]),
                     "?" if s["memory"] is None else f"{s['memory']:.0f}", ratio))
     print_table(hdr, out)
+    rounds = {}  # (size, round): {(size, code, config, procs): result}
+    for r in rows:
+        if "round" in r:
+            rounds.setdefault((r["size"], r["round"]), {})[(r["size"], r["code"], r["config"], r.get("procs", 1))] = r
+    configs = sorted({k for runs in rounds.values() for k in runs}, key=lambda k: (k[0], k[1] != "tumble", k[1:]))
+    pairs = []
+    for size, code, config, procs in configs:
+        tumble = [k for k in configs if k[0] == size and k[1] == "tumble" and k[3] == procs]
+        one = [k for k in configs if k[0] == size and k[1] == "tumble" and k[3] == 1]
+        if code != "tumble" and tumble:
+            pairs.append((f"N={size}^3: tumble {tumble[0][2]} / {code} {config}", tumble[0], (size, code, config, procs)))
+        if code == "tumble" and procs > 1 and one:
+            pairs.append((f"N={size}^3: tumble {config} / {one[0][2]}", (size, code, config, procs), one[0]))
+    print_round_ratios(rounds, pairs, "updates_per_second")
     bad = [s for s in summary if s["lost"]]
     for s in bad:
         print(f"WARNING: {s['code']} {s['config']} N={s['particles']}: atom count changed during the run")
@@ -200,9 +260,12 @@ def table(path):
 def main(argv):
     if len(argv) >= 7 and argv[1] == "exec" and argv[5] == "--":
         sys.exit(run_timed(argv[2], argv[3], argv[4], argv[6:]))
-    elif len(argv) in (5, 6) and argv[1] in ("liggghts", "tumble"):
+    elif len(argv) in (5, 6, 7) and argv[1] in ("liggghts", "tumble"):
         f = parse_liggghts if argv[1] == "liggghts" else parse_tumble
-        print(json.dumps(add_timing(f(argv[2], argv[3], argv[4]), argv[5] if len(argv) == 6 else None)))
+        result = add_timing(f(argv[2], argv[3], argv[4]), argv[5] if len(argv) >= 6 else None)
+        if len(argv) == 7:
+            result["round"] = int(argv[6])
+        print(json.dumps(result))
     elif len(argv) == 3 and argv[1] == "table":
         table(argv[2])
     else:
