@@ -151,7 +151,7 @@ def print_rounds(rows):
     for k in configs:
         code, law, procs, how = k
         if code == "tumble":
-            pairs.append((f"tumble {law} law, {procs} {how} / LAMMPS {procs}".replace("  ", " "), k,
+            pairs.append((f"tumble {law} law, {f'{procs} {how}'.strip()} / LAMMPS {procs}", k,
                           ("lammps", "peer", procs, "ranks" if procs > 1 else "")))
         if procs > 1:
             pairs.append((f"{code} {law} law, {procs} {how} / 1 core", k, (code, law, 1, "")))

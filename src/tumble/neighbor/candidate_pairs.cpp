@@ -258,26 +258,28 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
     // particle's bin against that of the particle before.
     team.each([&](int c) {
         const IndexRange r = team.range(c, p.size());
+        std::uint32_t previous = r.begin > 0 && r.begin < first_end ? bin_of(p, grid, r.begin - 1, first_end) : 0;
         bool in_order = true;
         for (std::size_t i = r.begin; i < r.end; ++i) {
             key_[i] = bin_of(p, grid, i, first_end);
-            if (i >= first_end || i == 0) continue;
-            in_order = in_order && (i == r.begin ? bin_of(p, grid, i - 1, first_end) : key_[i - 1]) <= key_[i];
+            if (i >= first_end) continue;
+            in_order = in_order && previous <= key_[i];
+            previous = key_[i];
         }
         chunk_in_order_[static_cast<std::size_t>(c)] = in_order;
     });
-    in_order_ = std::all_of(chunk_in_order_.begin(), chunk_in_order_.end(), [](char in_order) { return in_order; });
+    const bool in_order = std::all_of(chunk_in_order_.begin(), chunk_in_order_.end(), [](char part) { return part; });
     // If not (sorted in an older grid: sort_every above 1), the own
     // particles' bins are their cells alone, free and kinematic together:
     // fewer bins to look into one by one. The ghosts then take the second
     // set.
-    if (!in_order_)
+    if (!in_order)
         team.each([&](int c) {
             const IndexRange r = team.range(c, p.size());
             for (std::size_t i = r.begin; i < r.end; ++i)
                 key_[i] = static_cast<std::uint32_t>(key_[i] % cells + (i >= first_end ? cells : 0));
         });
-    const std::size_t own_sets = in_order_ ? 2 : 1, ghost_bins = own_sets * cells;
+    const std::size_t own_sets = in_order ? 2 : 1, ghost_bins = own_sets * cells;
     counting_sort(p.size(), (own_sets + (ghosts ? 1 : 0)) * cells, team, members_);
     // A pair has a free particle and j > i: no pair starts after the last
     // free particle (with the store in cell_order(), the kinematic ones).
@@ -359,7 +361,7 @@ void CellSearch::find_pairs(const ParticleStore& p, const Domain& domain, double
                 });
             }
             count = 0;
-            if (in_order_) {
+            if (in_order) {
                 // members_[m] = m: a run's own particles of one kind are
                 // one stretch of the store, those after i at once. The free
                 // ones, then the kinematic ones (none for a kinematic i).

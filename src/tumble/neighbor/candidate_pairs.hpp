@@ -88,7 +88,6 @@ private:
     std::vector<std::vector<std::uint32_t>> count_;  // per chunk, per bin: its particles, then where they go
     std::vector<std::size_t> chunk_total_;         // per chunk of the bins: the particles in them
     std::vector<char> chunk_in_order_;             // per chunk: its particles' bins do not decrease
-    bool in_order_ = false;                        // the own particles in bin order: members_[k] = k (find_pairs)
     std::vector<std::uint32_t> start_, members_;   // per bin: first place in members_; particles by bin
     std::vector<std::uint8_t> near_late_free_;     // per cell: next to a free particle after a kinematic one
     std::vector<Part> parts_;                      // per chunk
