@@ -14,6 +14,7 @@
 // as one.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "tumble/core/parallel.hpp"
@@ -22,6 +23,18 @@
 
 namespace tumble {
 
+// Where the particles were when the neighbour list was last built, and the
+// square of how far from there one may go before the list must be built
+// anew (neighbor/verlet_list.hpp, moved_far()). The loops that move the
+// particles count those gone farther as they move them: a pass of its own
+// over every particle after them cost 2 % of a step on the long drum
+// (docs/BENCHMARKS.md, "The list's check in the integrator's pass").
+// Without positions (at_build null) nothing is counted.
+struct DisplacementLimit {
+    const Vec3* at_build = nullptr;  // per array index, m
+    double limit2 = 0.0;             // m^2
+};
+
 // v += half_dt (F/m + g), omega += half_dt T/I, for the free particles of
 // range r; half_kick = 0.
 void kick(ParticleStore& p, const Vec3& gravity, double half_dt, IndexRange r);
@@ -29,16 +42,21 @@ void kick(ParticleStore& p, const Vec3& gravity, double half_dt, IndexRange r);
 // kick() with half_kick = the velocity change of the kick, then x += dt v
 // for free particles (the drift), over range r. The forces and torques are
 // then spent and set to zero, ready for the sums of the next evaluation.
-void kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, IndexRange r);
+// Returns how many free particles of r have gone beyond `limit`.
+std::size_t kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, IndexRange r,
+                       const DisplacementLimit& limit);
 
 // kick(), then kick_drift() with the same forces, in one pass over range r:
 // the end of a step and the beginning of the next (the same numbers as the
 // two calls, read and written once).
-void kick_kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, IndexRange r);
+std::size_t kick_kick_drift(ParticleStore& p, const Vec3& gravity, double half_dt, double dt, IndexRange r,
+                            const DisplacementLimit& limit);
 
 // The kinematic particles of range r where their motions (now[k] for motion
 // k) put them: x, v and omega prescribed; F = T = 0, ready for the sums of
-// the grains' forces on them.
-void move_kinematic(ParticleStore& p, const std::vector<MotionNow>& now, IndexRange r);
+// the grains' forces on them. Returns how many of them have gone beyond
+// `limit`.
+std::size_t move_kinematic(ParticleStore& p, const std::vector<MotionNow>& now, IndexRange r,
+                           const DisplacementLimit& limit = {});
 
 }  // namespace tumble

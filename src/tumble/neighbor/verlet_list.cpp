@@ -37,12 +37,14 @@ VerletList::VerletList(const Domain& domain, double skin, int sort_every)
 // Every particle of the range is looked at and those gone far counted, so
 // that the loop runs several particles per instruction (a loop that stops
 // at the first one found ran one at a time, 1.4 % of a step on the long
-// drum).
+// drum). The time step counts them as it moves them instead
+// (integrate/velocity_verlet.hpp, DisplacementLimit), with the same sums.
 bool VerletList::moved_far(const ParticleStore& p, IndexRange r) const {
-    if (position_at_build_.size() != p.size()) return true;
-    const double limit2 = 0.25 * skin_ * skin_;  // (skin/2)^2
+    const Vec3* at_build = positions_at_build(p.size());
+    if (!at_build) return true;
+    const double limit2 = moved_far_limit2();
     const double* __restrict now = &p.position.data()->x;
-    const double* __restrict then = &position_at_build_.data()->x;
+    const double* __restrict then = &at_build->x;
     std::size_t far = 0;
     run_for_isa([&] {
         for (std::size_t i = r.begin; i < r.end; ++i) {

@@ -212,15 +212,22 @@ void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) 
     const double half_dt = 0.5 * dt_;
     const std::vector<MotionNow> now = motions_now(static_cast<double>(next) * dt_);
     ParticleStore& p = particles_;
+    // Whether a particle has moved far enough for a rebuild is found as the
+    // particles are moved: the kinematic ones here, the free ones in the
+    // drift that ends the step before (counted in drifted_far_) or here.
+    const auto limit = [&] {
+        return DisplacementLimit{neighbors_.positions_at_build(p.size()), neighbors_.moved_far_limit2()};
+    };
+    const DisplacementLimit since_build = limit();
     team.each([&](int c) {
-        char moved = 0;
+        const auto part = static_cast<std::size_t>(c);
+        std::size_t far = std::exchange(drifted_far_[part], 0);
         for (const IndexRange r : own_parts(team, c)) {
             if (!drifted)  // v(t) -> v(t + dt/2), x(t) -> x(t + dt); F = 0
-                kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r));
-            move_kinematic(p, now, kinematic_part(r));  // prescribed x, v, omega at t + dt; F = 0
-            moved |= static_cast<char>(neighbors_.moved_far(p, r));
+                far += kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r), since_build);
+            far += move_kinematic(p, now, kinematic_part(r), since_build);  // prescribed x, v, omega at t + dt; F = 0
         }
-        moved_[static_cast<std::size_t>(c)] = moved;
+        moved_[part] = far > 0 || !since_build.at_build;
     });
     const bool moved_here = std::find(moved_.begin(), moved_.end(), 1) != moved_.end();
     if (slabs_)  // the ghosts where their owners moved them; a rebuild on every rank if one needs it
@@ -232,9 +239,11 @@ void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) 
         rebuild(team);
         locate_kinds(team);
     }
+    const DisplacementLimit since_this_build = limit();  // the list's positions may have changed with a rebuild
     compute_forces(team, [&](int c, IndexRange r) {  // F(t + dt), with v(t + dt/2) and v(t + dt) predicted
         if (after == After::step)  // v(t + dt/2) -> v(t + dt) -> v(t + 3dt/2), x(t + dt) -> x(t + 2dt); F = 0
-            kick_kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r));
+            drifted_far_[static_cast<std::size_t>(c)] +=
+                kick_kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r), since_this_build);
         else  // v(t + dt/2) -> v(t + dt)
             kick(p, scenario_.gravity, half_dt, free_part(r));
         if (c == 0) {  // the clock, once
@@ -273,6 +282,7 @@ void Simulation::prepare_chunks() {
     }
     touched_from_.resize(count);
     moved_.resize(count);
+    drifted_far_.assign(count, 0);
     chunk_kinds_.resize(count);
     chunk_first_wall_.resize(count);
     if (wall_from_.size() != count + 1) {  // a new chunk count: equal shares of the wall until the next rebuild

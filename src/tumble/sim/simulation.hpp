@@ -162,11 +162,13 @@ private:
     // Contact forces and torques summed by chunks 1, 2, ... (chunk 0 sums
     // into the particles' own arrays): (chunks - 1) x N each, zero between
     // steps (compute_forces()); per chunk, the first particle its part of
-    // the pairs touches, and whether a particle of its part of the particles
-    // moved far enough for a rebuild.
+    // the pairs touches, whether a particle of its part of the particles
+    // moved far enough for a rebuild, and how many of its free particles
+    // the drift at the end of a step took that far (for the next step).
     std::vector<Vec3> chunk_force_, chunk_torque_;
     std::vector<std::size_t> touched_from_;
     std::vector<char> moved_;
+    std::vector<std::size_t> drifted_far_;
     // The free particles lie below free_end_, the kinematic ones from
     // kinematic_begin_ on (with the store in cell order, the kinematic ones
     // after all the free ones: the ranges do not overlap), so that the
