@@ -103,7 +103,8 @@ void for_each_particle_field(F&& f) {
     f("velocities", &ParticleStore::velocity, "velocities, m/s (N x 3)");
     f("angular_velocities", &ParticleStore::angular_velocity, "spins, rad/s (N x 3)");
     f("forces", &ParticleStore::force,
-      "force of the contacts and flat walls on each particle at the last step, N (N x 3; gravity not included)");
+      "force of the contacts and flat walls on each particle at the last step, N (N x 3; gravity not included; "
+      "on a kinematic particle, the load of the grains on it)");
     f("torques", &ParticleStore::torque, "torque of the contacts on each particle at the last step, N m (N x 3)");
     f("radii", &ParticleStore::radius, "radii, m");
     f("masses", &ParticleStore::mass, "masses, kg");

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "physics_helpers.hpp"
 #include "tumble/core/parallel.hpp"
@@ -174,6 +175,52 @@ TEST(Threads, ShortDrumNeighbourBuildDoesNotDependOnTheThreadCount) {
 // radius for spins, 100 to 1000 times what is measured. A physical
 // difference (a contact or its history lost, a pair summed twice) shows at
 // 1e-6 of those scales or more.
+// The wall's forces. The step needs no kinematic sphere's force sum, and
+// within an advance() the threads leave those sums unfinished; between calls
+// they must be complete, for whoever reads the load on each wall sphere.
+// The last step on 2 and 3 threads from one thread's state: every sphere's
+// force and torque, the wall's included, within round-off of one thread's
+// (1e-14 of the largest, as in the cube above; a sphere's sum has a few
+// tens of terms). Then 40 more steps on each, in two calls, so that the
+// chunks' sums on the wall from the steps inside a call must not be counted
+// again: within 1e-9 of the largest (the runs drift apart at round-off,
+// e-folding in about 30 steps; a sum left out or counted twice is 1e-3
+// of the largest or more).
+TEST(Threads, ShortDrumWallForcesAreCompleteBetweenCalls) {
+    const tumble::Scenario s = short_drum();
+    tumble::Simulation one(s, 1);
+    one.advance(300);
+    const auto expect_same_forces = [](const tumble::Simulation& a, const tumble::Simulation& b, double tolerance) {
+        const double force_scale = largest_norm(a, &tumble::ParticleStore::force);
+        const double torque_scale = largest_norm(a, &tumble::ParticleStore::torque);
+        const double df = largest_difference(a, b, &tumble::ParticleStore::force);
+        const double dt = largest_difference(a, b, &tumble::ParticleStore::torque);
+        std::size_t loaded_wall = 0;
+        for (std::size_t i = 0; i < a.particles().size(); ++i)
+            loaded_wall += a.particles().is_kinematic(i) && tumble::norm(a.particles().force[i]) > 1e-3 * force_scale;
+        std::printf("  [measured] step %lld: largest force difference %.3g N (of %.3g N), torque %.3g N m (of %.3g "
+                    "N m); %zu wall spheres loaded\n",
+                    static_cast<long long>(a.step_count()), df, force_scale, dt, torque_scale, loaded_wall);
+        EXPECT_GT(loaded_wall, 20u);  // the wall bears grains, or the test proves little
+        EXPECT_LE(df, tolerance * force_scale);
+        EXPECT_LE(dt, tolerance * torque_scale);
+    };
+    for (int threads : {2, 3}) {
+        SCOPED_TRACE(std::to_string(threads) + " threads");
+        tumble::Simulation many(s, 1);
+        many.advance(299);
+        many.set_threads(threads);
+        many.advance(1);
+        expect_same_forces(one, many, 1e-14);
+        tumble::Simulation more(s, 1);  // one's run, 40 steps further
+        more.advance(300);
+        more.advance(40);
+        many.advance(25);
+        many.advance(15);
+        expect_same_forces(more, many, 1e-9);
+    }
+}
+
 TEST(Threads, ShortDrumOneAndTwoThreadsAgreeOverARun) {
     const tumble::Scenario s = short_drum();
     const int steps = 200;

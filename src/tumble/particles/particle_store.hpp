@@ -22,8 +22,8 @@ struct ParticleStore {
     std::vector<Vec3> position;             // m
     std::vector<Vec3> velocity;             // m/s
     std::vector<Vec3> angular_velocity;     // rad/s
-    std::vector<Vec3> force;                // N; of a kinematic particle not used (its motion is
-    std::vector<Vec3> torque;               // N m; prescribed): on several threads only a part of its sums
+    std::vector<Vec3> force;                // N; of a kinematic particle not used by the step (its motion is
+    std::vector<Vec3> torque;               // N m; prescribed), complete between advance() calls only
     std::vector<Vec3> half_kick;            // dt/2 (F/m + g) of the last forces while the velocities are at the
                                             // half step (0 otherwise, and for kinematic particles): the
                                             // velocity predicted for t + dt is velocity + half_kick, m/s

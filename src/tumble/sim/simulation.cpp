@@ -59,7 +59,7 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
     run_in_team(chunks(), [&](Team& team) {
         rebuild(team);
         locate_kinds(team);
-        compute_forces(team, [](int, IndexRange) {});
+        compute_forces(team, Sums::all, [](int, IndexRange) {});
     });
 }
 
@@ -226,6 +226,7 @@ void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) 
             if (!drifted)  // v(t) -> v(t + dt/2), x(t) -> x(t + dt); F = 0
                 far += kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r), since_build);
             far += move_kinematic(p, now, kinematic_part(r), since_build);  // prescribed x, v, omega at t + dt; F = 0
+            if (after == After::stop) clear_chunk_sums(kinematic_part(r));  // their sums of this step only
         }
         moved_[part] = far > 0 || !since_build.at_build;
     });
@@ -240,7 +241,8 @@ void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) 
         locate_kinds(team);
     }
     const DisplacementLimit since_this_build = limit();  // the list's positions may have changed with a rebuild
-    compute_forces(team, [&](int c, IndexRange r) {  // F(t + dt), with v(t + dt/2) and v(t + dt) predicted
+    const Sums sums = after == After::stop ? Sums::all : Sums::free;
+    compute_forces(team, sums, [&](int c, IndexRange r) {  // F(t + dt), with v(t + dt/2) and v(t + dt) predicted
         if (after == After::step)  // v(t + dt/2) -> v(t + dt) -> v(t + 3dt/2), x(t + dt) -> x(t + 2dt); F = 0
             drifted_far_[static_cast<std::size_t>(c)] +=
                 kick_kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r), since_this_build);
@@ -326,13 +328,17 @@ void add_and_clear(double* __restrict sum, double* __restrict part, std::size_t 
 // (touched_from_[c]); its arrays are added from there only, and cleared as
 // they are read, so they are zero between calls. The parts left out are +0
 // (a sum begun at +0 is never -0), so adding them would change nothing.
-// The kinematic particles' sums are not added (their motion is prescribed;
-// nothing reads their forces): with the store sorted they are the wall
-// spheres at its end, most of what chunk c >= 1 touches, and adding them
-// cost 2 threads 3 to 5 % of a step on the long drum (docs/BENCHMARKS.md).
-// They stay in the chunks' arrays until the next rebuild clears them.
+// The kinematic particles' sums are added only with Sums::all: the step
+// does not read them (their motion is prescribed), and with the store
+// sorted they are the wall spheres at its end, most of what chunk c >= 1
+// touches; adding them at every step cost 2 threads 3 to 5 % of a step on
+// the long drum (docs/BENCHMARKS.md). Within an advance() they stay in the
+// chunks' arrays; the step that ends it clears its chunks' sums on them
+// before its forces (clear_chunk_sums()) and adds them here, so that
+// between calls every particle's forces are complete (a user reads the
+// load on each wall sphere), as are those from the set-up.
 template <class Then>
-void Simulation::compute_forces(Team& team, Then&& then) {
+void Simulation::compute_forces(Team& team, Sums sums, Then&& then) {
     ParticleStore& p = particles_;
     PairList& pairs = neighbors_.pairs();
     const std::size_t n = p.size();
@@ -370,11 +376,25 @@ void Simulation::compute_forces(Team& team, Then&& then) {
         add_chunk_sums({owned_ + ghosts.begin, owned_ + ghosts.end});
         const std::array<IndexRange, 2> own = own_parts(team, c);  // free, kinematic
         add_chunk_sums(own[0]);
+        if (sums == Sums::all) add_chunk_sums(own[1]);
         for (const IndexRange part : own) {
             if (!wall_history_.empty()) add_wall_forces(part);
             then(c, part);
         }
     });
+}
+
+// Chunks 1, 2, ...: their sums on particles r set to zero (none if r is
+// empty: kinematic_part() of a range without one begins after its end).
+void Simulation::clear_chunk_sums(IndexRange r) {
+    if (r.begin >= r.end) return;
+    const std::size_t n = particles_.size();
+    for (std::size_t part = 1; part < touched_from_.size(); ++part) {
+        const auto from = static_cast<std::ptrdiff_t>((part - 1) * n + r.begin);
+        const auto to = static_cast<std::ptrdiff_t>((part - 1) * n + r.end);
+        std::fill(chunk_force_.begin() + from, chunk_force_.begin() + to, Vec3{});
+        std::fill(chunk_torque_.begin() + from, chunk_torque_.begin() + to, Vec3{});
+    }
 }
 
 // Flat walls at both ends of each walled axis: every free sphere of range r

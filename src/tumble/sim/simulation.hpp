@@ -124,8 +124,14 @@ public:
 private:
     int chunks() const { return recording_ ? 1 : threads_; }
     void prepare_chunks();
+    // Which particles' force sums compute_forces() completes: the free ones
+    // only (within an advance(), where nothing reads a kinematic sphere's),
+    // or the kinematic ones too (where the state is seen: after the last
+    // step of an advance(), after the set-up).
+    enum class Sums { free, all };
     template <class Then>
-    void compute_forces(Team& team, Then&& then);
+    void compute_forces(Team& team, Sums sums, Then&& then);
+    void clear_chunk_sums(IndexRange r);
     void add_wall_forces(IndexRange r);
     // Where each prescribed motion is at a time (for move_kinematic()).
     std::vector<MotionNow> motions_now(double time) const;
