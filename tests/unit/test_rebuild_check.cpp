@@ -4,7 +4,7 @@
 // kick_kick_drift() and move_kinematic() count the particles they carry
 // farther than half the skin from where the list last saw them. The count
 // must be the one written out here, particle by particle, and agree with
-// VerletList::moved_far(), the check as a pass of its own; each loop counts
+// VerletList::needs_rebuild(), the check as a pass of its own; each loop counts
 // only the particles it moves.
 #include <gtest/gtest.h>
 
@@ -70,7 +70,7 @@ struct Checked {
         list.rebuild(p);
         before = p.position;
     }
-    DisplacementLimit limit() const { return {list.positions_at_build(p.size()), list.moved_far_limit2()}; }
+    DisplacementLimit limit() const { return {list.positions_at_build(p.size()), list.rebuild_limit2()}; }
 };
 
 TEST(RebuildCheck, TheDriftCountsTheFreeSpheresItCarriesBeyondHalfTheSkin) {

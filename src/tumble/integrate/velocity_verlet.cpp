@@ -11,7 +11,7 @@ namespace tumble {
 namespace {
 
 // The displacement from the list's build, squared, one component at a time
-// (((0 + dx^2) + dy^2) + dz^2: the sums of VerletList::moved_far()).
+// (((0 + dx^2) + dy^2) + dz^2: the sums of VerletList::needs_rebuild()).
 inline void add_square(double& sum, double d) { sum += d * d; }
 
 // The loops over particles [r.begin, r.end), on the particles' arrays as
@@ -28,7 +28,7 @@ inline void add_square(double& sum, double d) { sum += d * d; }
 // step's second kick; 0 for kinematic particles) and the forces and torques
 // are spent (set to zero); without, half_kick = 0. With Check, returns how
 // many free particles are now farther than sqrt(limit2) from at_build
-// (DisplacementLimit), summed as moved_far() sums them (VerletList).
+// (DisplacementLimit), summed as VerletList::needs_rebuild() sums them.
 template <int Kicks, bool Drift, bool Check>
 std::size_t kick_range(IndexRange r, const std::int32_t* __restrict motion, const double* __restrict inv_mass,
                        const double* __restrict inv_inertia, double* __restrict force, double* __restrict torque,

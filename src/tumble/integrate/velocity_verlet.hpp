@@ -25,7 +25,7 @@ namespace tumble {
 
 // Where the particles were when the neighbour list was last built, and the
 // square of how far from there one may go before the list must be built
-// anew (neighbor/verlet_list.hpp, moved_far()). The loops that move the
+// anew (neighbor/verlet_list.hpp, needs_rebuild()). The loops that move the
 // particles count those gone farther as they move them: a pass of its own
 // over every particle after them cost 2 % of a step on the long drum
 // (docs/BENCHMARKS.md, "The list's check in the integrator's pass").

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <utility>
 
-#include "tumble/core/isa.hpp"
 #include "tumble/core/parallel.hpp"
 #include "tumble/neighbor/candidate_pairs.hpp"
 
@@ -34,26 +33,18 @@ void wrap_into_box(ParticleStore& p, const Domain& domain, IndexRange r) {
 VerletList::VerletList(const Domain& domain, double skin, int sort_every)
     : domain_(domain), skin_(skin), sort_every_(sort_every), images_(domain) {}
 
-// Every particle of the range is looked at and those gone far counted, so
-// that the loop runs several particles per instruction (a loop that stops
-// at the first one found ran one at a time, 1.4 % of a step on the long
-// drum). The time step counts them as it moves them instead
-// (integrate/velocity_verlet.hpp, DisplacementLimit), with the same sums.
-bool VerletList::moved_far(const ParticleStore& p, IndexRange r) const {
+// The check as a pass of its own over the store. The time step does not
+// use it: the loops that move the particles count those gone far as they
+// move them (integrate/velocity_verlet.hpp, DisplacementLimit), with these
+// sums.
+bool VerletList::needs_rebuild(const ParticleStore& p) const {
     const Vec3* at_build = positions_at_build(p.size());
     if (!at_build) return true;
-    const double limit2 = moved_far_limit2();
-    const double* __restrict now = &p.position.data()->x;
-    const double* __restrict then = &at_build->x;
-    std::size_t far = 0;
-    run_for_isa([&] {
-        for (std::size_t i = r.begin; i < r.end; ++i) {
-            const double dx = now[3 * i] - then[3 * i], dy = now[3 * i + 1] - then[3 * i + 1],
-                         dz = now[3 * i + 2] - then[3 * i + 2];
-            far += dx * dx + dy * dy + dz * dz > limit2 ? 1 : 0;
-        }
-    });
-    return far > 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const Vec3 d = p.position[i] - at_build[i];
+        if (d.x * d.x + d.y * d.y + d.z * d.z > rebuild_limit2()) return true;
+    }
+    return false;
 }
 
 void VerletList::rebuild(ParticleStore& p) {

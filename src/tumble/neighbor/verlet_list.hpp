@@ -34,11 +34,10 @@ public:
     VerletList() = default;
     VerletList(const Domain& domain, double skin, int sort_every);
 
-    // Whether some particle of range r has moved more than skin/2 since the
-    // last build (true before the first build).
-    bool moved_far(const ParticleStore& p, IndexRange r) const;
-    bool needs_rebuild(const ParticleStore& p) const { return moved_far(p, {0, p.size()}); }
-    // What moved_far() compares, for loops that move the particles and
+    // Whether some particle has moved more than skin/2 since the last build
+    // (true before the first build).
+    bool needs_rebuild(const ParticleStore& p) const;
+    // What needs_rebuild() compares, for loops that move the particles and
     // check them in the same pass: the positions at the last build, per
     // array index of a store of n particles (null before the first build,
     // or if the store then had another size: every particle has moved far),
@@ -46,7 +45,7 @@ public:
     const Vec3* positions_at_build(std::size_t n) const {
         return position_at_build_.size() == n ? position_at_build_.data() : nullptr;
     }
-    double moved_far_limit2() const { return 0.25 * skin_ * skin_; }
+    double rebuild_limit2() const { return 0.25 * skin_ * skin_; }
     // Wraps positions into periodic axes, sorts (every sort_every-th build),
     // rebuilds the pairs and carries the contact history over: as phases of
     // a team (core/parallel.hpp), or on one thread. The list and the

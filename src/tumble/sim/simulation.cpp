@@ -216,7 +216,7 @@ void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) 
     // particles are moved: the kinematic ones here, the free ones in the
     // drift that ends the step before (counted in drifted_far_) or here.
     const auto limit = [&] {
-        return DisplacementLimit{neighbors_.positions_at_build(p.size()), neighbors_.moved_far_limit2()};
+        return DisplacementLimit{neighbors_.positions_at_build(p.size()), neighbors_.rebuild_limit2()};
     };
     const DisplacementLimit since_build = limit();
     team.each([&](int c) {
