@@ -72,11 +72,13 @@ void expect_agreement(const tumble::Scenario& s, int steps, double R, double spe
     EXPECT_LE(dv, 1e-12 * speed);
     EXPECT_LE(dw, 1e-12 * speed / R);
     // Forces and torques (what a checkpoint keeps, and on the wall spheres
-    // the grains' load on the drum): the same round-off, which the Hertz
-    // law's stiffness raises to about 1e-9 of the largest force where the
-    // positions differ by 1e-12 R (overlaps of 1e-3 R); 1e-8 leaves room.
-    // A contact missed at a cut, or a rank's or thread's part of a sum left
-    // out, shows at one contact's force, 1e-3 of the largest or more.
+    // the grains' load on the drum): the same round-off, through the Hertz
+    // law's stiffness. F ~ h^(3/2), so a change dh of the overlap changes a
+    // force by 3/2 F dh / h, most at the largest overlap: 1e-12 R in
+    // position stays below 1e-8 of the largest force while that overlap
+    // is above 1.5e-4 R. A contact missed at a cut, or a rank's or thread's
+    // part of a sum left out, shows at one contact's force, 1e-3 of the
+    // largest or more.
     EXPECT_LE(dF, 1e-8 * F);
     EXPECT_LE(dT, 1e-8 * T);
     const tumble::Observables a = alone.observe(), b = shared.observe();
