@@ -40,10 +40,8 @@ VerletList::VerletList(const Domain& domain, double skin, int sort_every)
 bool VerletList::needs_rebuild(const ParticleStore& p) const {
     const Vec3* at_build = positions_at_build(p.size());
     if (!at_build) return true;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        const Vec3 d = p.position[i] - at_build[i];
-        if (d.x * d.x + d.y * d.y + d.z * d.z > rebuild_limit2()) return true;
-    }
+    for (std::size_t i = 0; i < p.size(); ++i)
+        if (norm2(p.position[i] - at_build[i]) > rebuild_limit2()) return true;
     return false;
 }
 

@@ -167,7 +167,8 @@ private:
     int threads_ = 1;
     // Contact forces and torques summed by chunks 1, 2, ... (chunk 0 sums
     // into the particles' own arrays): (chunks - 1) x N each, zero between
-    // steps (compute_forces()); per chunk, the first particle its part of
+    // advance() calls (within one, their sums on kinematic particles wait
+    // for its last step: compute_forces()); per chunk, the first particle its part of
     // the pairs touches, whether a particle of its part of the particles
     // moved far enough for a rebuild, and how many of its free particles
     // the drift at the end of a step took that far (for the next step).
