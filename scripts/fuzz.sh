@@ -24,9 +24,12 @@ cp examples/*.toml tests/data/bad/*.toml "$seeds/fuzz_scenario/"
 cp examples/*.csv tests/data/bad/*.csv "$seeds/fuzz_particle_csv/"
 if [ -x build/tumble ]; then  # a real checkpoint to start from (the normal build)
   rm -rf "$seeds/drum"
-  build/tumble drum -q --mode self --grains 4 --length 0.02 --diameter 0.02 --revolutions 0.01 --no-plot \
-    --out "$seeds/drum" --stop-at-step 50 >/dev/null 2>&1 || true
+  build/tumble drum -q --mode self --grains 4 --length 0.02 --diameter 0.02 --revolutions 0.1 --no-plot \
+    --out "$seeds/drum" --stop-at-step 50 >"$seeds/drum.log" 2>&1 || true  # exits 4: stopped as asked
   cp "$seeds"/drum/checkpoints/*.tck "$seeds/fuzz_checkpoint/" 2>/dev/null || true
+fi
+if ! compgen -G "$seeds/fuzz_checkpoint/*.tck" >/dev/null; then
+  echo "fuzz: no real checkpoint among the seeds (build/tumble missing, or its run failed: $seeds/drum.log)" >&2
 fi
 
 status=0

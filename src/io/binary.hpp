@@ -71,7 +71,9 @@ public:
     std::vector<T> get_array(const char* field) {
         const std::size_t n = count(sizeof(T), field);
         std::vector<T> values(n);
-        std::memcpy(values.data(), bytes_.data() + at_, n * sizeof(T));
+        // An empty vector may have no storage, and memcpy from or to a null
+        // pointer is undefined even for 0 bytes (scripts/fuzz.sh found it).
+        if (n > 0) std::memcpy(values.data(), bytes_.data() + at_, n * sizeof(T));
         at_ += n * sizeof(T);
         return values;
     }

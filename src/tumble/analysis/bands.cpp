@@ -46,7 +46,9 @@ BandSample measure_bands(const ParticleStore& p, const BandFrame& frame) {
         v->resize(bins);
     const auto volume = [&](std::size_t i) { return 4.0 / 3.0 * pi * p.radius[i] * p.radius[i] * p.radius[i]; };
     const auto counted = [&](std::size_t i) { return p.tag[i] == frame.species_tag; };
-    const auto [cx, cy] = bed_centre(p);
+    // Not a structured binding: clang 14 (scripts/fuzz.sh) cannot capture one in a lambda.
+    const std::pair<double, double> centre = bed_centre(p);
+    const double cx = centre.first, cy = centre.second;
     const auto distance = [&](std::size_t i) { return std::hypot(p.position[i].x - cx, p.position[i].y - cy); };
     for (std::size_t b = 0; b < bins; ++b) {
         std::vector<std::size_t>& m = members[b];
