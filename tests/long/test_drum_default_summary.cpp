@@ -2,8 +2,8 @@
 // End to end (issue 14): the README's main job, `tumble drum` on its
 // default (the paper's two-component drum, 12 revolutions), writes a
 // summary.json with, for each component, the grains' MSD D determined and a
-// 95 % interval around it. About 7 minutes on one core: label "long"
-// (ctest --test-dir build -L long).
+// 95 % interval around it. About 40 s (38 s on an AMD Zen 5, 2026-12-05):
+// label "long" (ctest --test-dir build -L long).
 #include <gtest/gtest.h>
 
 #include <cmath>
