@@ -6,6 +6,7 @@
 #
 #   bash bench/compare_builds.sh OLD NEW                # 30 rounds, 1 thread
 #   bash bench/compare_builds.sh OLD NEW --rounds 20 --threads 2
+#   bash bench/compare_builds.sh T T --threads 1,2      # one build: 2 threads against 1
 #
 # OLD and NEW are tumble executables (e.g. a copy of main's build/tumble
 # and the build of a branch).
@@ -14,9 +15,9 @@
 #   --rounds N    rounds (default 30); each runs OLD and NEW once, which one
 #                 first alternating from round to round
 #   --steps N     timed steps per run (default 2000, about 2 s on one core)
-#   --threads N   threads per run (default 1)
+#   --threads N   threads per run (default 1); N,M: N for OLD, M for NEW
 #   --cpu LIST    run pinned to these processors (taskset -c LIST); default:
-#                 the last processor for 1 thread, unpinned for more
+#                 a run of 1 thread on the last processor, more unpinned
 #   --cache DIR   the settled beds (default: OLD's, beside it); a bed
 #                 missing there is made first, about 6 CPU-minutes
 #   --out FILE    the runs' JSON lines (default: a temporary file, removed)
@@ -36,7 +37,7 @@ need_int() { [[ "$2" =~ ^[1-9][0-9]*$ ]] || die "$1 needs a positive integer, go
 
 rounds=30
 steps=2000
-threads=1
+threads=1,1
 cpu=""
 cache=""
 out=""
@@ -45,7 +46,9 @@ while [[ $# -gt 0 ]]; do
     case "$1" in
         --rounds) need_int "$1" "${2:-}"; rounds=$2; shift 2 ;;
         --steps) need_int "$1" "${2:-}"; steps=$2; shift 2 ;;
-        --threads) need_int "$1" "${2:-}"; threads=$2; shift 2 ;;
+        --threads)
+            [[ "${2:-}" =~ ^[1-9][0-9]*(,[1-9][0-9]*)?$ ]] || die "--threads needs N or N,M (positive integers), got '${2:-}'"
+            threads=$2; [[ "$threads" == *,* ]] || threads=$threads,$threads; shift 2 ;;
         --cpu) [[ -n "${2:-}" ]] || die "--cpu needs a processor list (taskset -c)"; cpu=$2; shift 2 ;;
         --cache) [[ -n "${2:-}" ]] || die "--cache needs a directory"; cache=$2; shift 2 ;;
         --out) [[ -n "${2:-}" ]] || die "--out needs a file"; out=$2; shift 2 ;;
@@ -62,12 +65,9 @@ old=$(realpath "${builds[0]}")
 new=$(realpath "${builds[1]}")
 command -v python3 >/dev/null || die "python3 is required"
 [[ -n "$cache" ]] || cache=$(dirname "$old")/bench-cache
-if [[ -z "$cpu" && "$threads" -eq 1 ]]; then cpu=$(( $(nproc) - 1 )); fi
-pin=()
-if [[ -n "$cpu" ]]; then
-    command -v taskset >/dev/null || die "--cpu needs taskset (util-linux)"
-    pin=(taskset -c "$cpu")
-fi
+old_threads=${threads%,*}
+new_threads=${threads#*,}
+if [[ -n "$cpu" ]]; then command -v taskset >/dev/null || die "--cpu needs taskset (util-linux)"; fi
 if [[ -z "$out" ]]; then
     out=$(mktemp)
     trap 'rm -f "$out"' EXIT
@@ -75,17 +75,23 @@ else
     : > "$out"
 fi
 
-run() {  # run BUILD ROLE ROUND: one JSON line, with role and round added
-    local line
+run() {  # run BUILD ROLE ROUND THREADS: one JSON line, with role and round added
+    local line pin=() on=$cpu
+    [[ -n "$on" || "$4" -gt 1 ]] || on=$(( $(nproc) - 1 ))
+    [[ -z "$on" ]] || pin=(taskset -c "$on")
     line=$("${pin[@]}" "$1" bench --case long-drum --turned 1 --cache "$cache" --steps "$steps" --warmup 100 \
-        --threads "$threads" --json) || die "'$1 bench' failed in round $3"
+        --threads "$4" --json) || die "'$1 bench' failed in round $3"
     python3 -c 'import json, sys; r = json.loads(sys.argv[1]); r["role"] = sys.argv[2]; r["round"] = int(sys.argv[3]); print(json.dumps(r))' \
         "$line" "$2" "$3" >> "$out"
 }
 
-echo "compare_builds: $rounds rounds of $steps steps, $threads thread(s)${cpu:+, on processor(s) $cpu}" >&2
+echo "compare_builds: $rounds rounds of $steps steps, threads $old_threads (old) and $new_threads (new)${cpu:+, on processor(s) $cpu}" >&2
 for r in $(seq "$rounds"); do
-    if (( r % 2 )); then run "$old" old "$r"; run "$new" new "$r"; else run "$new" new "$r"; run "$old" old "$r"; fi
+    if (( r % 2 )); then
+        run "$old" old "$r" "$old_threads"; run "$new" new "$r" "$new_threads"
+    else
+        run "$new" new "$r" "$new_threads"; run "$old" old "$r" "$old_threads"
+    fi
     printf '\rround %d of %d' "$r" "$rounds" >&2
 done
 echo >&2
@@ -104,12 +110,15 @@ ratios = [n[rate] / o[rate] for o, n in pairs]
 mean, low, high = ratio_interval(ratios)
 same = all(o["kinetic_translational"] == n["kinetic_translational"] and
            o["kinetic_rotational"] == n["kinetic_rotational"] and o["contacts"] == n["contacts"] for o, n in pairs)
-print(f"old: {sys.argv[2]}\n     median {statistics.median(o[rate] for o, _ in pairs) / 1e6:.2f} M grain updates/s")
-print(f"new: {sys.argv[3]}\n     median {statistics.median(n[rate] for _, n in pairs) / 1e6:.2f} M grain updates/s")
+for role, path, k in (("old", sys.argv[2], 0), ("new", sys.argv[3], 1)):
+    print(f"{role}: {path}, {pairs[0][k]['threads']} thread(s)\n"
+          f"     median {statistics.median(p[k][rate] for p in pairs) / 1e6:.2f} M grain updates/s")
 interval = f" [{low:.4f}, {high:.4f}] (95 % t)" if low is not None else ""
 print(f"new / old, round by round: geometric mean {mean:.4f}{interval}, median {statistics.median(ratios):.4f},"
       f" {len(ratios)} rounds")
-print(f"the same kinetic energies and contacts at the end of every round: {'yes' if same else 'no'}")
+differ = pairs[0][0]["threads"] != pairs[0][1]["threads"]
+print(f"the same kinetic energies and contacts at the end of every round: {'yes' if same else 'no'}"
+      + (" (other thread counts add in another order: round-off)" if differ and not same else ""))
 print(f"machine: {pairs[0][0]['machine']}; instructions: {pairs[0][0]['isa'].split(' (')[0]} (old),"
       f" {pairs[0][1]['isa'].split(' (')[0]} (new)")
 EOF
