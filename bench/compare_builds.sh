@@ -31,9 +31,8 @@
 set -euo pipefail
 
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-usage() { awk 'NR > 2 && !/^#/ { exit } NR > 2 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; }
-die() { echo "compare_builds.sh: $*" >&2; exit 1; }
-need_int() { [[ "$2" =~ ^[1-9][0-9]*$ ]] || die "$1 needs a positive integer, got '$2'"; }
+# shellcheck source=bench/common.sh
+source "$repo/bench/common.sh"  # usage, die, need_int
 
 rounds=30
 steps=2000

@@ -45,9 +45,8 @@ lammps=1
 lean=0
 out=""
 
-usage() { awk 'NR > 2 && !/^#/ { exit } NR > 2 { sub(/^# ?/, ""); print }' "${BASH_SOURCE[0]}"; }
-die() { echo "compare_peers.sh: $*" >&2; exit 1; }
-need_int() { [[ "$2" =~ ^[1-9][0-9]*$ ]] || die "$1 needs a positive integer, got '$2'"; }
+# shellcheck source=bench/common.sh
+source "$repo/bench/common.sh"  # usage, die, need_int
 
 while [[ $# -gt 0 ]]; do
     case "$1" in
