@@ -658,10 +658,14 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         const analysis::DiffusionFit fit = analysis::fit_diffusion(N.empty() ? std::vector<double>{0.0} : N,
                                                                    z.empty() ? std::vector<double>{0.0} : z, L);
         fits.push_back(fit);
-        if (fit.determined && hogg_not_applicable(info).empty())
-            text << fmt::format("    old estimator, Hogg pinned at L/4 from N = 0: D = {:.3e} +- {:.1e} m^2/rev; "
-                                "one-term: {:.3e} +- {:.1e}\n",
-                                fit.D, fit.D_stderr, fit.one_term_D, fit.one_term_D_stderr);
+        if (hogg_not_applicable(info).empty()) {
+            text << "    old estimator, Hogg pinned at L/4 from N = 0: ";
+            if (fit.determined)
+                text << fmt::format("D = {:.3e} +- {:.1e} m^2/rev; one-term: {:.3e} +- {:.1e}\n", fit.D,
+                                    fit.D_stderr, fit.one_term_D, fit.one_term_D_stderr);
+            else  // said, as the other estimators say it (summary.json has the best estimate and the note)
+                text << "D not determined: " << fit.note << "\n";
+        }
         components_json.push_back(Json{{"name", comp.name},
                                        {"grains", static_cast<std::int64_t>(comp.grains)},
                                        {"mass", comp.mass},

@@ -477,7 +477,16 @@ TEST_F(Cli, DrumRunWritesSeriesAndSummaryAndCanBeAnalysedAgain) {
     EXPECT_EQ(tumble::io::read_drum_run_info(run / "drum_run.toml").skin, 0.001);
     EXPECT_EQ(tumble::io::read_drum_run_info(run / "drum_run.toml").surface_energy, 0.1);
     EXPECT_EQ(j.value("surface_energy", 0.0), 0.1);
-    EXPECT_NE(read_file(run / "summary.txt").find("surface energy W = 0.1 J/m^2"), std::string::npos);
+    const std::string text = read_file(run / "summary.txt");
+    EXPECT_NE(text.find("surface energy W = 0.1 J/m^2"), std::string::npos);
+    // Every estimator has its line for each of the two components, a value
+    // or why there is none (the old estimator's line was left out when
+    // its fit was not determined).
+    for (const char* estimator : {"D (grains' axial MSD)", "Hogg, amplitude free", "old estimator"}) {
+        std::size_t lines = 0;
+        for (auto at = text.find(estimator); at != std::string::npos; at = text.find(estimator, at + 1)) ++lines;
+        EXPECT_EQ(lines, 2u) << estimator << "\n" << text;
+    }
 
     fs::remove(run / "summary.json");
     const Result again = run_tumble("analyze " + run.string());
