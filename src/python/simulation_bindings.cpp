@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include <fmt/format.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -94,6 +95,12 @@ py::dict contact_records(const Simulation& sim) {
 // Runs `sim` for `total` steps, asking until(sim) every check_every steps
 // whether to stop; the GIL is free while the engine works, and Ctrl-C stops
 // the loop (KeyboardInterrupt) between two checks. Returns the steps done.
+// A step count from the caller: 0 is nothing to do, a negative one an error
+// (it would otherwise do nothing without a word).
+void need_steps(std::int64_t steps, const char* what) {
+    if (steps < 0) throw Error(fmt::format("{}: need a count >= 0, got {}", what, steps));
+}
+
 std::int64_t run(py::object self, std::int64_t total, const py::object& until, std::int64_t check_every) {
     Simulation& sim = self.cast<Simulation&>();
     if (check_every < 1) throw Error("check_every must be >= 1, got " + std::to_string(check_every));
@@ -171,7 +178,12 @@ the store to other memory).)");
         .def(
             "step", [](Simulation& s) { py::gil_scoped_release engine_works; s.step(); }, "One time step")
         .def(
-            "advance", [](Simulation& s, std::int64_t steps) { py::gil_scoped_release engine_works; s.advance(steps); },
+            "advance",
+            [](Simulation& s, std::int64_t steps) {
+                need_steps(steps, "advance: steps");
+                py::gil_scoped_release engine_works;
+                s.advance(steps);
+            },
             py::arg("steps"), "`steps` time steps in one go (the same numbers as one step at a time)")
         .def(
             "run",
@@ -179,6 +191,9 @@ the store to other memory).)");
                const py::object& until, std::int64_t check_every) {
                 const Simulation& s = self.cast<const Simulation&>();
                 if (steps.has_value() == duration.has_value()) throw Error("run: give steps or duration (one)");
+                if (steps) need_steps(*steps, "run: steps");
+                if (duration && !(*duration >= 0.0))
+                    throw Error(fmt::format("run: duration: need a time >= 0 s, got {}", *duration));
                 const std::int64_t total = steps ? *steps : experiments::step_count(*duration, s.dt(), "run: duration");
                 return run(self, total, until, check_every);
             },

@@ -139,6 +139,20 @@ def test_run_until_a_condition():
     assert steps == 300 and calls == [100, 200, 300]
 
 
+def test_run_refuses_a_negative_count_or_time():
+    # Each would otherwise do nothing without a word.
+    sim = tumble.Simulation(tumble.Scenario.from_toml(SCENARIO))
+    with pytest.raises(tumble.Error, match="run: steps: need a count >= 0, got -5"):
+        sim.run(steps=-5)
+    with pytest.raises(tumble.Error, match="run: duration: need a time >= 0 s, got -1"):
+        sim.run(duration=-1.0)
+    with pytest.raises(tumble.Error, match="run: duration: need a time >= 0 s, got nan"):
+        sim.run(duration=float("nan"))
+    with pytest.raises(tumble.Error, match="advance: steps: need a count >= 0, got -1"):
+        sim.advance(-1)
+    assert sim.run(steps=0) == 0 and sim.step_count == 0
+
+
 def test_contacts_with_history():
     sim = tumble.Simulation(tumble.Scenario.from_toml(SCENARIO))
     sim.run(duration=0.15)  # the grains have fallen into a bed
