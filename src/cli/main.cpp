@@ -199,7 +199,9 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("--mode", mode, "two-component or self");
     auto* grains_opt = drum_cmd->add_option("--grains", grains, "Total number of grains (default 1000)")
                            ->check(CLI::Range(std::int64_t{2}, std::int64_t{10'000'000}));
-    drum_cmd->add_option("--fill", fill, "Fill fraction of the drum to aim at, instead of --grains")->excludes(grains_opt);
+    drum_cmd->add_option("--fill", fill, "Fill fraction of the drum to aim at, instead of --grains")
+        ->check(finite_positive)
+        ->excludes(grains_opt);
     auto* omega_opt = drum_cmd->add_option("--omega", omega, "Rotation speed, rad/s");
     auto* rpm_opt = drum_cmd->add_option("--rpm", rpm, "Rotation speed, revolutions per minute");
     auto* froude_opt = drum_cmd->add_option("--froude", froude, "Rotation speed as Froude number omega^2 R / g");
@@ -212,7 +214,7 @@ int main(int argc, char** argv) {
                          "revolutions (a prepared start's bands merged or dissolved; docs/BANDS.md; default 0: off)");
     drum_cmd->add_option("--samples", samples, "Samples per revolution (default 20)");
     drum_cmd->add_option("--bins", bins, "Axial bins of the concentration profile (default 12)");
-    drum_cmd->add_option("--band-bins", band_bins, "Axial bins of the band profile (default: L / 4 mm; docs/BANDS.md)");
+    drum_cmd->add_option("--band-bins", band_bins, "Axial bins of the band profile (default 0: L / 4 mm; docs/BANDS.md)");
     drum_cmd->add_option("--snapshots", snapshots, "Particle snapshots per revolution (default 8; 0: none)");
     drum_cmd->add_option("--length", length, "Inner length of the drum, m (default 0.12)");
     drum_cmd->add_option("--diameter", diameter, "Inner diameter of the drum, m (default 0.08)");
@@ -278,7 +280,7 @@ int main(int argc, char** argv) {
     add_checkpoint_options(drum_cmd, drum.checkpoints);
     drum_cmd->add_option("--checkpoint-every-revolutions", drum.checkpoint_revolutions,
                          "Revolutions between checkpoints while the drum turns (default 1; 0: not by revolutions)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(finite_non_negative);
     drum_cmd->add_option("--threads", drum.threads, threads_help)->check(CLI::NonNegativeNumber);
     drum_cmd->add_option("--max-memory", drum.max_memory_gib, memory_help)->check(finite_positive);
     drum_cmd->add_flag("--large-drum", drum.large_drum,
@@ -328,14 +330,15 @@ int main(int argc, char** argv) {
     resume_cmd->add_option("--revolutions", resume_revolutions,
                            "A drum run: turn it to this many revolutions in all, more than it has turned: a run that "
                            "has finished goes on from its end (docs/CHECKPOINTS.md)")
-        ->check(CLI::PositiveNumber);
+        ->check(finite_positive);
 
     std::string analyze_dir;
     CLI::App* analyze_cmd = app.add_subcommand("analyze", "Analyse a drum run directory again (summary.json, summary.txt)");
     analyze_cmd->add_option("directory", analyze_dir, "Run directory of tumble drum")->required();
     double first_revolution = 1.0;
     auto* first_revolution_opt = analyze_cmd->add_option(
-        "--first-revolution", first_revolution, "Leave the start-up out of the fits: use revolutions N >= this (default 1)");
+        "--first-revolution", first_revolution, "Leave the start-up out of the fits: use revolutions N >= this (default 1)")
+        ->check(finite_non_negative);
     bool so_far = false;
     analyze_cmd->add_flag("--so-far", so_far,
                           "The bands of the revolutions written so far, of a run stopped, unfinished or going on, into "

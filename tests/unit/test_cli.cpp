@@ -428,6 +428,8 @@ TEST_F(Cli, DrumRefusesImpossibleSettingsAndWritesNothing) {
         {"drum --omega -1", "speed"},
         {"drum --omega 0", "speed"},
         {"drum --fill 1.5", "fill_fraction"},
+        {"drum --fill 0", "--fill: must be a finite number > 0, got 0"},  // was taken as "not given": 1000 grains
+        {"drum --checkpoint-every-revolutions inf", "--checkpoint-every-revolutions: must be a finite number >= 0"},
         {"drum --revolutions 0", "revolutions"},
         {"drum --mode mixed", "mode"},
         {"drum --diameter 0.01", "diameter"},
@@ -494,4 +496,10 @@ TEST_F(Cli, DrumRunWritesSeriesAndSummaryAndCanBeAnalysedAgain) {
     EXPECT_NE(again.output.find("material-2"), std::string::npos) << again.output;
     EXPECT_TRUE(fs::exists(run / "summary.json"));
     EXPECT_NE(run_tumble("analyze " + (dir_ / "nothing").string()).exit_code, 0);
+    // A first revolution that is no number was taken, and every fit then
+    // had no sample without saying why.
+    const Result nan = run_tumble("analyze " + run.string() + " --first-revolution nan");
+    EXPECT_NE(nan.exit_code, 0);
+    EXPECT_NE(nan.output.find("--first-revolution: must be a finite number >= 0, got nan"), std::string::npos)
+        << nan.output;
 }

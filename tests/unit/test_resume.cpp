@@ -228,6 +228,11 @@ TEST_F(Resume, AFinishedDrumRunIsLengthenedToTheLongerRun) {
     EXPECT_EQ(fewer.exit_code, 2) << fewer.output;
     EXPECT_NE(fewer.output.find("has turned 0.2 revolutions already"), std::string::npos) << fewer.output;
     EXPECT_EQ(read_file(out / "summary.json"), summary);
+    const auto endless = tumble_run("resume -q " + out.string() + " --revolutions inf");
+    EXPECT_NE(endless.exit_code, 0);
+    EXPECT_NE(endless.output.find("--revolutions: must be a finite number > 0, got inf"), std::string::npos)
+        << endless.output;
+    EXPECT_EQ(read_file(out / "summary.json"), summary);
     const auto longer = tumble_run("resume -q " + out.string() + " --revolutions 0.4");
     ASSERT_EQ(longer.exit_code, 0) << longer.output;
     std::size_t snapshots = 0;
