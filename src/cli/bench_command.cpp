@@ -22,6 +22,7 @@
 #include "io/drum_config.hpp"
 #include "io/json.hpp"
 #include "io/output.hpp"
+#include "io/step_times.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 #include "tumble/core/isa.hpp"
@@ -70,7 +71,9 @@ int cube_bench(const BenchOptions& options) {
     sim.advance(warmup);
     const std::int64_t builds_before = sim.neighbors().builds();
     double cpu = 0.0;
+    sim.reset_step_times();
     const double seconds = timed_advance(sim, steps, cpu);
+    const io::StepTimesSpread phases = io::step_times_spread(sim.step_times(), seconds, sim.threads(), false);
     const Observables o = sim.observe();
     const double updates = static_cast<double>(n) * static_cast<double>(steps) / seconds;
     const double contacts_per_particle = 2.0 * static_cast<double>(o.contacts) / static_cast<double>(n);
@@ -92,6 +95,7 @@ int cube_bench(const BenchOptions& options) {
         fmt::print("  instruction set  {}\n", isa_description());
         fmt::print("  memory           {:.0f} bytes per sphere (resident, measured)\n", bytes_per_particle);
         fmt::print("  machine          {}\n", machine);
+        fmt::print("\n{}", io::step_times_text(phases, "the timed steps"));
     }
     if (options.json)
         fmt::print("{}\n", io::json_line(io::Json{{"code", "tumble"},
@@ -108,6 +112,7 @@ int cube_bench(const BenchOptions& options) {
                                                   {"bytes_per_particle", std::llround(bytes_per_particle)},
                                                   {"dt", sim.dt()},
                                                   {"cpu_seconds", cpu},
+                                                  {"time_by_phase", io::step_times_json(phases)},
                                                   {"machine", machine},
                                                   {"isa", isa_description()}}));
     return 0;
@@ -247,7 +252,9 @@ int long_drum_bench(const BenchOptions& options) {
     const std::int64_t builds_before = sim.neighbors().builds();
     double cpu = 0.0;
     mpi::any(false);  // shared among ranks: all start the clock together (a barrier)...
+    sim.reset_step_times();
     double seconds = timed_advance(sim, steps, cpu);
+    const io::StepTimesSpread phases = io::step_times_spread(sim.step_times(), seconds, sim.threads(), sim.shared());
     seconds = mpi::max(seconds);  // ...and the slowest stops it
     cpu = mpi::sum(cpu);
     const std::int64_t builds = sim.neighbors().builds() - builds_before;
@@ -304,6 +311,7 @@ int long_drum_bench(const BenchOptions& options) {
         fmt::print("  memory             {:.0f} bytes per particle (grains and wall, resident, measured)\n",
                    bytes_per_particle);
         fmt::print("  machine            {}\n", machine);
+        fmt::print("\n{}", io::step_times_text(phases, "the timed steps"));
     }
     if (options.json)
         fmt::print("{}\n", io::json_line(io::Json{{"code", "tumble"},
@@ -339,6 +347,7 @@ int long_drum_bench(const BenchOptions& options) {
                                                   {"ghosts_per_rank", ghosts},
                                                   {"bytes_per_particle", std::llround(bytes_per_particle)},
                                                   {"cpu_seconds", cpu},
+                                                  {"time_by_phase", io::step_times_json(phases)},
                                                   {"machine", machine},
                                                   {"isa", isa_description()}}));
     return 0;

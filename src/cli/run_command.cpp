@@ -13,6 +13,7 @@
 #include "io/config.hpp"
 #include "io/output.hpp"
 #include "io/snapshots.hpp"
+#include "io/step_times.hpp"
 #include "tumble/core/mpi.hpp"
 #include "tumble/sim/health.hpp"
 #include "tumble/sim/simulation.hpp"
@@ -93,6 +94,8 @@ public:
             }
         }
         progress.finish();
+        const io::StepTimesSpread phases =
+            io::step_times_spread(sim_.step_times(), progress.elapsed_seconds(), sim_.threads(), sim_.shared());
         // The run is finished only when its results are written: a checkpoint
         // of the final state first (a resume from it writes the results
         // again), then the results, then the checkpoint that says "finished".
@@ -102,12 +105,13 @@ public:
         if (mpi::rank() == 0)
             io::write_run_json(dir_ / "run.json", sim_,
                                {plan_.scenario_file, plan_.seed, plan_.duration, plan_.steps, seconds,
-                                sim_.scenario().particles.size(), sim_.scenario().free_count()});
+                                sim_.scenario().particles.size(), sim_.scenario().free_count(), phases});
         checkpoint(true, progress.elapsed_seconds());
         if (talk)
             fmt::print("done in {:.1f} s ({:.3g} particle updates/s); output in {}\n", seconds,
                        seconds > 0 ? static_cast<double>(sim_.scenario().free_count()) * plan_.steps / seconds : 0.0,
                        dir_.string());
+        if (talk) fmt::print("{}", io::step_times_text(phases, "the run (this process: since its start or resume)"));
         return 0;
     }
 

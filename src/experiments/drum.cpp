@@ -21,6 +21,7 @@
 #include "io/output.hpp"
 #include "io/run_lock.hpp"
 #include "io/snapshots.hpp"
+#include "io/step_times.hpp"
 #include "tumble/analysis/bands.hpp"
 #include "tumble/analysis/drum_measure.hpp"
 #include "tumble/core/constants.hpp"
@@ -247,6 +248,7 @@ private:
         const std::int64_t done = sim_.step_count() - plan_.rotation_start_step;  // > 0 after a resume
         Progress progress("rotation", done, steps_, plan_.progress,
                           {.particles = sim_.scenario().free_count(), .steps_per_revolution = period_ / sim_.dt()});
+        sim_.reset_step_times();  // the rotation's (the settling's are not told)
         for (std::int64_t k = done; k < steps_;) {
             std::int64_t next = std::min(steps_, (k / batch + 1) * batch);
             const auto at_multiple = [&](std::int64_t every) {
@@ -276,6 +278,8 @@ private:
         }
         progress.finish();
         plan_.info.wall_seconds += progress.elapsed_seconds();
+        rotation_times_ =
+            io::step_times_spread(sim_.step_times(), progress.elapsed_seconds(), sim_.threads(), sim_.shared());
         return Checkpointer::Due::no;
     }
 
@@ -348,9 +352,14 @@ private:
         std::string summary;
         if (writer()) {
             io::write_drum_run_info(dir_ / "drum_run.toml", info);
-            if (talk())
-                fmt::print("rotation simulated in {:.1f} s: {:.3g} grain updates/s ({:.1f} s per revolution)\n\n",
+            if (talk()) {
+                fmt::print("rotation simulated in {:.1f} s: {:.3g} grain updates/s ({:.1f} s per revolution)\n",
                            info.wall_seconds, info.grain_updates_per_second, info.wall_seconds / info.revolutions);
+                if (rotation_times_)
+                    fmt::print("{}", io::step_times_text(*rotation_times_,
+                                                         "the rotation (this process: since its start or resume)"));
+                fmt::print("\n");
+            }
             summary = io::analyze_drum_run(dir_);
         }
         checkpoint(true, 0.0);
@@ -388,6 +397,7 @@ private:
     std::optional<io::BandProfileWriter> band_profile_;
     analysis::BandField band_field_;  // rank 0's band samples, kept with --until-band-change
     std::optional<io::SnapshotSeries> snapshots_;
+    std::optional<io::StepTimesSpread> rotation_times_;  // where this process's rotation spent its time
 };
 
 // tumble resume --revolutions: the run's new length.

@@ -199,7 +199,8 @@ void write_run_json(const fs::path& file, const Simulation& sim, const RunSummar
                                {"threads", sim.threads()},
                                {"isa", isa_description()},
                                {"wall_seconds", s.wall_seconds},
-                               {"updates_per_second", updates}});
+                               {"updates_per_second", updates},
+                               {"time_by_phase", step_times_json(s.time_by_phase)}});
 }
 
 }  // namespace tumble::io

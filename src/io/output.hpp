@@ -19,6 +19,7 @@
 
 #include "io/run_lock.hpp"
 #include "io/snapshot_data.hpp"
+#include "io/step_times.hpp"
 #include "tumble/sim/simulation.hpp"
 
 namespace tumble::io {
@@ -74,6 +75,7 @@ struct RunSummary {
     double wall_seconds = 0.0;
     std::size_t particles = 0;
     std::size_t free_particles = 0;
+    StepTimesSpread time_by_phase;  // of this process's steps (since the start, or the resume)
 };
 void write_run_json(const std::filesystem::path& file, const Simulation& sim, const RunSummary& summary);
 

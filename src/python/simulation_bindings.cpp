@@ -201,6 +201,18 @@ the store to other memory).)");
             py::arg("check_every") = 100,
             "Runs `steps` steps (or `duration` seconds), stopping early when until(sim) is true, asked every "
             "check_every steps; returns the steps done")
+        .def_property_readonly(
+            "step_times",
+            [](const Simulation& s) {
+                py::dict times;
+                for (std::size_t k = 0; k < step_phase_count; ++k)
+                    times[py::str(std::string(step_phase_names[k]))] = s.step_times().seconds[k];
+                times["steps"] = s.step_times().steps;
+                return times;
+            },
+            "Seconds of wall-clock time in each phase of the steps taken since the simulation was built or "
+            "reset_step_times(): motion, exchange (MPI ranks), neighbours, forces; and the steps")
+        .def("reset_step_times", &Simulation::reset_step_times, "Starts step_times from zero")
         .def_property_readonly("time", &Simulation::time, "s")
         .def_property_readonly("dt", &Simulation::dt, "time step, s")
         .def_property_readonly("step_count", &Simulation::step_count)

@@ -14,6 +14,7 @@
 
 #include "../physics/physics_helpers.hpp"
 #include "io/checkpoint.hpp"
+#include "io/step_times.hpp"
 #include "tumble/core/mpi.hpp"
 #include "tumble/setup/drum.hpp"
 
@@ -299,6 +300,26 @@ TEST(Slabs, SlidingGrainKeepsItsFrictionAcrossTheCut) {
     const std::size_t g = index_of(p, 0);
     EXPECT_GT(p.position[g].z, 0.003);  // it did cross
     EXPECT_GT(std::abs(p.angular_velocity[g].x), 1.0);  // friction set it spinning
+}
+
+// The time by phase of a shared run: on several ranks the exchange of the
+// ghosts has taken time, and the spread over the ranks is in order.
+TEST(Slabs, StepTimesTellTheExchangeAndTheRanksSpread) {
+    Simulation shared(short_drum(), 1, Ranks::world);
+    shared.advance(100);
+    const tumble::StepTimes& t = shared.step_times();
+    EXPECT_EQ(t.steps, 100);
+    const double exchange = t.seconds[static_cast<std::size_t>(tumble::StepPhase::exchange)];
+    if (tumble::mpi::size() > 1)
+        EXPECT_GT(exchange, 0.0);
+    else
+        EXPECT_EQ(exchange, 0.0);
+    const tumble::io::StepTimesSpread s = tumble::io::step_times_spread(t, 1.0, 1, shared.shared());
+    EXPECT_EQ(s.ranks, tumble::mpi::size());
+    for (const tumble::io::PhaseSpread& phase : s.phases) {
+        EXPECT_LE(phase.least, phase.mean);
+        EXPECT_LE(phase.mean, phase.most);
+    }
 }
 
 }  // namespace

@@ -153,6 +153,17 @@ def test_run_refuses_a_negative_count_or_time():
     assert sim.run(steps=0) == 0 and sim.step_count == 0
 
 
+def test_step_times_split_the_steps_by_phase():
+    sim = tumble.Simulation(tumble.Scenario.from_toml(SCENARIO))
+    sim.advance(300)
+    times = sim.step_times
+    assert set(times) == {"motion", "exchange", "neighbours", "forces", "steps"}
+    assert times["steps"] == 300
+    assert times["forces"] > 0 and times["motion"] > 0 and times["exchange"] == 0  # one process
+    sim.reset_step_times()
+    assert sim.step_times["steps"] == 0 and sim.step_times["forces"] == 0
+
+
 def test_contacts_with_history():
     sim = tumble.Simulation(tumble.Scenario.from_toml(SCENARIO))
     sim.run(duration=0.15)  # the grains have fallen into a bed

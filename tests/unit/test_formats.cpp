@@ -92,6 +92,13 @@ TEST_F(Formats, EveryJsonOfARunWithAQuoteInItsNameParses) {
     EXPECT_EQ(j.at("scenario").get<std::string>(), scenario.string());
     EXPECT_EQ(j.at("seed").get<int>(), 5);
     EXPECT_GT(j.at("steps").get<std::int64_t>(), 0);
+    // Where the time went: every step counted, the shares of the wall time within 1.
+    const Json& phases = j.at("time_by_phase");
+    EXPECT_EQ(phases.at("steps").get<std::int64_t>(), j.at("steps").get<std::int64_t>());
+    double shares = 0.0;
+    for (const char* phase : {"forces", "neighbours", "motion", "exchange", "other"})
+        shares += phases.at("phases").at(phase).at("share").get<double>();
+    EXPECT_NEAR(shares, 1.0, 0.01);
 
     const auto contact = run_command(tumble("contact " + quoted(scenario) + " --speeds 0.5 --json"));
     ASSERT_EQ(contact.exit_code, 0) << contact.output;

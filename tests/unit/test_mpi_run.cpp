@@ -44,6 +44,11 @@ TEST_F(MpiRun, TwoRanksRunStopAndResumeBitwise) {
     auto r = run_command(mpirun(2, "run " + scenario_ + " -o " + a.string()));
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("shared among 2 MPI ranks"), std::string::npos) << r.output;
+    // Where the time went, told once (by rank 0), with the ranks' spread and the exchange between them.
+    EXPECT_NE(r.output.find("time by phase of the run (this process: since its start or resume):"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("steps on 2 ranks"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("\n  exchange "), std::string::npos) << r.output;
     EXPECT_TRUE(fs::exists(a / "run.json"));
     EXPECT_TRUE(fs::exists(a / "checkpoints" / "000002.r1.tck"));  // the final checkpoint, one file per rank
     // The same ranks, the same bytes.

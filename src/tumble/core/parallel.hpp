@@ -103,6 +103,8 @@ private:
 class Team {
 public:
     int chunks() const { return chunks_; }
+    // Whether this is the team's first thread (the only one of a team of one).
+    bool leader() const { return rank_ == 0; }
     // The c-th part of [0, total) (chunk_range()).
     IndexRange range(int c, std::size_t total) const { return chunk_range(c, chunks_, total); }
 

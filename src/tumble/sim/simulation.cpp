@@ -219,6 +219,7 @@ void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) 
         return DisplacementLimit{neighbors_.positions_at_build(p.size()), neighbors_.rebuild_limit2()};
     };
     const DisplacementLimit since_build = limit();
+    clock_.start(team);
     team.each([&](int c) {
         const auto part = static_cast<std::size_t>(c);
         std::size_t far = std::exchange(drifted_far_[part], 0);
@@ -230,15 +231,19 @@ void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) 
         }
         moved_[part] = far > 0 || !since_build.at_build;
     });
+    clock_.lap(team, StepPhase::motion);
     const bool moved_here = std::find(moved_.begin(), moved_.end(), 1) != moved_.end();
-    if (slabs_)  // the ghosts where their owners moved them; a rebuild on every rank if one needs it
+    if (slabs_) {  // the ghosts where their owners moved them; a rebuild on every rank if one needs it
         team.one([&] {
             slabs_->update_ghosts(p, owned_);
             rebuild_now_ = mpi::any(moved_here);
         });
+        clock_.lap(team, StepPhase::exchange);
+    }
     if (slabs_ ? rebuild_now_ : moved_here) {
         rebuild(team);
         locate_kinds(team);
+        clock_.lap(team, StepPhase::neighbours);
     }
     const DisplacementLimit since_this_build = limit();  // the list's positions may have changed with a rebuild
     const Sums sums = after == After::stop ? Sums::all : Sums::free;
@@ -253,6 +258,7 @@ void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) 
             time_ = static_cast<double>(next) * dt_;
         }
     });
+    clock_.stop(team, StepPhase::motion);
 }
 
 void Simulation::step() { advance(1); }
@@ -358,6 +364,7 @@ void Simulation::compute_forces(Team& team, Sums sums, Then&& then) {
                                           force, torque, records_);
         });
     });
+    clock_.lap(team, StepPhase::forces);  // within a step (the clock stands still outside one)
     const auto add_chunk_sums = [&](IndexRange r) {
         for (std::size_t part = 1; part < touched_from_.size(); ++part) {
             const std::size_t from = std::max(r.begin, touched_from_[part]), offset = (part - 1) * n;

@@ -19,6 +19,7 @@
 #include "tumble/sim/scenario.hpp"
 #include "tumble/sim/simulation_state.hpp"
 #include "tumble/sim/slabs.hpp"
+#include "tumble/sim/step_clock.hpp"
 
 namespace tumble {
 
@@ -121,6 +122,11 @@ public:
     void set_contact_recording(bool on) { recording_ = on; }
     const std::vector<ContactRecord>& contact_records() const { return records_; }
 
+    // This process's time in the phases of the steps taken since it was
+    // built or reset (sim/step_clock.hpp); not part of the state.
+    const StepTimes& step_times() const { return clock_.times(); }
+    void reset_step_times() { clock_.reset(); }
+
 private:
     int chunks() const { return recording_ ? 1 : threads_; }
     void prepare_chunks();
@@ -200,6 +206,7 @@ private:
     std::vector<KeyedHistory> histories_;
     HistoryTable history_table_;
     bool rebuild_now_ = false;
+    StepClock clock_;
 };
 
 // The whole state of a run shared among ranks, from the states its ranks
