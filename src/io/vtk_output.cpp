@@ -127,9 +127,12 @@ private:
             uLongf packed = compressBound(static_cast<uLong>(block.size()));
             const std::size_t at = appended_.size();
             appended_.resize(at + packed);
+            // zlib's fastest level: the particles' doubles barely compress
+            // at any level, and the default one took 2 % of a drum run for
+            // 1 % smaller files (docs/BENCHMARKS.md, "Time by phase").
             if (compress2(reinterpret_cast<Bytef*>(&appended_[at]), &packed,
                           reinterpret_cast<const Bytef*>(block.data()), static_cast<uLong>(block.size()),
-                          Z_DEFAULT_COMPRESSION) != Z_OK)
+                          Z_BEST_SPEED) != Z_OK)
                 throw Error("zlib could not compress a block of a VTK array");
             appended_.resize(at + packed);
             const std::uint64_t size = packed;
