@@ -33,7 +33,30 @@ inline std::vector<KeyedHistory> keyed_histories(const ParticleStore& p, const P
     return all;
 }
 
-// Histories looked up by the two global ids: the records grouped by their
+// The records keyed by the spheres' places in p instead of their global
+// ids (`ids` of them, 0 .. ids-1): lo < hi are indices into p and the
+// history is seen from lo; the records of a sphere p does not hold are left
+// out, the others keep their order. A table of these is read in the order of
+// a list found on p (by first index, which is spatial once p is sorted),
+// where one keyed by global ids is read at random: the lookups of a rebuild
+// across ranks took 19 ns a pair that way (docs/BENCHMARKS.md, "Time by
+// phase").
+inline std::vector<KeyedHistory> keyed_by_place(const std::vector<KeyedHistory>& records, const ParticleStore& p,
+                                                std::size_t ids) {
+    constexpr std::uint32_t absent = UINT32_MAX;
+    std::vector<std::uint32_t> place(ids, absent);
+    for (std::size_t i = 0; i < p.size(); ++i) place[static_cast<std::size_t>(p.id[i])] = static_cast<std::uint32_t>(i);
+    std::vector<KeyedHistory> local;
+    local.reserve(records.size());
+    for (const KeyedHistory& r : records) {
+        const std::uint32_t a = place[static_cast<std::size_t>(r.lo)], b = place[static_cast<std::size_t>(r.hi)];
+        if (a == absent || b == absent) continue;
+        local.push_back(a < b ? KeyedHistory{a, b, r.history} : KeyedHistory{b, a, r.history.swapped()});
+    }
+    return local;
+}
+
+// Histories looked up by the two global ids (or places, keyed_by_place()): the records grouped by their
 // lower id (a counting sort over the ids 0 .. ids-1, which the global ids
 // are), each group scanned for the higher id. A sphere has a dozen contacts
 // at most, so a lookup reads a few records; building the table is linear in
@@ -50,7 +73,7 @@ public:
         std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
         for (const KeyedHistory& r : records) grouped_[next[static_cast<std::size_t>(r.lo)]++] = r;
     }
-    // The history of spheres a and b (global ids) seen from a; zero if none.
+    // The history of spheres a and b (global ids, or places) seen from a; zero if none.
     ContactHistory find(std::int64_t a, std::int64_t b) const {
         const std::int64_t lo = a < b ? a : b, hi = a < b ? b : a;
         const auto l = static_cast<std::size_t>(lo);

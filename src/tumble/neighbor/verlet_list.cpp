@@ -128,7 +128,7 @@ void VerletList::find_pairs(ParticleStore& p, std::size_t owned, const HistoryTa
     team.each([&](int c) {
         const IndexRange r = team.range(c, pairs_.size());
         for (std::size_t k = r.begin; k < r.end; ++k)
-            pairs_.set_history(k, histories.find(p.id[pairs_.first[k]], p.id[pairs_.second[k]]));
+            pairs_.set_history(k, histories.find(pairs_.first[k], pairs_.second[k]));
         finish_build(p, team, c);
     });
 }

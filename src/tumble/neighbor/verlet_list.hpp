@@ -58,7 +58,8 @@ public:
     // ranks' spheres) after the rank's own spheres. arrange(): wraps and
     // sorts the store (the own spheres only). find_pairs(): the pairs among
     // the first `owned` spheres and between them and the ghosts (none
-    // between two ghosts), each with its history from `histories`.
+    // between two ghosts), each with its history from `histories`, a table
+    // keyed by the spheres' places in p (keyed_by_place()).
     void arrange(ParticleStore& p, Team& team);
     void find_pairs(ParticleStore& p, std::size_t owned, const HistoryTable& histories, Team& team);
 

@@ -88,13 +88,14 @@ void Simulation::rebuild(Team& team, bool keep_histories) {
         if (slabs_ && neighbors_.builds() % Slabs::rebalance_every == 0 && neighbors_.builds() > 0)
             slabs_->rebalance(particles_, owned_, neighbors_.pairs());  // the cuts where the work now is, before the spheres migrate
         if (slabs_) slabs_->migrate(particles_, histories_, wall_history_);
-        history_table_.build(histories_, scenario_.particles.size());
         owned_ = particles_.size();
     });
     neighbors_.arrange(particles_, team);
     team.one([&] {
         if (slabs_) slabs_->make_ghosts(particles_);
         prepare_chunks();
+        // Keyed by the spheres' places now that they have them, for lookups in the new list's order.
+        history_table_.build(keyed_by_place(histories_, particles_, scenario_.particles.size()), particles_.size());
     });
     neighbors_.find_pairs(particles_, owned_, history_table_, team);
 }
