@@ -20,6 +20,7 @@
 
 #include "tumble/core/error.hpp"
 #include "tumble/neighbor/candidate_pairs.hpp"
+#include "tumble/neighbor/keyed_history.hpp"
 #include "tumble/neighbor/verlet_list.hpp"
 #include "tumble/setup/generators.hpp"
 #include "tumble/setup/paper_materials.hpp"
@@ -489,6 +490,41 @@ TEST(Neighbor, NoContactIsMissedDuringASimulation) {
     std::printf("  [measured] %lld list builds in %lld steps, %zu contacts seen\n",
                 static_cast<long long>(sim.neighbors().builds()), static_cast<long long>(sim.step_count()),
                 contacts_seen);
+}
+
+// The histories re-keyed by place for a rebuild across ranks: a record of
+// a sphere the store does not hold is dropped, one whose lower id lies at
+// the higher place is turned to be seen from the lower place (the slip
+// flips), and of two records of one pair the table still finds the first.
+TEST(KeyedHistory, KeyedByPlaceFollowsTheStoreAndKeepsTheOrder) {
+    ParticleStore p;
+    p.resize(3);
+    p.id = {7, 2, 5};  // places 0, 1, 2; ids 0 .. 9
+    ContactHistory h;
+    h.slip = {1.0, 2.0, 3.0};
+    h.angular_slip = 0.5;
+    h.viscous_force = -4.0;
+    ContactHistory second = h;
+    second.viscous_force = 9.0;
+    const std::vector<KeyedHistory> records{
+        {2, 7, h},       // ids 2 (place 1) and 7 (place 0): seen from place 0, swapped
+        {5, 9, h},       // id 9 is not held: dropped
+        {2, 5, h},       // places 1 and 2: as it is
+        {2, 5, second},  // the same pair again: the table keeps finding the first
+    };
+    const std::vector<KeyedHistory> local = keyed_by_place(records, p, 10);
+    ASSERT_EQ(local.size(), 3u);
+    EXPECT_EQ(local[0].lo, 0);
+    EXPECT_EQ(local[0].hi, 1);
+    EXPECT_EQ(local[0].history.slip, h.swapped().slip);
+    EXPECT_EQ(local[1].lo, 1);
+    EXPECT_EQ(local[1].hi, 2);
+    HistoryTable table;
+    table.build(local, p.size());
+    EXPECT_EQ(table.find(1, 0).slip, h.slip);  // seen from place 1 (id 2), as recorded
+    EXPECT_EQ(table.find(0, 1).slip, h.swapped().slip);
+    EXPECT_EQ(table.find(2, 1).viscous_force, h.viscous_force);  // the first record of the pair
+    EXPECT_TRUE(table.find(0, 2).is_zero());  // no record: a new contact
 }
 
 }  // namespace
