@@ -16,7 +16,8 @@ PhaseSpread spread(double mine, bool shared) {
     return {-mpi::max(-mine), mpi::sum(mine) / mpi::size(), mpi::max(mine)};
 }
 
-// The rows: the phases in the order of a step's work, then the rest.
+// The rows: the phases, the dearest first as a rule (as LAMMPS lists Pair,
+// Neigh, Comm), then the rest.
 struct Row {
     std::string_view name;
     const PhaseSpread* times;
