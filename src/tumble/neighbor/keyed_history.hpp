@@ -24,7 +24,7 @@ struct KeyedHistory {
 // The non-zero histories of a list over the spheres of p, in list order.
 inline std::vector<KeyedHistory> keyed_histories(const ParticleStore& p, const PairList& pairs) {
     std::vector<KeyedHistory> all;
-    all.reserve(pairs.size());  // at most one a pair: no copies as it grows (0.8 % of a rank's time on the long drum)
+    all.reserve(pairs.size());  // at most one a pair: the room made once, not copied as it grows
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const ContactHistory h = pairs.history(k);
         if (h.is_zero()) continue;
