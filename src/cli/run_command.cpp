@@ -107,11 +107,12 @@ public:
                                {plan_.scenario_file, plan_.seed, plan_.duration, plan_.steps, seconds,
                                 sim_.scenario().particles.size(), sim_.scenario().free_count(), phases});
         checkpoint(true, progress.elapsed_seconds());
-        if (talk)
+        if (talk) {
             fmt::print("done in {:.1f} s ({:.3g} particle updates/s); output in {}\n", seconds,
                        seconds > 0 ? static_cast<double>(sim_.scenario().free_count()) * plan_.steps / seconds : 0.0,
                        dir_.string());
-        if (talk) fmt::print("{}", io::step_times_text(phases, "the run (this process: since its start or resume)"));
+            fmt::print("{}", io::step_times_text(phases, "the run (this process: since its start or resume)"));
+        }
         return 0;
     }
 
