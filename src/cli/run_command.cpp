@@ -108,7 +108,9 @@ public:
                                 sim_.scenario().particles.size(), sim_.scenario().free_count(), phases});
         checkpoint(true, progress.elapsed_seconds());
         if (talk) {
-            fmt::print("done in {:.1f} s ({:.3g} particle updates/s); output in {}\n", seconds,
+            // Three digits for a short run (a tenth of a second rounds it to "0.0 s").
+            fmt::print("done in {} s ({:.3g} particle updates/s); output in {}\n",
+                       seconds < 100.0 ? fmt::format("{:#.3g}", seconds) : fmt::format("{:.0f}", seconds),
                        seconds > 0 ? static_cast<double>(sim_.scenario().free_count()) * plan_.steps / seconds : 0.0,
                        dir_.string());
             fmt::print("{}", io::step_times_text(phases, "the run (this process: since its start or resume)"));
