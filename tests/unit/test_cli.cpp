@@ -157,7 +157,9 @@ TEST_F(Cli, ProgressLinesWhenTheOutputIsNotATerminal) {
     const std::string output = run.output;
     ASSERT_TRUE(std::regex_search(output, done, std::regex(R"(done in ([0-9.]+) s \()"))) << run.output;
     const std::string digits = std::regex_replace(done[1].str(), std::regex(R"(^[0.]+|\.)"), "");
-    if (std::stod(done[1].str()) < 100.0) EXPECT_EQ(digits.size(), 3u) << done[0];
+    if (std::stod(done[1].str()) < 100.0) {
+        EXPECT_EQ(digits.size(), 3u) << done[0];
+    }
 
     const Result drum = run_tumble("drum --grains 150 --omega 8 --revolutions 0.25 --snapshots 0 --no-plot --out " +
                                    (dir_ / "drum").string() + " --progress-every 0.000001");

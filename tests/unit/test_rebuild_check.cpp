@@ -5,13 +5,16 @@
 // farther than half the skin from where the list last saw them. The count
 // must be the one written out here, particle by particle, and agree with
 // VerletList::needs_rebuild(), the check as a pass of its own; each loop counts
-// only the particles it moves.
+// only the particles it moves. The bound on a rigid motion with which
+// step() skips the wall's count holds for every kinematic sphere.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
+#include "tumble/core/constants.hpp"
 #include "tumble/core/domain.hpp"
 #include "tumble/integrate/velocity_verlet.hpp"
 #include "tumble/neighbor/verlet_list.hpp"
@@ -110,6 +113,34 @@ TEST(RebuildCheck, TheWallsMotionCountsTheKinematicSpheresItCarriesBeyondHalfThe
     EXPECT_EQ(move_kinematic(c.p, {turned_by(theta)}, all, c.limit()), 9u);
     // Turned back to where they were: none.
     EXPECT_EQ(move_kinematic(c.p, {turned_by(0.0)}, all, c.limit()), 0u);
+}
+
+// rigid_displacement_bound(), which step() takes instead of looking at each
+// wall sphere while it lies well below half the skin: no kinematic sphere
+// moves farther than it says, and in a turn alone the farthest (at the
+// reach) moves that far, to round-off. A turn past pi is bounded by the
+// diameter, 2 reach.
+TEST(RebuildCheck, TheRigidBoundHoldsForEveryKinematicSphereAndATurnReachesIt) {
+    const Vec3 z{0.0, 0.0, 1.0};
+    for (const Vec3 v : {Vec3{}, Vec3{3e-3, -4e-3, 0.0}}) {  // m/s: 5 mm in the 1 s of the motion below
+        for (const double theta : {1e-7, 1e-3, 0.3, 2.0, 4.0}) {
+            Checked c;
+            move_kinematic(c.p, {{{}, v, v, Rotation(z, theta), theta}}, {0, c.p.size()});  // 1 s at theta rad/s
+            double farthest = 0.0, reach = 0.0;
+            for (std::size_t i = 0; i < c.p.size(); ++i) {
+                if (!c.p.is_kinematic(i)) continue;
+                farthest = std::max(farthest, norm(c.p.position[i] - c.before[i]));
+                reach = std::max(reach, distance_from_axis(c.before[i], {}, z));
+            }
+            const double bound = rigid_displacement_bound(v, theta, 1.0, reach);
+            EXPECT_LE(farthest, bound * (1.0 + 1e-14)) << theta;
+            if (v == Vec3{} && theta < pi) {
+                EXPECT_NEAR(farthest, bound, 1e-14 * reach) << theta;
+            }
+        }
+    }
+    EXPECT_DOUBLE_EQ(rigid_displacement_bound({}, 4.0, 1.0, 0.1), 0.2);
+    EXPECT_EQ(rigid_displacement_bound({}, 0.0, 1.0, 0.1), 0.0);  // a motion at rest moves nothing
 }
 
 TEST(RebuildCheck, WithoutTheListsPositionsNothingIsCounted) {

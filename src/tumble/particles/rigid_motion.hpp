@@ -2,8 +2,10 @@
 // Prescribed rigid motion of kinematic particles.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
+#include "tumble/core/constants.hpp"
 #include "tumble/core/vec3.hpp"
 
 namespace tumble {
@@ -30,5 +32,22 @@ struct MotionNow {
     Rotation turn;
     double angular_velocity;
 };
+
+// The distance of point x from the axis through `point` along the unit
+// vector u (m).
+inline double distance_from_axis(const Vec3& x, const Vec3& point, const Vec3& u) {
+    const Vec3 d = x - point;
+    return norm(d - dot(d, u) * u);
+}
+
+// The farthest a rigid motion (translation velocity v, m/s; angular velocity
+// omega, rad/s) carries a point within `reach` (m) of its axis in a time t
+// (s): the translation plus the chord of the turn, |v| t + 2 sin(min(|omega|
+// t, pi) / 2) reach (m). Every sphere of the motion at the same reach or
+// nearer moves no farther; the one at that reach, with v = 0, exactly so far.
+inline double rigid_displacement_bound(const Vec3& v, double omega, double t, double reach) {
+    const double turn = std::min(std::abs(omega * t), pi);
+    return norm(v) * std::abs(t) + 2.0 * std::sin(0.5 * turn) * reach;
+}
 
 }  // namespace tumble

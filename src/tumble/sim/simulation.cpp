@@ -61,6 +61,7 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
         locate_kinds(team);
         compute_forces(team, Sums::all, [](int, IndexRange) {});
     });
+    note_build(time_);
 }
 
 // On one rank the Verlet list's rebuild. Shared among ranks (sim/slabs.hpp):
@@ -210,8 +211,8 @@ std::size_t Simulation::free_boundary(int c, int chunks, std::size_t split) cons
 // once instead of twice); that step then begins with the drift done
 // (`drifted`).
 void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) {
-    const double half_dt = 0.5 * dt_;
-    const std::vector<MotionNow> now = motions_now(static_cast<double>(next) * dt_);
+    const double half_dt = 0.5 * dt_, time = static_cast<double>(next) * dt_;
+    const std::vector<MotionNow> now = motions_now(time);
     ParticleStore& p = particles_;
     // Whether a particle has moved far enough for a rebuild is found as the
     // particles are moved: the kinematic ones here, the free ones in the
@@ -220,6 +221,8 @@ void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) 
         return DisplacementLimit{neighbors_.positions_at_build(p.size()), neighbors_.rebuild_limit2()};
     };
     const DisplacementLimit since_build = limit();
+    // The wall spheres one by one only where their motion's bound comes near the limit.
+    const DisplacementLimit walls_since_build = walls_within_limit(time) ? DisplacementLimit{} : since_build;
     clock_.start(team);
     team.each([&](int c) {
         const auto part = static_cast<std::size_t>(c);
@@ -227,7 +230,7 @@ void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) 
         for (const IndexRange r : own_parts(team, c)) {
             if (!drifted)  // v(t) -> v(t + dt/2), x(t) -> x(t + dt); F = 0
                 far += kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r), since_build);
-            far += move_kinematic(p, now, kinematic_part(r), since_build);  // prescribed x, v, omega at t + dt; F = 0
+            far += move_kinematic(p, now, kinematic_part(r), walls_since_build);  // prescribed x, v, omega at t + dt; F = 0
             if (after == After::stop) clear_chunk_sums(kinematic_part(r));  // their sums of this step only
         }
         moved_[part] = far > 0 || !since_build.at_build;
@@ -244,6 +247,7 @@ void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) 
     if (slabs_ ? rebuild_now_ : moved_here) {
         rebuild(team);
         locate_kinds(team);
+        team.one([&] { note_build(time); });
         clock_.lap(team, StepPhase::neighbours);
     }
     const DisplacementLimit since_this_build = limit();  // the list's positions may have changed with a rebuild
@@ -256,7 +260,7 @@ void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) 
             kick(p, scenario_.gravity, half_dt, free_part(r));
         if (c == 0) {  // the clock, once
             step_ = next;
-            time_ = static_cast<double>(next) * dt_;
+            time_ = time;
         }
     });
     clock_.stop(team, StepPhase::motion);
@@ -439,6 +443,35 @@ void Simulation::add_wall_forces(IndexRange r) {
     }
 }
 
+void Simulation::note_build(double time) {
+    const ParticleStore& p = particles_;
+    motion_reach_.assign(motions_.size(), 0.0);
+    for (std::size_t i = 0; i < owned_; ++i) {
+        if (!p.is_kinematic(i)) continue;
+        const auto k = static_cast<std::size_t>(p.motion[i]);
+        const RigidMotion& m = motions_[k].motion;
+        const Vec3 u = (1.0 / norm(m.axis_direction)) * m.axis_direction;
+        motion_reach_[k] = std::max(motion_reach_[k], distance_from_axis(p.reference_position[i], m.axis_point, u));
+    }
+    list_time_ = time;
+}
+
+// Each motion carries its spheres at most rigid_displacement_bound() from
+// where the list saw them. Below 0.9 of the limit (half the skin) that
+// bound leaves room for far more than the round-off between it and the
+// spheres' positions, so the spheres would all be found within the limit,
+// as when each is checked: the rebuilds, and the results, are the same.
+bool Simulation::walls_within_limit(double time) const {
+    if (!list_time_) return false;
+    const double limit = 0.9 * std::sqrt(neighbors_.rebuild_limit2());
+    for (std::size_t k = 0; k < motions_.size(); ++k) {
+        const RigidMotion& m = motions_[k].motion;
+        if (rigid_displacement_bound(m.velocity, m.angular_velocity, time - *list_time_, motion_reach_[k]) >= limit)
+            return false;
+    }
+    return true;
+}
+
 // Per motion: where the axis is now and the rotation since the motion
 // began, worked out once per step for all its particles.
 std::vector<MotionNow> Simulation::motions_now(double time) const {
@@ -461,6 +494,7 @@ void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
     motions_[k] = {motion, time_};
     scenario_.motions[k] = motion;
     move_kinematic(particles_, motions_now(time_), {0, owned_});
+    list_time_.reset();  // the motion's bound holds from now on, not from the build
 }
 
 SimulationState Simulation::capture() const {
@@ -572,8 +606,10 @@ void Simulation::restore(SimulationState state) {
             rebuild(team, true);
             locate_kinds(team);
         });
+        note_build(time_);
         return;
     }
+    list_time_.reset();  // the state does not say when its list was built
     owned_ = state.owned;
     if (slabs_) slabs_->restore(std::move(state.slabs));
     neighbors_.restore(std::move(state.neighbors));

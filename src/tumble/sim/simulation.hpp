@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -158,6 +159,13 @@ private:
     std::array<IndexRange, 2> own_parts(const Team& team, int c) const;
     std::size_t free_boundary(int c, int chunks, std::size_t split) const;
     std::size_t kinematic_split() const;
+    // The list built from the positions at `time`: each motion's reach
+    // noted for walls_within_limit().
+    void note_build(double time);
+    // Whether at `time` no wall sphere can be near half the skin from where
+    // the list saw it, by its motion's bound alone (then step() does not
+    // look at each).
+    bool walls_within_limit(double time) const;
 
     Scenario scenario_;
     PairTable pair_table_;
@@ -195,6 +203,12 @@ private:
     // of the pairs touches, so that a thread moves the wall spheres its
     // pairs read; per chunk, that sphere while it is worked out.
     std::vector<std::size_t> wall_from_, chunk_first_wall_;
+    // The time of the positions the list was built from (none after a
+    // restore without a rebuild, or a new motion: every wall sphere is then
+    // checked until the next build), and per motion the farthest of its own
+    // spheres from its axis.
+    std::optional<double> list_time_;
+    std::vector<double> motion_reach_;
     // History of the contacts with the six flat walls, at 6 id + face (ids are
     // dense, 0 .. N-1); empty when the domain has no walls.
     std::vector<ContactHistory> wall_history_;
