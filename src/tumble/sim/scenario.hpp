@@ -26,6 +26,8 @@ struct RigidMotion {
     Vec3 axis_direction{0.0, 0.0, 1.0};  // need not be normalised
     double angular_velocity = 0.0;       // rad/s
     Vec3 velocity;                       // m/s
+
+    Vec3 unit_axis() const { return (1.0 / norm(axis_direction)) * axis_direction; }  // the direction, of length 1
 };
 
 // One particle as the user describes it.

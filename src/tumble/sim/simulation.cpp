@@ -445,13 +445,15 @@ void Simulation::add_wall_forces(IndexRange r) {
 
 void Simulation::note_build(double time) {
     const ParticleStore& p = particles_;
-    motion_reach_.assign(motions_.size(), 0.0);
-    for (std::size_t i = 0; i < owned_; ++i) {
-        if (!p.is_kinematic(i)) continue;
-        const auto k = static_cast<std::size_t>(p.motion[i]);
+    motion_reach_.clear();
+    for (std::size_t k = 0; k < motions_.size(); ++k) {
         const RigidMotion& m = motions_[k].motion;
-        const Vec3 u = (1.0 / norm(m.axis_direction)) * m.axis_direction;
-        motion_reach_[k] = std::max(motion_reach_[k], distance_from_axis(p.reference_position[i], m.axis_point, u));
+        const Vec3 u = m.unit_axis();
+        double reach = 0.0;
+        for (std::size_t i = 0; i < owned_; ++i)
+            if (p.motion[i] == static_cast<std::int32_t>(k))
+                reach = std::max(reach, distance_from_axis(p.reference_position[i], m.axis_point, u));
+        motion_reach_.push_back(reach);
     }
     list_time_ = time;
 }
@@ -478,9 +480,8 @@ std::vector<MotionNow> Simulation::motions_now(double time) const {
     std::vector<MotionNow> now;
     for (const MotionClock& m : motions_) {
         const double elapsed = time - m.start_time;
-        const Vec3 u = (1.0 / norm(m.motion.axis_direction)) * m.motion.axis_direction;
         now.push_back({m.motion.axis_point, m.motion.axis_point + elapsed * m.motion.velocity, m.motion.velocity,
-                       Rotation(u, m.motion.angular_velocity * elapsed), m.motion.angular_velocity});
+                       Rotation(m.motion.unit_axis(), m.motion.angular_velocity * elapsed), m.motion.angular_velocity});
     }
     return now;
 }
