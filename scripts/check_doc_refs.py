@@ -57,8 +57,6 @@ for path in tracked:
     joined = comment.sub(" ", text)
     for m in reference.finditer(joined):
         name = m.group(1)
-        if name.startswith("docs/") and name not in known:
-            name = name[len("docs/"):]
         if name not in known:
             continue  # a file outside the project (../shared/SPEC-NOTES.md)
         for title in [m.group(2)] + re.findall(r'"([^"]+)"', m.group(3)):
