@@ -54,6 +54,9 @@ void print_table(const analysis::ContactReport& report) {
         fmt::print("  at {:.3g} m/s: {}, {}, {}\n", report.reference_speed,
                    time("Hertz collision time", "t_c", r.times.collision), time("viscous time", "m*/c", r.times.viscous),
                    std::isfinite(r.times.creep) ? time("creep time", "tau", r.times.creep) : "not over-damped");
+        fmt::print("  tangential spring ({} stiffness): {}\n",
+                   keyword_of(tangential_stiffnesses, report.tangential_stiffness),
+                   time("half period", "t_t", r.times.tangential));
         fmt::print("  equilibrium overlap {:.4g} um ({:.3g} % of R*), pull-off force {:.4g} mN\n",
                    r.equilibrium_overlap * 1e6, 100.0 * r.equilibrium_overlap / law.R_star, r.pull_off_force * 1e3);
         if (law.attraction <= 0.0)
@@ -95,6 +98,7 @@ void print_json(const analysis::ContactReport& report) {
                              {"hertz_collision_time", r.times.collision},
                              {"viscous_time", r.times.viscous},
                              {"creep_time", r.times.creep},  // null where not over-damped
+                             {"tangential_time", r.times.tangential},  // null without shear or friction
                              {"equilibrium_overlap", r.equilibrium_overlap},
                              {"pull_off_force", r.pull_off_force},
                              {"sticking_speed", r.sticking_speed},
@@ -106,6 +110,8 @@ void print_json(const analysis::ContactReport& report) {
                                           {"automatic", t.automatic},
                                           {"dt_set_by", t.automatic ? t.recommended_by : "given"},
                                           {"reference_speed", report.reference_speed},
+                                          {"tangential_stiffness",
+                                           keyword_of(tangential_stiffnesses, report.tangential_stiffness)},
                                           {"maximum_dt", t.maximum},
                                           {"maximum_set_by", t.limiting},
                                           {"pairs", pairs}}));

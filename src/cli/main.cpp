@@ -191,7 +191,7 @@ int main(int argc, char** argv) {
     std::optional<double> omega, rpm, froude, revolutions, length, diameter, wall_radius, dt, fill;
     std::optional<std::int64_t> grains, seed;
     std::optional<int> samples, bins, band_bins, snapshots;
-    std::optional<std::string> mode, out, shear, friction_normal;
+    std::optional<std::string> mode, out, shear, friction_normal, tangential_stiffness;
     CLI::App* drum_cmd = app.add_subcommand(
         "drum", "The paper's rotating-drum diffusion experiment (defaults: the paper's set-up, two components, "
                 "5 rad/s, 12 revolutions; see docs/DRUM.md)");
@@ -268,6 +268,10 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("--friction-normal", friction_normal,
                          "Normal force that limits friction: net (the paper's, default) or jkr")
         ->check(CLI::IsMember(tumble::keywords(tumble::friction_normals)));
+    drum_cmd->add_option("--tangential-stiffness", tangential_stiffness,
+                         "Stiffness of the shear and twisting springs: paper (16/3 G* a, default) or mindlin "
+                         "(8 G* a; docs/MODEL.md)")
+        ->check(CLI::IsMember(tumble::keywords(tumble::tangential_stiffnesses)));
     drum_cmd->add_flag("--allow-unsafe-dt", drum.allow_unsafe_dt,
                        "Accept a --dt above the safe maximum (experts and tests; the blow-up check still stops the run)");
     drum_cmd->add_option("--seed", seed, "Seed of the random filling (0 to 2^63 - 1)")->check(seed_range);
@@ -294,6 +298,7 @@ int main(int argc, char** argv) {
     std::string contact_drum_config;
     std::optional<std::string> contact_mode;
     std::optional<double> contact_dt, contact_wall_radius, contact_surface_energy;
+    std::optional<std::string> contact_tangential_stiffness;
     CLI::App* contact_cmd = app.add_subcommand(
         "contact", "Each pair of materials of a scenario or of the drum: collision time, restitution at the step and "
                    "converged, equilibrium overlap, pull-off force, sticking speed, and the time step's criterion "
@@ -309,6 +314,10 @@ int main(int argc, char** argv) {
         ->needs(contact_drum_flag);
     contact_cmd->add_option("--surface-energy", contact_surface_energy,
                             "Surface energy W of every pair of the drum, J/m^2 (with --drum; default the paper's 0.2)")
+        ->needs(contact_drum_flag);
+    contact_cmd->add_option("--tangential-stiffness", contact_tangential_stiffness,
+                            "Stiffness of the shear and twisting springs of the drum: paper or mindlin (with --drum)")
+        ->check(CLI::IsMember(tumble::keywords(tumble::tangential_stiffnesses)))
         ->needs(contact_drum_flag);
     contact_cmd->add_flag("--allow-unsafe-dt", contact.allow_unsafe_dt,
                           "Accept a --dt above the safe maximum (to see what a larger step would do)")
@@ -447,6 +456,9 @@ int main(int argc, char** argv) {
             if (contact_wall_radius) d.geometry.wall_radius = *contact_wall_radius;
             if (contact_dt) d.dt = *contact_dt;
             if (contact_surface_energy) d.surface_energy = *contact_surface_energy;
+            if (contact_tangential_stiffness)
+                d.tangential_stiffness =
+                    tumble::find_keyword(tumble::tangential_stiffnesses, *contact_tangential_stiffness)->value;
             tumble::io::check_drum_settings(d, "command line");
             return contact_command(contact);
         }
@@ -489,6 +501,9 @@ int main(int argc, char** argv) {
             if (skin) d.skin = *skin;
             if (shear) d.shear = tumble::find_keyword(tumble::shear_models, *shear)->value;
             if (friction_normal) d.friction_normal = tumble::find_keyword(tumble::friction_normals, *friction_normal)->value;
+            if (tangential_stiffness)
+                d.tangential_stiffness =
+                    tumble::find_keyword(tumble::tangential_stiffnesses, *tangential_stiffness)->value;
             if (surface_energy) d.surface_energy = *surface_energy;
             if (seed) d.seed = static_cast<std::uint64_t>(*seed);
             if (out) d.output = *out;

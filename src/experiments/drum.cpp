@@ -473,6 +473,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     info.isa = isa_description();
     info.shear_model = keyword_of(shear_models, s.shear);
     info.friction_normal = keyword_of(friction_normals, s.friction_normal);
+    info.tangential_stiffness = keyword_of(tangential_stiffnesses, s.tangential_stiffness);
     info.surface_energy = s.surface_energy;
     info.samples_per_revolution = s.samples_per_revolution;
     info.profile_bins = s.profile_bins;

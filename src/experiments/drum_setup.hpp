@@ -32,6 +32,7 @@ inline DrumSetup build_drum(const io::DrumSettings& s, bool allow_unsafe_dt = fa
     setup.scenario.neighbor.skin = s.skin > 0.0 ? s.skin : drum_skin_per_radius * setup.scenario.largest_radius();
     setup.scenario.model.shear = s.shear;
     setup.scenario.model.friction_normal = s.friction_normal;
+    setup.scenario.model.tangential_stiffness = s.tangential_stiffness;
     setup.scenario.time_step.allow_unsafe = allow_unsafe_dt;
     return setup;
 }

@@ -80,6 +80,7 @@ void put_scenario(ByteWriter& w, const Scenario& s) {
     w.put(static_cast<std::uint8_t>(s.model.shear));
     w.put(s.model.twisting);
     w.put(static_cast<std::uint8_t>(s.model.friction_normal));
+    w.put(static_cast<std::uint8_t>(s.model.tangential_stiffness));
     w.put(s.model.slip_velocity_regularisation);
     w.put(s.domain.lo);
     w.put(s.domain.hi);
@@ -105,7 +106,7 @@ void put_scenario(ByteWriter& w, const Scenario& s) {
     }
 }
 
-Scenario get_scenario(ByteReader& r) {
+Scenario get_scenario(ByteReader& r, std::uint32_t version) {
     Scenario s;
     s.materials.resize(r.count(8 + 7 * sizeof(double), "materials"));
     for (Material& m : s.materials) {
@@ -125,6 +126,12 @@ Scenario get_scenario(ByteReader& r) {
     if (friction_normal > static_cast<std::uint8_t>(FrictionNormal::Jkr))
         r.fail("model friction normal: unknown choice");
     s.model.friction_normal = static_cast<FrictionNormal>(friction_normal);
+    if (version >= 6) {  // before: the paper's stiffness, the only one
+        const auto stiffness = r.get<std::uint8_t>("model tangential stiffness");
+        if (stiffness > static_cast<std::uint8_t>(TangentialStiffness::Mindlin))
+            r.fail("model tangential stiffness: unknown choice");
+        s.model.tangential_stiffness = static_cast<TangentialStiffness>(stiffness);
+    }
     s.model.slip_velocity_regularisation = r.get<double>("model");
     s.domain.lo = r.get<Vec3>("domain");
     s.domain.hi = r.get<Vec3>("domain");
@@ -324,7 +331,7 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
     Checkpoint c;
     c.record = get_record(r);
     c.record.source = name;
-    c.scenario = get_scenario(r);
+    c.scenario = get_scenario(r, version);
     const ByteReader at_state = r;
     try {
         c.state = get_state(r, version, version >= 4);

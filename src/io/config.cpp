@@ -237,7 +237,7 @@ private:
         const std::string p = "model";
         r_.only_keys(*t, p,
                      {"elastic", "viscous", "attraction", "twisting", "shear", "friction_normal",
-                      "slip_velocity_regularisation"});
+                      "tangential_stiffness", "slip_velocity_regularisation"});
         ContactModel& m = s().model;
         m.elastic = r_.boolean(*t, p, "elastic", true);
         m.viscous = r_.boolean(*t, p, "viscous", true);
@@ -246,6 +246,8 @@ private:
         if (const toml::node* n = t->get("shear")) m.shear = r_.keyword(*n, join(p, "shear"), shear_models)->value;
         if (const toml::node* n = t->get("friction_normal"))
             m.friction_normal = r_.keyword(*n, join(p, "friction_normal"), friction_normals)->value;
+        if (const toml::node* n = t->get("tangential_stiffness"))
+            m.tangential_stiffness = r_.keyword(*n, join(p, "tangential_stiffness"), tangential_stiffnesses)->value;
         m.slip_velocity_regularisation =
             r_.number(*t, p, "slip_velocity_regularisation", Bound::positive, m.slip_velocity_regularisation);
     }

@@ -156,10 +156,12 @@ DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::
         s.skin = r.number(*t, "neighbor", "skin", Bound::non_negative, 0.0);
     }
     if (const toml::table* t = r.table(root, "model", false)) {
-        r.only_keys(*t, "model", {"shear", "friction_normal", "surface_energy"});
+        r.only_keys(*t, "model", {"shear", "friction_normal", "tangential_stiffness", "surface_energy"});
         if (const toml::node* n = t->get("shear")) s.shear = r.keyword(*n, "model.shear", shear_models)->value;
         if (const toml::node* n = t->get("friction_normal"))
             s.friction_normal = r.keyword(*n, "model.friction_normal", friction_normals)->value;
+        if (const toml::node* n = t->get("tangential_stiffness"))
+            s.tangential_stiffness = r.keyword(*n, "model.tangential_stiffness", tangential_stiffnesses)->value;
         s.surface_energy = r.number(*t, "model", "surface_energy", Bound::non_negative, s.surface_energy);
     }
     if (const toml::table* t = r.table(root, "output", false)) {

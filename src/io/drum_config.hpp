@@ -58,6 +58,7 @@ struct DrumSettings {
     double skin = 0.0;
     ShearModel shear = ShearModel::Paper;              // the reading of the friction limit (docs/MODEL.md)
     FrictionNormal friction_normal = FrictionNormal::Net;  // which normal force limits friction
+    TangentialStiffness tangential_stiffness = TangentialStiffness::Paper;  // the shear and twisting springs
     // J/m^2: the surface energy W of every pair (grains, wall, caps), which
     // sets the attraction (eq. 7) and the pull-off force 2 pi W R*; the
     // paper's 0.2 by default, 0 for cohesionless grains (docs/DRUM.md).

@@ -59,6 +59,7 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                         {"isa", info.isa},
                         {"shear_model", info.shear_model},
                         {"friction_normal", info.friction_normal},
+                        {"tangential_stiffness", info.tangential_stiffness},
                         {"surface_energy", info.surface_energy},
                         {"periodic_axis", info.periodic_axis},
                         {"spin_up_time", info.spin_up_time},
@@ -112,6 +113,7 @@ DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
     // then with the slip reset to zero at the limit.
     info.shear_model = t["shear_model"].value_or(std::string("paper"));
     info.friction_normal = t["friction_normal"].value_or(std::string("net"));
+    info.tangential_stiffness = t["tangential_stiffness"].value_or(std::string("paper"));  // absent before Mindlin's
     info.surface_energy = t["surface_energy"].value_or(paper::surface_energy);  // absent before 2026-12-02: the paper's
     info.periodic_axis = t["periodic_axis"].value_or(false);  // absent before the periodic drum
     info.spin_up_time = t["spin_up_time"].value_or(0.0);       // absent before the spin-up ramp
@@ -565,8 +567,9 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                             "N = {:.4g} on, {} at the end ({:.4g} revolutions asked)\n",
                             info.until_band_change, info.bands_at_start, info.band_change_since, info.bands_at_end,
                             info.revolutions);
-    text << fmt::format("  shear model {}, friction limited by the {} normal force; surface energy W = {:.3g} J/m^2{}\n",
-                        info.shear_model, info.friction_normal, info.surface_energy,
+    text << fmt::format("  shear model {} ({} stiffness), friction limited by the {} normal force; surface energy W = "
+                        "{:.3g} J/m^2{}\n",
+                        info.shear_model, info.tangential_stiffness, info.friction_normal, info.surface_energy,
                         info.surface_energy == 0.0 ? " (no attraction)" : "");
     const std::string edges =
         info.band_edges.size() > 2 ? fmt::format(", band edges z = {:.4g} m", fmt::join(info.band_edges, " ")) : "";
@@ -707,6 +710,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     Json summary{{"mode", info.mode},
                  {"shear_model", info.shear_model},
                  {"friction_normal", info.friction_normal},
+                 {"tangential_stiffness", info.tangential_stiffness},
                  {"surface_energy", info.surface_energy},
                  {"arrangement", info.arrangement},
                  {"cap_friction", info.cap_friction},

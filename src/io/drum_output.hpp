@@ -56,6 +56,7 @@ struct DrumRunInfo {
     std::string isa;               // instruction set of the hot loops (tumble/core/isa.hpp), of the last part run
     std::string shear_model = "paper";    // keyword of the shear model (contact_law.hpp)
     std::string friction_normal = "net";  // keyword of the normal force that limits friction
+    std::string tangential_stiffness = "paper";  // keyword of the shear and twisting springs' stiffness
     double surface_energy = paper::surface_energy;  // J/m^2, every pair's W (the attraction)
     bool periodic_axis = false;    // no end caps: the axis is periodic with period inner_length
     double spin_up_time = 0.0;     // s: linear ramp from rest to omega (0: none)

@@ -62,7 +62,7 @@ SweepSettings load_sweep_settings(const fs::path& file) {
     r.only_keys(t, "sweep",
                 {"omega", "rpm", "froude", "modes", "seeds", "revolutions", "grains_two_component", "grains_self",
                  "samples_per_revolution", "snapshots_per_revolution", "diameter", "shear", "friction_normal",
-                 "periodic_axis"});
+                 "tangential_stiffness", "periodic_axis"});
     int given = 0;
     for (auto [key, unit] : {std::pair{"omega", SpeedUnit::rad_per_s}, std::pair{"rpm", SpeedUnit::rpm},
                              std::pair{"froude", SpeedUnit::froude}})
@@ -113,6 +113,8 @@ SweepSettings load_sweep_settings(const fs::path& file) {
     if (const toml::node* n = t.get("shear")) s.shear = r.keyword(*n, "sweep.shear", shear_models)->keyword;
     if (const toml::node* n = t.get("friction_normal"))
         s.friction_normal = r.keyword(*n, "sweep.friction_normal", friction_normals)->keyword;
+    if (const toml::node* n = t.get("tangential_stiffness"))
+        s.tangential_stiffness = r.keyword(*n, "sweep.tangential_stiffness", tangential_stiffnesses)->keyword;
     s.periodic_axis = r.boolean(t, "sweep", "periodic_axis", s.periodic_axis);
     s.diameter = r.number(t, "sweep", "diameter", Bound::positive, s.diameter);
     if (t.get("diameter") && s.speed_unit != SpeedUnit::froude)
@@ -152,6 +154,7 @@ std::vector<SweepPoint> expand_sweep(const SweepSettings& s, const fs::path& dir
                 p.snapshots_per_revolution = s.snapshots_per_revolution;
                 p.shear = s.shear;
                 p.friction_normal = s.friction_normal;
+                p.tangential_stiffness = s.tangential_stiffness;
                 p.periodic_axis = s.periodic_axis;
                 p.name = sweep_point_name(mode, p.omega, seed);
                 p.directory = directory / "points" / p.name;
@@ -184,6 +187,8 @@ std::vector<std::string> drum_arguments(const SweepPoint& p) {
             p.shear,
             "--friction-normal",
             p.friction_normal,
+            "--tangential-stiffness",
+            p.tangential_stiffness,
             "--out",
             p.directory.string(),
             "--force",
@@ -437,7 +442,7 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
     std::size_t missing = 0;
     {
         std::ostringstream out;
-        out << "mode,shear_model,friction_normal,ends,omega,froude,seed,revolutions,grains";
+        out << "mode,shear_model,friction_normal,tangential_stiffness,ends,omega,froude,seed,revolutions,grains";
         for (const std::string& c : components)
             out << fmt::format(",D_{0},D_stderr_{0},D_one_term_{0},determined_{0},surface_share_{0},D_msd_{0},D_msd_lo_{0},"
                                "D_msd_hi_{0},D_hogg_free_{0},D_hogg_free_lo_{0},D_hogg_free_hi_{0}",
@@ -448,7 +453,7 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
             const SweepPoint& p = r.point;
             const bool ok = has_numbers(r);
             if (!ok) ++missing;
-            out << fmt::format("{},{},{},{},{},{},{},{},{}", p.mode, p.shear, p.friction_normal,
+            out << fmt::format("{},{},{},{},{},{},{},{},{},{}", p.mode, p.shear, p.friction_normal, p.tangential_stiffness,
                                p.periodic_axis ? "periodic" : "caps", p.omega, p.froude, p.seed, p.revolutions,
                                p.grains);
             for (const std::string& c : components) {

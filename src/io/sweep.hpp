@@ -38,6 +38,7 @@ struct SweepSettings {
     double diameter = 0.08;            // m: only to turn froude into omega (the drum's default diameter)
     std::string shear = "paper";            // shear model of every point (tumble drum --shear)
     std::string friction_normal = "net";    // tumble drum --friction-normal
+    std::string tangential_stiffness = "paper";  // tumble drum --tangential-stiffness
     bool periodic_axis = false;             // tumble drum --periodic-axis: no end caps
     std::filesystem::path output = "sweep-out";
 };
@@ -57,7 +58,7 @@ struct SweepPoint {
     std::size_t grains = 0;
     int samples_per_revolution = 20;
     int snapshots_per_revolution = 0;
-    std::string shear = "paper", friction_normal = "net";
+    std::string shear = "paper", friction_normal = "net", tangential_stiffness = "paper";
     bool periodic_axis = false;
     std::string name;          // e.g. "two-component_omega5.000_seed1"
     std::filesystem::path directory;  // DIR/points/NAME
@@ -72,7 +73,8 @@ std::vector<SweepPoint> expand_sweep(const SweepSettings& s, const std::filesyst
 
 // The arguments after the program name of the child run:
 // drum -q --mode M --omega W --seed S --revolutions R --grains G --samples K
-//      --snapshots P --shear H --friction-normal F --out DIR --force --threads 1
+//      --snapshots P --shear H --friction-normal F --tangential-stiffness T --out DIR --force
+//      --threads 1
 std::vector<std::string> drum_arguments(const SweepPoint& p);
 // The arguments that continue an interrupted point from its checkpoint:
 // resume -q DIR

@@ -80,6 +80,9 @@ void bind_drum(py::module_& m) {
         .def_property_readonly("shear", [](const io::DrumSettings& s) { return keyword_of(shear_models, s.shear); })
         .def_property_readonly("friction_normal",
                                [](const io::DrumSettings& s) { return keyword_of(friction_normals, s.friction_normal); })
+        .def_property_readonly("tangential_stiffness", [](const io::DrumSettings& s) {
+            return keyword_of(tangential_stiffnesses, s.tangential_stiffness);
+        })
         .def_readonly("surface_energy", &io::DrumSettings::surface_energy,
                       "J/m^2, every pair's W (the attraction); the paper's 0.2, 0: cohesionless")
         .def_readonly("output", &io::DrumSettings::output, "the run directory");

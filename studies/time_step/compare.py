@@ -34,6 +34,8 @@ def observables(run):
     rows = [{column_name(k): v for k, v in r.items()} for r in csv.DictReader(open(run / "drum_series.csv"))]
     late = [r for r in rows if float(r["revolutions"]) >= 1.0]
     values = {"angle of repose (degrees)": summary["angle_of_repose"]}
+    if "kinetic_energy_ratio_total" in summary:  # the paper's kinetic-energy ratio, material 2 over material 1
+        values["kinetic-energy ratio"] = summary["kinetic_energy_ratio_total"]
     for c in summary["components"]:
         name = c["name"]
         column = "kinetic_per_grain_" + column_name(name)
@@ -69,13 +71,14 @@ def main():
     if len(auto) < 2 or len(quarter) < 2:
         sys.exit(f"need at least 2 finished runs of each set; have {len(auto)} and {len(quarter)}")
     setup = args.setup or (out / "steps.txt").read_text().strip()
+    omega = json.loads((auto_dirs[0] / "summary.json").read_text())["omega"]
     lines = [
         f"# {args.title}",
         "",
         f"Made by `studies/time_step/compare.py` from {len(auto)} runs `{args.a}` and {len(quarter)} `{args.b}`"
         f" ({setup}; seeds {', '.join(d.name.split('seed')[1] for d in auto_dirs)} and"
         f" {', '.join(d.name.split('seed')[1] for d in quarter_dirs)}). Each run: the default drum (two components,"
-        " 1000 grains, 5 rad/s), 6 revolutions after settling; means over N >= 1. +- is the 95 % Student"
+        f" 1000 grains, {omega:g} rad/s), 6 revolutions after settling; means over N >= 1. +- is the 95 % Student"
         " interval over seeds; the difference's interval and p are Welch's (p: two-sided test of equal means).",
         "",
         f"| observable | {args.a} | {args.b} | difference [95 % interval], of {args.b}'s mean | p |",

@@ -53,6 +53,15 @@ def test_settings_are_the_command_lines():
         tumble.drum_settings(speed=3)
 
 
+def test_contact_model_settings_are_the_command_lines():
+    default = tumble.drum_settings()
+    assert (default.shear, default.friction_normal, default.tangential_stiffness) == ("paper", "net", "paper")
+    s = tumble.drum_settings(shear="spring", friction_normal="jkr", tangential_stiffness="mindlin")
+    assert (s.shear, s.friction_normal, s.tangential_stiffness) == ("spring", "jkr", "mindlin")
+    with pytest.raises(tumble.Error, match="model.tangential_stiffness"):
+        tumble.drum_settings(tangential_stiffness="hertz")
+
+
 def test_arrangement_settings_are_the_command_lines():
     s = tumble.drum_settings(length=0.24, arrangement="bands", bands=3, band_widths=[0.25, 0.5, 0.25], ends="large",
                              small_volume_fraction=0.4, cap_friction=0.6)

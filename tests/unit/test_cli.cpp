@@ -109,6 +109,10 @@ TEST(CliBasics, DrumRefusesAnUnknownShearModelOrFrictionNormal) {
     const Result normal = run_tumble("drum --friction-normal elastic --out /nonexistent/never-written");
     EXPECT_NE(normal.exit_code, 0);
     EXPECT_NE(normal.output.find("--friction-normal: elastic not in {net,jkr}"), std::string::npos) << normal.output;
+    const Result stiffness = run_tumble("drum --tangential-stiffness hertz --out /nonexistent/never-written");
+    EXPECT_NE(stiffness.exit_code, 0);
+    EXPECT_NE(stiffness.output.find("--tangential-stiffness: hertz not in {paper,mindlin}"), std::string::npos)
+        << stiffness.output;
 }
 
 // Command-line mistakes exit with tumble's usage code (2, as bad input; not
@@ -462,7 +466,8 @@ TEST_F(Cli, DrumRunWritesSeriesAndSummaryAndCanBeAnalysedAgain) {
     // It checks the files, not the physics.
     const fs::path run = dir_ / "drum";
     const Result r = run_tumble("drum -q --grains 300 --omega 8 --revolutions 0.3 --samples 40 --snapshots 10 "
-                                "--shear spring --friction-normal jkr --skin 0.001 --surface-energy 0.1 --out " + run.string());
+                                "--shear spring --friction-normal jkr --tangential-stiffness mindlin --skin 0.001 "
+                                "--surface-energy 0.1 --out " + run.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
     for (const char* file : {"drum_run.toml", "drum_series.csv", "profiles.csv", "profile_comparison.csv",
                              "depth_mobility.csv", "summary.json", "summary.txt", "time_series.csv"})
@@ -484,6 +489,8 @@ TEST_F(Cli, DrumRunWritesSeriesAndSummaryAndCanBeAnalysedAgain) {
     const tumble::io::Json j = tumble::io::parse_json(summary);
     EXPECT_EQ(j.value("shear_model", ""), "spring") << summary.substr(0, 400);
     EXPECT_EQ(j.value("friction_normal", ""), "jkr");
+    EXPECT_EQ(j.value("tangential_stiffness", ""), "mindlin");
+    EXPECT_EQ(tumble::io::read_drum_run_info(run / "drum_run.toml").tangential_stiffness, "mindlin");
     EXPECT_NE(read_file(run / "drum_run.toml").find("shear_model = 'spring'"), std::string::npos);
     EXPECT_EQ(tumble::io::read_drum_run_info(run / "drum_run.toml").skin, 0.001);
     EXPECT_EQ(tumble::io::read_drum_run_info(run / "drum_run.toml").surface_energy, 0.1);

@@ -358,7 +358,8 @@ TEST(ConfigValues, SectionsAreRead) {
                                       "lo = [-0.02, -0.02, -0.02]\nperiodic = [true, false, false]\n"
                                       "walls = [false, false, true]\nwall_material = \"material-1\"") +
                               "[model]\nelastic = true\nviscous = false\nattraction = false\ntwisting = false\n"
-                              "shear = \"spring\"\nfriction_normal = \"jkr\"\nslip_velocity_regularisation = 1e-3\n"
+                              "shear = \"spring\"\nfriction_normal = \"jkr\"\ntangential_stiffness = \"mindlin\"\n"
+                              "slip_velocity_regularisation = 1e-3\n"
                               "[neighbor]\nskin = 0.0005\nsort_every = 0\n"
                               "[output]\ndirectory = \"out\"\ntime_series_interval = 0.001\nsnapshot_interval = 0\n"
                               "[[motion]]\nname = \"drum\"\naxis_point = [0, 0.01, 0]\naxis_direction = [1, 0, 0]\n"
@@ -370,6 +371,7 @@ TEST(ConfigValues, SectionsAreRead) {
     EXPECT_FALSE(s.model.viscous || s.model.attraction || s.model.twisting);
     EXPECT_EQ(s.model.shear, tumble::ShearModel::Spring);
     EXPECT_EQ(s.model.friction_normal, tumble::FrictionNormal::Jkr);
+    EXPECT_EQ(s.model.tangential_stiffness, tumble::TangentialStiffness::Mindlin);
     EXPECT_EQ(s.model.slip_velocity_regularisation, 1e-3);
     EXPECT_EQ(s.neighbor.skin, 0.0005);
     EXPECT_EQ(s.neighbor.sort_every, 0);

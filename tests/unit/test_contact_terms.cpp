@@ -129,7 +129,7 @@ TEST(ContactTerms, MindlinShearBelowTheStaticLimitIsTheSameSpringInEveryModel) {
     const double dt = 1e-5, v_reg = 1e-4;
     for (ShearModel model : all_shear_models) {
         Vec3 slip{0.0, 2e-7, 1e-7};  // slip so far, m, in the contact plane
-        const Vec3 F = mindlin_shear_force(model, slip_limits(c.G_star, a, limit), n, v_t, dt, v_reg, slip);
+        const Vec3 F = mindlin_shear_force(model, slip_limits(c.shear_stiffness, c.twist_stiffness, a, limit), n, v_t, dt, v_reg, slip);
         // The slip grows by v_t dt; the force is -16/3 G* sqrt(R* h) slip.
         const Vec3 expected_slip{0.0, 2e-7 + 3e-7, 1e-7 - 4e-7};
         expect_vec_near(slip, expected_slip, 1e-20);  // 1e-14 relative: one addition's round-off
@@ -147,7 +147,7 @@ TEST(ContactTerms, MindlinShearRotatesTheSlipIntoTheContactPlaneKeepingItsLength
     for (ShearModel model : all_shear_models) {
         Vec3 slip{1e-7, -2e-7, 0.5e-7};
         const double length = norm(slip);
-        const Vec3 F = mindlin_shear_force(model, slip_limits(c.G_star, a, 0.1), n, {}, 1e-5, 1e-4, slip);
+        const Vec3 F = mindlin_shear_force(model, slip_limits(c.shear_stiffness, c.twist_stiffness, a, 0.1), n, {}, 1e-5, 1e-4, slip);
         EXPECT_NEAR(dot(slip, n), 0.0, 1e-22);  // in the plane, to round-off of 1e-7 m
         EXPECT_NEAR(norm(slip), length, length * 1e-14);
         const double k = 16.0 / 3.0 * c.G_star * a;  // far below the limit 0.1 N
@@ -173,25 +173,52 @@ TEST(ContactTerms, MindlinShearAtTheStaticLimitRestartsOrHolds) {
     ASSERT_LT(length, 2.0 * held);  // one tooth past the limit
 
     Vec3 paper = start;
-    const Vec3 F_paper = mindlin_shear_force(ShearModel::Paper, slip_limits(c.G_star, a, limit), n, v_t, dt, v_reg, paper);
+    const Vec3 F_paper = mindlin_shear_force(ShearModel::Paper, slip_limits(c.shear_stiffness, c.twist_stiffness, a, limit), n, v_t, dt, v_reg, paper);
     expect_vec_near(paper, {0.0, length - held, 0.0}, held * 1e-12);  // the excess, along v_t
     expect_vec_near(F_paper, -k * paper, limit * round_off);
 
     Vec3 coulomb = start;
-    const Vec3 F_coulomb = mindlin_shear_force(ShearModel::Coulomb, slip_limits(c.G_star, a, limit), n, v_t, dt, v_reg, coulomb);
+    const Vec3 F_coulomb = mindlin_shear_force(ShearModel::Coulomb, slip_limits(c.shear_stiffness, c.twist_stiffness, a, limit), n, v_t, dt, v_reg, coulomb);
     expect_vec_near(F_coulomb, {0.0, -limit, 0.0}, limit * round_off);  // mu |F_n| against v_t
 
     Vec3 spring = start;
-    const Vec3 F_spring = mindlin_shear_force(ShearModel::Spring, slip_limits(c.G_star, a, limit), n, v_t, dt, v_reg, spring);
+    const Vec3 F_spring = mindlin_shear_force(ShearModel::Spring, slip_limits(c.shear_stiffness, c.twist_stiffness, a, limit), n, v_t, dt, v_reg, spring);
     expect_vec_near(F_spring, (-limit / length) * trial, limit * round_off);  // mu |F_n| against the slip
 
     // Sustained sliding: Coulomb and Spring stay at the limit.
     for (int step = 0; step < 5; ++step) {
-        EXPECT_NEAR(norm(mindlin_shear_force(ShearModel::Coulomb, slip_limits(c.G_star, a, limit), n, v_t, dt, v_reg, coulomb)),
+        EXPECT_NEAR(norm(mindlin_shear_force(ShearModel::Coulomb, slip_limits(c.shear_stiffness, c.twist_stiffness, a, limit), n, v_t, dt, v_reg, coulomb)),
                     limit, limit * round_off);
-        EXPECT_NEAR(norm(mindlin_shear_force(ShearModel::Spring, slip_limits(c.G_star, a, limit), n, v_t, dt, v_reg, spring)),
+        EXPECT_NEAR(norm(mindlin_shear_force(ShearModel::Spring, slip_limits(c.shear_stiffness, c.twist_stiffness, a, limit), n, v_t, dt, v_reg, spring)),
                     limit, limit * round_off);
     }
+}
+
+// A contact whose limit has shrunk below its slip (the normal force fell)
+// while it moves back against the slip recoils: Coulomb keeps the slip's
+// direction as Spring does, so the spring pushes the contact point back
+// (the force along v_t); taking v_t's direction would flip the slip and
+// oppose the recoil. Moving along its slip, Coulomb slides along v_t.
+TEST(ContactTerms, CoulombRecoilsWhenItsLimitShrinksUnderARecedingSlip) {
+    const PairCoefficients c = material_one_pair();
+    const double a = std::sqrt(R_star * h);
+    const Vec3 n{0.0, 0.0, 1.0};
+    const double limit = 2e-4, k = 16.0 / 3.0 * c.G_star * a, held = limit / k;
+    const double dt = 1e-6, v_reg = 1e-4;  // a step's slip, 1e-7 m, well below the excess 0.5 held = 5.8e-7 m
+    const Vec3 back{-0.1, 0.02, 0.0};  // against the slip, and across it
+    Vec3 coulomb{1.5 * held, 0.0, 0.0}, spring = coulomb;
+    const Vec3 trial = coulomb + dt * back;
+    ASSERT_GT(norm(trial), held);
+    const Vec3 F_coulomb = mindlin_shear_force(ShearModel::Coulomb, slip_limits(c.shear_stiffness, c.twist_stiffness, a, limit), n, back, dt, v_reg, coulomb);
+    const Vec3 F_spring = mindlin_shear_force(ShearModel::Spring, slip_limits(c.shear_stiffness, c.twist_stiffness, a, limit), n, back, dt, v_reg, spring);
+    expect_vec_near(F_coulomb, (-limit / norm(trial)) * trial, limit * round_off);
+    expect_vec_near(F_coulomb, F_spring, limit * round_off);
+    expect_vec_near(coulomb, spring, held * round_off);
+    // Moving along its slip (faster than v_reg), it slides along v_t.
+    const Vec3 ahead{0.1, 0.02, 0.0};
+    Vec3 sliding{1.5 * held, 0.0, 0.0};
+    const Vec3 F_sliding = mindlin_shear_force(ShearModel::Coulomb, slip_limits(c.shear_stiffness, c.twist_stiffness, a, limit), n, ahead, dt, v_reg, sliding);
+    expect_vec_near(F_sliding, (-limit / norm(ahead)) * ahead, limit * round_off);
 }
 
 TEST(ContactTerms, MindlinShearSlowSlipKeepsItsOwnDirectionAndNoLimitLeavesNoSlip) {
@@ -205,13 +232,13 @@ TEST(ContactTerms, MindlinShearSlowSlipKeepsItsOwnDirectionAndNoLimitLeavesNoSli
     for (ShearModel model : {ShearModel::Coulomb, ShearModel::Spring}) {
         Vec3 slip{1.5 * held, 0.0, 0.0};
         const Vec3 trial = slip + 1e-5 * v_slow;
-        const Vec3 F = mindlin_shear_force(model, slip_limits(c.G_star, a, limit), n, v_slow, 1e-5, 1e-4, slip);
+        const Vec3 F = mindlin_shear_force(model, slip_limits(c.shear_stiffness, c.twist_stiffness, a, limit), n, v_slow, 1e-5, 1e-4, slip);
         expect_vec_near(F, (-limit / norm(trial)) * trial, limit * round_off);
     }
     // No normal force: no friction, no slip kept, no NaN.
     for (ShearModel model : all_shear_models) {
         Vec3 slip{1e-7, 0.0, 0.0};
-        const Vec3 F = mindlin_shear_force(model, slip_limits(c.G_star, a, 0.0), n, {0.0, 0.1, 0.0}, 1e-5, 1e-4, slip);
+        const Vec3 F = mindlin_shear_force(model, slip_limits(c.shear_stiffness, c.twist_stiffness, a, 0.0), n, {0.0, 0.1, 0.0}, 1e-5, 1e-4, slip);
         EXPECT_EQ(F, Vec3{});
         EXPECT_EQ(norm(slip), 0.0);
     }
@@ -226,27 +253,33 @@ TEST(ContactTerms, TwistingCoupleSpringLimitAndSign) {
     // Below the limit: -8/3 G* (R* h)^(3/2) da, da integrated with its sign.
     for (ShearModel model : all_shear_models) {
         double da = 1e-3;
-        const double M = twisting_couple(model, slip_limits(c.G_star, a, 0.1), a, w_n, dt, v_reg, da);
+        const double M = twisting_couple(model, slip_limits(c.shear_stiffness, c.twist_stiffness, a, 0.1), a, w_n, dt, v_reg, da);
         EXPECT_NEAR(da, 1e-3 + 4e-5, 1e-18);
         ASSERT_LT(k * da, 3.0 * pi / 16.0 * a * 0.1);
         EXPECT_NEAR(M, -k * da, k * da * round_off);
         double back = 1e-3;
-        twisting_couple(model, slip_limits(c.G_star, a, 0.1), a, -w_n, dt, v_reg, back);
+        twisting_couple(model, slip_limits(c.shear_stiffness, c.twist_stiffness, a, 0.1), a, -w_n, dt, v_reg, back);
         EXPECT_NEAR(back, 1e-3 - 4e-5, 1e-18);  // turning back unloads it
     }
-    // At the limit 3 pi/16 sqrt(R* h) mu |F_n|, spinning against the slip
-    // so far: Coulomb follows the spin, Spring keeps its own sign, Paper
-    // restarts from the excess along the spin.
+    // Beyond the limit 3 pi/16 sqrt(R* h) mu |F_n| (the limit shrank under
+    // the slip), spinning against the slip so far: Coulomb and Spring keep
+    // the slip's own sign (the twist recoils; twisting.hpp), Paper restarts
+    // from the excess along the spin.
     const double limit = 1e-5;  // N, mu |F_n|
     const double cap = 3.0 * pi / 16.0 * a * limit, held = cap / k;
     double coulomb = 1.5 * held, spring = 1.5 * held, paper = 1.5 * held;
-    EXPECT_NEAR(twisting_couple(ShearModel::Coulomb, slip_limits(c.G_star, a, limit), a, -w_n, dt, v_reg, coulomb), cap,
+    EXPECT_NEAR(twisting_couple(ShearModel::Coulomb, slip_limits(c.shear_stiffness, c.twist_stiffness, a, limit), a, -w_n, dt, v_reg, coulomb), -cap,
                 cap * round_off);
-    EXPECT_NEAR(twisting_couple(ShearModel::Spring, slip_limits(c.G_star, a, limit), a, -w_n, dt, v_reg, spring), -cap,
+    // Spinning along the slip, Coulomb slides with the spin: the couple at
+    // the limit against it.
+    coulomb = -1.5 * held;
+    EXPECT_NEAR(twisting_couple(ShearModel::Coulomb, slip_limits(c.shear_stiffness, c.twist_stiffness, a, limit), a, -w_n, dt, v_reg, coulomb), cap,
+                cap * round_off);
+    EXPECT_NEAR(twisting_couple(ShearModel::Spring, slip_limits(c.shear_stiffness, c.twist_stiffness, a, limit), a, -w_n, dt, v_reg, spring), -cap,
                 cap * round_off);
     const double excess = 1.5 * held - w_n * dt - held;
     ASSERT_GT(excess, 0.0);
-    EXPECT_NEAR(twisting_couple(ShearModel::Paper, slip_limits(c.G_star, a, limit), a, -w_n, dt, v_reg, paper), k * excess,
+    EXPECT_NEAR(twisting_couple(ShearModel::Paper, slip_limits(c.shear_stiffness, c.twist_stiffness, a, limit), a, -w_n, dt, v_reg, paper), k * excess,
                 cap * 1e-9);  // the excess is a difference of two nearly equal numbers
 }
 

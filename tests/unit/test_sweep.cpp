@@ -190,7 +190,8 @@ TEST(SweepPoints, NamesAndOrder) {
     const std::vector<std::string> expected{"drum",  "-q",         "--mode",    "two-component", "--omega", "5",
                                             "--seed", "1",         "--revolutions", "5",         "--grains", "200",
                                             "--samples", "20",     "--snapshots", "8",           "--shear",
-                                            "paper", "--friction-normal", "net",              "--out",
+                                            "paper", "--friction-normal", "net", "--tangential-stiffness", "paper",
+                                            "--out",
                                             (fs::path("out") / "points" / "two-component_omega5.000_seed1").string(),
                                             "--force", "--threads", "1"};
     EXPECT_EQ(args, expected);
@@ -416,7 +417,7 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     const auto rows = read_csv(dir_ / "sweep.csv");
     ASSERT_EQ(rows.size(), 13u);
     const std::string header =
-        "mode,shear_model,friction_normal,ends,omega,froude,seed,revolutions,grains,"
+        "mode,shear_model,friction_normal,tangential_stiffness,ends,omega,froude,seed,revolutions,grains,"
         "D_material_1,D_stderr_material_1,D_one_term_material_1,determined_material_1,surface_share_material_1,"
         "D_msd_material_1,D_msd_lo_material_1,D_msd_hi_material_1,D_hogg_free_material_1,D_hogg_free_lo_material_1,D_hogg_free_hi_material_1,"
         "D_material_2,D_stderr_material_2,D_one_term_material_2,determined_material_2,surface_share_material_2,"

@@ -75,6 +75,7 @@ DRUM_OPTIONS = {
     "skin": ("neighbor", "skin"),
     "shear": ("model", "shear"),
     "friction_normal": ("model", "friction_normal"),
+    "tangential_stiffness": ("model", "tangential_stiffness"),
     "surface_energy": ("model", "surface_energy"),
     "out": ("output", "directory"),
 }

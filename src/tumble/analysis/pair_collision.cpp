@@ -201,6 +201,7 @@ ContactReport contact_report(const Scenario& scenario, const std::vector<double>
     ContactReport report;
     report.time_step = assess_time_step(scenario);
     report.reference_speed = scenario.time_step.reference_speed;
+    report.tangential_stiffness = scenario.model.tangential_stiffness;
     // Restitution of the visco-elastic law alone: no attraction, no shear (head-on anyway).
     ContactModel bouncing = scenario.model;
     bouncing.attraction = false;

@@ -95,6 +95,7 @@ struct PairContactReport {
 struct ContactReport {
     TimeStepReport time_step;     // the scenario's
     double reference_speed = 0.0;  // m/s, of the Hertz collision times (the scenario's [time_step])
+    TangentialStiffness tangential_stiffness = TangentialStiffness::Paper;  // the scenario's model's
     std::vector<PairContactReport> pairs;
 };
 

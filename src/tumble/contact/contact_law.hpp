@@ -29,6 +29,12 @@ inline constexpr std::array<Keyword<ShearModel>, 4> shear_models{{
     {"off", ShearModel::Off, "no shear force"},
 }};
 
+// The stiffness of the tangential and twisting springs (pair_table.hpp).
+inline constexpr std::array<Keyword<TangentialStiffness>, 2> tangential_stiffnesses{{
+    {"paper", TangentialStiffness::Paper, "16/3 G* a and 8/3 G* a^3 (the paper's eqs. 8 and 9)"},
+    {"mindlin", TangentialStiffness::Mindlin, "8 G* a and 16/3 G_i G_j/(G_i + G_j) a^3 (Mindlin; Lubkin)"},
+}};
+
 // The normal force that limits friction (shear and twisting):
 //   Net: |F_n|, the sum of elements 1-3 (the paper's text: an adhesive
 //        contact at its equilibrium overlap then has no friction);
@@ -48,6 +54,9 @@ struct ContactModel {
     ShearModel shear = ShearModel::Paper;  // element 4, eq. 8
     bool twisting = true;    // element 5, eq. 9
     FrictionNormal friction_normal = FrictionNormal::Net;
+    // The springs' stiffness; it enters through the pair table
+    // (PairCoefficients::shear_stiffness, twist_stiffness).
+    TangentialStiffness tangential_stiffness = TangentialStiffness::Paper;
     // Slip speed (m/s) above which a sliding contact slips along its
     // velocity (Paper, Coulomb; mindlin_shear.hpp); slower, along its slip.
     double slip_velocity_regularisation = 1e-4;
@@ -100,7 +109,7 @@ inline ContactForces contact_law(const PairCoefficients& c, const ContactGeometr
     // couple follows the shear model's reading of the limit (the paper's
     // when the shear is off).
     const double v_reg = model.slip_velocity_regularisation;
-    const SlipLimits limits = slip_limits(c.G_star, a, friction_limit);
+    const SlipLimits limits = slip_limits(c.shear_stiffness, c.twist_stiffness, a, friction_limit);
     const Vec3 F_t = model.shear != ShearModel::Off
                          ? mindlin_shear_force(model.shear, limits, g.n, g.v_t, dt, v_reg, history.slip)
                          : Vec3{};

@@ -33,29 +33,33 @@ enum class ShearModel { Off, Paper, Coulomb, Spring };
 // its reciprocal, per_held = 1 / held (0 for held = 0, no friction).
 
 // The static limits of the shear force (paper eq. 8) and of the twisting
-// couple (eq. 9, element 5, twisting.hpp) as slips, for a contact of radius a = sqrt(R* h) whose
-// friction limit is mu |F_n| = friction_limit:
-//   shear: stiffness 16/3 G* a (N/m), held = mu |F_n| / stiffness (m);
-//   twist: stiffness 8/3 G* a^3 (N m/rad), held = 3 pi/16 a mu |F_n| /
-//          stiffness (rad),
-// so held = 3/16 mu|F_n| / (G* a) and twist_held = 9 pi/128 mu|F_n| / (G* a^2):
-// the four lengths and reciprocals come from the one reciprocal
-// 1 / (G* a^2 mu|F_n|). No friction (mu |F_n| = 0): held = per_held = 0.
+// couple (eq. 9, element 5, twisting.hpp) as slips, for a contact of radius
+// a = sqrt(R* h) whose friction limit is mu |F_n| = f (N):
+//   shear: stiffness k_t = S a (N/m), held = f / k_t (m);
+//   twist: stiffness k_w = T a^3 (N m/rad), held = 3 pi/16 a f / k_w (rad),
+// with S and T (Pa) the pair's shear_stiffness and twist_stiffness
+// (materials/pair_table.hpp: 16/3 G* and 8/3 G* in the paper). The four
+// lengths and reciprocals come from the one reciprocal r = 1 / (S T a^3 f):
+//   held = T a^2 f^2 r,          per_held = S^2 T a^4 r,
+//   twist_held = 3 pi/16 S a f^2 r,  per_twist_held = 16/(3 pi) S T^2 a^5 r.
+// No friction (f = 0): held = per_held = 0.
 struct SlipLimits {
     double stiffness = 0.0, held = 0.0, per_held = 0.0;
     double twist_stiffness = 0.0, twist_held = 0.0, per_twist_held = 0.0;
 };
-inline SlipLimits slip_limits(double G_star, double contact_radius, double friction_limit) {
-    const double a = contact_radius, Ga = G_star * a, f = friction_limit;
-    const double denominator = Ga * a * f;
-    const double r = denominator > 0.0 ? 1.0 / denominator : 0.0;  // 1 / (G* a^2 mu|F_n|)
+inline SlipLimits slip_limits(double shear_stiffness, double twist_stiffness, double contact_radius,
+                              double friction_limit) {
+    const double S = shear_stiffness, T = twist_stiffness, a = contact_radius, f = friction_limit;
+    const double a2 = a * a, Sa = S * a, Ta2 = T * a2;
+    const double denominator = Sa * Ta2 * f;
+    const double r = denominator > 0.0 ? 1.0 / denominator : 0.0;  // 1 / (S T a^3 f)
     SlipLimits s;
-    s.stiffness = 16.0 / 3.0 * Ga;
-    s.held = 3.0 / 16.0 * (f * f * a * r);
-    s.per_held = 16.0 / 3.0 * (Ga * Ga * a * r);
-    s.twist_stiffness = 8.0 / 3.0 * Ga * a * a;
-    s.twist_held = 9.0 * pi / 128.0 * (f * f * r);
-    s.per_twist_held = 128.0 / (9.0 * pi) * (Ga * Ga * a * a * r);
+    s.stiffness = Sa;
+    s.held = Ta2 * (f * f * r);
+    s.per_held = Sa * (Sa * Ta2 * r);
+    s.twist_stiffness = Ta2 * a;
+    s.twist_held = 3.0 * pi / 16.0 * Sa * (f * f * r);
+    s.per_twist_held = 16.0 / (3.0 * pi) * Ta2 * (Sa * Ta2 * r);
     return s;
 }
 
@@ -109,7 +113,7 @@ inline double sawtooth_in_window(double x, double step, double held, double per_
 }
 
 // Tangential force on i, N:
-//   -16/3 G* sqrt(R* h) ds,   |.| <= mu |F_n| = friction_limit,
+//   -k_t ds,   |.| <= mu |F_n| = friction_limit,   k_t = 16/3 G* sqrt(R* h) in the paper,
 // where ds (m, `slip`) is the displacement of i relative to j at the contact
 // point integrated since the contact began (v_t dt each step, v_t the
 // half-step velocity: a position, integrated like one), kept in the current
@@ -131,7 +135,14 @@ inline Vec3 mindlin_shear_force(ShearModel model, const SlipLimits& limits, cons
     const double held = limits.held, per_held = limits.per_held;  // slip at the limit, m
     // After slipping the slip is `after` long, along the sliding velocity for
     // the paper's readings while the contact slides faster than v_reg (the
-    // paper's direction -v_t/|v_t| then), else along itself. Written as
+    // paper's direction -v_t/|v_t| then), else along itself. Coulomb counts
+    // only the velocity along the slip: a contact whose limit shrinks under
+    // it (the normal force falls) while it moves back against its slip is
+    // recoiling, not sliding, and keeps its slip's direction, so that it
+    // springs back as it sticks again (taking v_t's direction there would
+    // flip the slip to oppose the recoil, and the contact would end rolling).
+    // The paper's reading keeps the speed: its slip restarts from the
+    // excess over the limit, whose direction is the motion's. Written as
     // choices between values rather than branches, so that the pair loop
     // still runs several contacts per instruction.
     const double length = norm(slip), speed = norm(v_t);
@@ -148,7 +159,8 @@ inline Vec3 mindlin_shear_force(ShearModel model, const SlipLimits& limits, cons
     const double per_speed = speed > 0.0 ? length_or_1 * per_both : 0.0;
     const double per_width = length_or_1 * speed_or_1 * per_all;
     const bool slides = length > held;
-    const bool along_velocity = model != ShearModel::Spring && speed > v_reg;
+    const double sliding_speed = model == ShearModel::Coulomb ? dot(slip, v_t) * per_length : speed;
+    const bool along_velocity = model != ShearModel::Spring && sliding_speed > v_reg;
     const double after = slip_length_after_slipping(model, length, held, per_held);
     // The force's length along the same direction: the paper's reading feels
     // its saw-tooth over the step's window (which is the slip's own length

@@ -12,13 +12,15 @@
 namespace tumble {
 
 // Couple on i about +n, N m (the couple on j is its negative):
-//   -8/3 G* (R* h)^(3/2) da,   |.| <= 3 pi/16 sqrt(R* h) mu |F_n|,
+//   -k_w da,   |.| <= 3 pi/16 sqrt(R* h) mu |F_n|,   k_w = 8/3 G* (R* h)^(3/2) in the paper,
 // where da (rad, `angular_slip`) is the rotation of i relative to j about n
 // integrated since the contact began (w_n dt each step, w_n = (omega_i -
 // omega_j) . n at the half step). At the limit it restarts from its excess
 // (Paper; its saw-tooth seen over the step's window, sawtooth_in_window()) or
 // is held there (Coulomb, Spring), with the sign of w_n while the rim of the
-// contact slides faster than v_reg (Paper, Coulomb), else its own.
+// contact slides faster than v_reg (Paper; Coulomb in the sense of the slip
+// only, so that a twist recoiling as its limit shrinks springs back:
+// mindlin_shear_force()), else its own.
 // With da of one sign this is the paper's min(...) (-sign w_n).
 // (`limits`: slip_limits() of the contact; a: its radius.)
 inline double twisting_couple(ShearModel model, const SlipLimits& limits, double contact_radius, double w_n,
@@ -28,7 +30,8 @@ inline double twisting_couple(ShearModel model, const SlipLimits& limits, double
     const double stiffness = limits.twist_stiffness;  // N m/rad
     const double held = limits.twist_held, per_held = limits.per_twist_held;  // rad
     const double length = std::abs(angular_slip);
-    const bool along_spin = model != ShearModel::Spring && std::abs(w_n) * a > v_reg;
+    const double spin = model == ShearModel::Coulomb ? (angular_slip < 0.0 ? -w_n : w_n) : std::abs(w_n);
+    const bool along_spin = model != ShearModel::Spring && spin * a > v_reg;
     const bool slides = length > held;
     // The sign of the slip after this step: w_n's where it slid along the
     // spin, else the slip's own. (Choices, not branches, as in

@@ -38,10 +38,16 @@ double mix(double xi, double fi, double xj, double fj) {
 }
 }  // namespace
 
-PairCoefficients make_pair_coefficients(const Material& a, const Material& b, const PairProperties& p) {
+PairCoefficients make_pair_coefficients(const Material& a, const Material& b, const PairProperties& p,
+                                        TangentialStiffness stiffness) {
     PairCoefficients c;
     c.E_star = mix(a.E, 1.0 - a.nu * a.nu, b.E, 1.0 - b.nu * b.nu);  // eq. 1
     c.G_star = mix(a.G, 2.0 - a.nu, b.G, 2.0 - b.nu);                // eq. 8
+    // Tangential spring k_t = shear_stiffness a (N/m), twisting spring
+    // k_twist = twist_stiffness a^3 (N m/rad): pair_table.hpp.
+    const bool mindlin = stiffness == TangentialStiffness::Mindlin;
+    c.shear_stiffness = (mindlin ? 8.0 : 16.0 / 3.0) * c.G_star;
+    c.twist_stiffness = mindlin ? 16.0 / 3.0 * mix(a.G, 1.0, b.G, 1.0) : 8.0 / 3.0 * c.G_star;
     const double sa = a.xi > 0.0 ? viscous_poisson_ratio(a) : 0.0;
     const double sb = b.xi > 0.0 ? viscous_poisson_ratio(b) : 0.0;
     const double Ba = a.xi > 0.0 ? viscous_modulus(a) : 0.0;
@@ -55,7 +61,7 @@ PairCoefficients make_pair_coefficients(const Material& a, const Material& b, co
 }
 
 PairTable::PairTable(const std::vector<Material>& materials,
-                     const std::vector<std::vector<PairProperties>>& properties)
+                     const std::vector<std::vector<PairProperties>>& properties, TangentialStiffness stiffness)
     : n_(static_cast<int>(materials.size())), table_(materials.size() * materials.size()) {
     if (properties.size() != materials.size())
         throw Error("pair table: expected properties for " + std::to_string(n_) + " materials");
@@ -68,12 +74,13 @@ PairTable::PairTable(const std::vector<Material>& materials,
             if (pij.mu != pji.mu || pij.W != pji.W)
                 throw Error("pair table: properties of " + materials[i].name + "-" + materials[j].name +
                             " are not symmetric");
-            table_[index(i, j)] = make_pair_coefficients(materials[i], materials[j], pij);
+            table_[index(i, j)] = make_pair_coefficients(materials[i], materials[j], pij, stiffness);
         }
     }
     for (const PairCoefficients& c : table_) {
         columns_.E_star.push_back(c.E_star);
-        columns_.G_star.push_back(c.G_star);
+        columns_.shear_stiffness.push_back(c.shear_stiffness);
+        columns_.twist_stiffness.push_back(c.twist_stiffness);
         columns_.B_star.push_back(c.B_star);
         columns_.mu.push_back(c.mu);
         columns_.attraction.push_back(c.attraction);

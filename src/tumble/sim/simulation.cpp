@@ -37,7 +37,7 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
     if (const std::string why = scenario_problem(scenario_); !why.empty()) throw Error("scenario: " + why);
     set_threads(threads);
     isa_in_use();  // a wrong TUMBLE_ISA is an error here, not in a thread
-    pair_table_ = PairTable(scenario_.materials, scenario_.pair_properties);
+    pair_table_ = PairTable(scenario_.materials, scenario_.pair_properties, scenario_.model.tangential_stiffness);
     time_step_report_ = assess_time_step(scenario_);
     dt_ = time_step_report_.dt;
     particles_ = make_particle_store(scenario_);

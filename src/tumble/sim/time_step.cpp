@@ -42,7 +42,8 @@ std::vector<ContactPair> contact_pairs(const Scenario& s) {
         ContactPair c{std::move(name), a, b, partner, R_a, R_b, 0.0, mass(a, R_a), {}};
         c.R_star = R_b == inf ? R_a : R_a * R_b / (R_a + R_b);
         if (partner == Partner::free) c.m_star = c.m_star * mass(b, R_b) / (c.m_star + mass(b, R_b));
-        c.coefficients = make_pair_coefficients(s.materials[a], s.materials[b], s.pair_properties[a][b]);
+        c.coefficients = make_pair_coefficients(s.materials[a], s.materials[b], s.pair_properties[a][b],
+                                                s.model.tangential_stiffness);
         pairs.push_back(std::move(c));
     };
     const auto& walls = s.domain.walls;
@@ -78,17 +79,24 @@ PairTimes pair_times(const ContactPair& p, const ContactModel& model, double v) 
     if (!model.elastic || c.E_star <= 0.0) return t;
     const double h_max = hertz_max_overlap(p.m_star, c.E_star, p.R_star, v);
     t.collision = hertz_collision_time(p.m_star, c.E_star, p.R_star, v);
+    // The tangential spring S a (N/m) at a = sqrt(R* h_max), moving 2/7 m*.
+    const double spring = c.shear_stiffness * std::sqrt(p.R_star * h_max);
+    if (model.shear != ShearModel::Off && c.mu > 0.0 && spring > 0.0)
+        t.tangential = pi * std::sqrt(2.0 / 7.0 * p.m_star / spring);
     if (!model.viscous || c.B_star <= 0.0) return t;
     const double a = std::sqrt(p.R_star * h_max);
     const double damping = kuwabara_kono_coefficient(c.B_star, a), stiffness = 2.0 * c.E_star * a;  // N s/m, N/m
     t.viscous = p.m_star / damping;
-    if (damping * damping > 4.0 * p.m_star * stiffness) t.creep = c.B_star / c.E_star;  // over-damped
+    if (damping * damping > 4.0 * p.m_star * stiffness)
+        t.creep = c.B_star / c.E_star;  // over-damped
+    else
+        t.ringing_viscous = t.viscous;
     return t;
 }
 
 TimeStepReport assess_time_step(const Scenario& s) {
-    double collision = inf, viscous = inf, creep = inf, rayleigh = inf;
-    std::string collision_pair, viscous_pair, creep_pair, rayleigh_material;
+    double collision = inf, viscous = inf, creep = inf, ringing = inf, tangential = inf, rayleigh = inf;
+    std::string collision_pair, viscous_pair, creep_pair, ringing_pair, tangential_pair, rayleigh_material;
     const double v = s.time_step.reference_speed;
     // The Hertz collision at speed v and its viscous damping for each pair.
     for (const ContactPair& p : contact_pairs(s)) {
@@ -96,6 +104,8 @@ TimeStepReport assess_time_step(const Scenario& s) {
         if (times.collision < collision) { collision = times.collision; collision_pair = p.name; }
         if (times.viscous < viscous) { viscous = times.viscous; viscous_pair = p.name; }
         if (times.creep < creep) { creep = times.creep; creep_pair = p.name; }
+        if (times.ringing_viscous < ringing) { ringing = times.ringing_viscous; ringing_pair = p.name; }
+        if (times.tangential < tangential) { tangential = times.tangential; tangential_pair = p.name; }
         // The Rayleigh time of each material of free grains (each has its pair with itself).
         if (p.partner != Partner::free || p.a != p.b) continue;
         const Material& ma = s.materials[p.a];
@@ -107,6 +117,8 @@ TimeStepReport assess_time_step(const Scenario& s) {
     r.collision_time = collision == inf ? 0.0 : collision;
     r.viscous_time = viscous == inf ? 0.0 : viscous;
     r.creep_time = creep == inf ? 0.0 : creep;
+    r.ringing_viscous_time = ringing == inf ? 0.0 : ringing;
+    r.tangential_time = tangential == inf ? 0.0 : tangential;
     r.rayleigh_time = rayleigh == inf ? 0.0 : rayleigh;
     const std::string collision_why = "the Hertz collision time at " + format(v, "m/s") + " (" +
                                       format_seconds(collision) + ", pair " + collision_pair + ")";
@@ -114,6 +126,10 @@ TimeStepReport assess_time_step(const Scenario& s) {
                                     ") of the damping";
     const std::string creep_why = "the creep time B*/E* of an over-damped contact (" + format_seconds(creep) +
                                   ", pair " + creep_pair + ")";
+    const std::string ringing_why = "the viscous time m*/c of a contact damped but not over-damped (" +
+                                    format_seconds(ringing) + ", pair " + ringing_pair + ")";
+    const std::string tangential_why = "the tangential spring's half period (" + format_seconds(tangential) +
+                                       ", pair " + tangential_pair + ")";
     const std::string rayleigh_why = "the Rayleigh time (" + format_seconds(rayleigh) + ", material " +
                                      rayleigh_material + ")";
     // The smallest of the criteria, each a fraction of its time; the first wins a tie.
@@ -124,17 +140,22 @@ TimeStepReport assess_time_step(const Scenario& s) {
         return value;
     };
     // The fractions were measured (docs/MODEL.md, "Time step"; tests
-    // Restitution.*, ContactReport.*, TimeStepChoice.*): at t_c/20, 1.1 m*/c
-    // and tau/25 restitution and contact time stay within 1 % of the
-    // converged collision (with the dashpot of integrate/dashpot.hpp); at the
-    // maximum, 2 m*/c, they err by about 2 % and dense beds stay stable.
+    // Restitution.*, ContactReport.*, TimeStepChoice.*, ObliqueImpact.*):
+    // at t_c/20, 1.1 m*/c, tau/25 and 0.25 m*/c of a ringing contact
+    // restitution and contact time stay within 1 % of the converged
+    // collision (with the dashpot of integrate/dashpot.hpp), and at t_t/10
+    // the tangential rebound within 1 % of v_t; at the maximum, 2 m*/c,
+    // they err by about 2 % and dense beds stay stable.
     r.recommended = smallest({{collision / 20.0, "a twentieth of " + collision_why},
                               {1.1 * viscous, "1.1 x " + viscous_why},
                               {creep / 25.0, "a 25th of " + creep_why},
+                              {0.25 * ringing, "a quarter of " + ringing_why},
+                              {tangential / 10.0, "a tenth of " + tangential_why},
                               {0.2 * rayleigh, "0.2 x " + rayleigh_why}},
                              r.recommended_by);
     r.maximum = smallest({{collision / 10.0, "a tenth of " + collision_why},
                           {2.0 * viscous, "2 x " + viscous_why},
+                          {tangential / 5.0, "a fifth of " + tangential_why},
                           {0.5 * rayleigh, "half " + rayleigh_why}},
                          r.limiting);
     if (r.recommended == inf) throw Error("time step: no free particles to derive a time step from");

@@ -16,10 +16,23 @@
 //    after the impact the spheres creep apart as exp(-t/tau) (eq. 4's
 //    dashpot against eq. 1's stiffness), and the restitution, set as they
 //    part, errs by about (20 dt/tau)^2 %;
+//  - the viscous time m*/c of a contact that is damped but not over-damped
+//    (it rings once, heavily damped, near critical damping): its
+//    restitution errs by about 1.4 % at 0.37 m*/c, so the step keeps below
+//    a quarter of it;
+//  - the half period of the tangential spring at the deepest overlap,
+//      t_t = pi sqrt(2/7 m* / (S sqrt(R* h_max))),
+//    with 2/7 m* the mass the contact point moves with (solid spheres
+//    rolling on each other: 1/m_t = (1 + R^2 m / I) / m* = 7 / (2 m*)) and
+//    S sqrt(R* h) the spring's stiffness (pair_table.hpp); it rings faster
+//    than the normal contact, t_c / t_t = 1.28 sqrt(7/2 k_t / k_n) (1.6 for
+//    the paper's materials, up to 2.4 for isotropic grains with Mindlin's
+//    stiffness), and its rebound errs by up to 0.75 % of v_t at t_t/9,
+//    1.6 % at t_t/8 where the spring rings faster still;
 // and for every material of free particles the Rayleigh time
 //      t_R = pi R sqrt(rho/G) / (0.1631 nu + 0.8766).
-// Recommended step: min(t_c/20, 1.1 m*/c, tau/25, 0.2 t_R).
-// Largest step accepted: min(t_c/10, 2 m*/c, 0.5 t_R).
+// Recommended step: min(t_c/20, 1.1 m*/c, tau/25, 0.25 m*/c ringing, t_t/10, 0.2 t_R).
+// Largest step accepted: min(t_c/10, 2 m*/c, t_t/5, 0.5 t_R).
 // (The fractions and why: docs/MODEL.md, "Time step".)
 #pragma once
 
@@ -65,13 +78,16 @@ double hertz_collision_time(double m_star, double E_star, double R_star, double 
 
 // The times of one kind of contact at impact speed v, s (infinite where
 // the term is off, or for the creep time where the contact is not
-// over-damped: no limit): the undamped Hertz collision time t_c, the
-// viscous time m*/c at its deepest overlap and the creep time B*/E*
-// (formulas at the top of this file).
+// over-damped, for the ringing viscous time where it is: no limit): the
+// undamped Hertz collision time t_c, the viscous time m*/c at its deepest
+// overlap, the creep time B*/E*, and the tangential spring's half period
+// t_t there (formulas at the top of this file).
 struct PairTimes {
     double collision = std::numeric_limits<double>::infinity();
     double viscous = std::numeric_limits<double>::infinity();
     double creep = std::numeric_limits<double>::infinity();
+    double ringing_viscous = std::numeric_limits<double>::infinity();  // m*/c where damped but not over-damped
+    double tangential = std::numeric_limits<double>::infinity();      // t_t (infinite without shear or friction)
 };
 struct ContactModel;
 PairTimes pair_times(const ContactPair& pair, const ContactModel& model, double v);
@@ -80,6 +96,8 @@ struct TimeStepReport {
     double collision_time = 0.0;  // s, shortest over pairs (0 if elasticity is off)
     double viscous_time = 0.0;    // s, shortest m*/c over pairs (0 if viscosity is off)
     double creep_time = 0.0;      // s, shortest B*/E* over over-damped pairs (0 if none)
+    double ringing_viscous_time = 0.0;  // s, shortest m*/c over damped pairs that are not over-damped (0 if none)
+    double tangential_time = 0.0;  // s, shortest half period t_t of the tangential spring (0 if no shear)
     double rayleigh_time = 0.0;   // s, shortest over materials
     double recommended = 0.0;     // s
     double maximum = 0.0;         // s
