@@ -2,6 +2,7 @@
 // The tumble command line: run, bench, drum, contact, analyze, plot, sweep, render, resume.
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -118,6 +119,10 @@ int usage_error(const CLI::App& app, const CLI::ParseError& error, int argc, cha
 int main(int argc, char** argv) {
     using namespace tumble::cli;
     std::setvbuf(stdout, nullptr, _IOLBF, 0);  // each report line reaches a log file at once
+    // A file-size limit (ulimit -f) would end the process with SIGXFSZ, with
+    // no message and the file cut; ignored, the write fails with EFBIG and
+    // its writer names the file and the reason ("File too large").
+    std::signal(SIGXFSZ, SIG_IGN);
     CLI::App app{"tumble: discrete-element simulation of visco-elastic spheres (Kohring's contact model)"};
     app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
     app.require_subcommand(1);

@@ -33,6 +33,11 @@ std::ofstream open_for_appending(const std::filesystem::path& file);
 // renamed over `file`, the directory flushed. On failure the temporary file
 // is removed and tumble::Error names it and the reason (e.g. "File too large").
 void write_file_atomically(const std::filesystem::path& file, std::string_view bytes);
+// The same without flushing to the disk, for the files written in one piece
+// that a run writes often or that are large (snapshots, tables, images): a
+// failed write or a kill leaves no cut file under `file`'s name, only the
+// cost of the fsync is saved (a power cut may still lose the newest of them).
+void write_file_whole(const std::filesystem::path& file, std::string_view bytes);
 // Flushes and reports a failed write (disk full, ...) as tumble::Error naming the file.
 void check_written(std::ofstream& out, const std::filesystem::path& file);
 
