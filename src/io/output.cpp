@@ -160,11 +160,9 @@ fs::path write_snapshot(const fs::path& directory, int number, const SnapshotDat
     return file;
 }
 
-const char* const run_files[14] = {"summary.json",   "summary.txt",      "profile_comparison.csv",
-                                   "depth_mobility.csv", "run.json",     "drum_run.toml",
-                                   "time_series.csv", "drum_series.csv",  "profiles.csv",
-                                   "particles.pvd",   "contacts.pvd",     "snapshots",
-                                   "checkpoints",     "figures"};
+fs::path default_movie_file(const fs::path& directory) {
+    return directory / (fs::weakly_canonical(fs::absolute(directory)).filename().string() + ".mp4");
+}
 
 RunLock prepare_output_directory(const fs::path& directory, bool overwrite) {
     std::error_code ec;
@@ -179,11 +177,18 @@ RunLock prepare_output_directory(const fs::path& directory, bool overwrite) {
             if (fs::exists(directory / name, ec))
                 throw Error((directory / name).string() + ": exists, but tumble did not write " + directory.string() +
                             " (it has no " + run_lock_file + "); choose another directory");
-    if (overwrite)
-        for (const char* name : run_files) {
-            fs::remove_all(directory / name, ec);
-            if (ec) throw Error((directory / name).string() + ": cannot remove the earlier run's file: " + ec.message());
+    if (overwrite) {
+        std::vector<fs::path> files;
+        for (std::string_view name : run_files) {
+            files.push_back(directory / name);
+            files.push_back(directory / (std::string(name) + ".tmp"));  // of a write cut short
         }
+        files.push_back(default_movie_file(directory));
+        for (const fs::path& file : files) {
+            fs::remove_all(file, ec);
+            if (ec) throw Error(file.string() + ": cannot remove the earlier run's file: " + ec.message());
+        }
+    }
     return lock;
 }
 
