@@ -405,6 +405,7 @@ private:
 void lengthen(DrumPlan& plan, double revolutions, std::int64_t done, double dt, const fs::path& dir, bool quiet) {
     io::DrumRunInfo& info = plan.info;
     const double period = 2.0 * pi / info.omega;  // s
+    step_count(revolutions * period, dt, "--revolutions");  // a length in steps that a run can finish, first
     if (std::llround(revolutions * period / dt) <= done)  // the rotation's length in steps, as DrumLoop counts it
         throw Error(fmt::format("--revolutions {}: the run in {} has turned {:.4g} revolutions already; ask for more",
                                 revolutions, dir.string(), static_cast<double>(done) * dt / period));
