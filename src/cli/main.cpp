@@ -15,6 +15,7 @@
 #include "cli/commands.hpp"
 #include "cli/sweep_command.hpp"
 #include "io/names.hpp"
+#include "tumble/analysis/pair_collision.hpp"
 #include "tumble/contact/contact_law.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
@@ -36,6 +37,16 @@ const CLI::Validator finite_positive(
         return std::isfinite(v) && v > 0.0 ? std::string() : "must be a finite number > 0, got " + text;
     },
     "NUMBER > 0");
+// An impact speed of tumble contact, m/s.
+const CLI::Validator impact_speed(
+    [](std::string& text) {
+        const double v = std::strtod(text.c_str(), nullptr);
+        return v > 0.0 && v <= tumble::analysis::max_impact_speed
+                   ? std::string()
+                   : fmt::format("must be a number > 0 and at most {:g} m/s, got {}", tumble::analysis::max_impact_speed,
+                                 text);
+    },
+    "0 < SPEED <= 1000");
 // A seed that drum_run.toml can hold: 0 to 2^63 - 1, in decimal digits.
 const CLI::Validator seed_range(
     [](std::string& text) {
@@ -318,8 +329,11 @@ int main(int argc, char** argv) {
     contact_cmd->add_flag("--allow-unsafe-dt", contact.allow_unsafe_dt,
                           "Accept a --dt above the safe maximum (to see what a larger step would do)")
         ->needs(contact_drum_flag);
+    contact_cmd->add_flag("--allow-soft", contact.allow_soft,
+                          "Accept materials so soft, or pairs so sticky, that grains sink into each other "
+                          "(refused otherwise, as by tumble run)");
     contact_cmd->add_option("--speeds", contact.speeds, "Impact speeds, m/s (default 0.05 0.1 0.3 1 1.4)")
-        ->check(finite_positive);
+        ->check(impact_speed);
     contact_cmd->add_flag("--json", contact.json, "Print one JSON object instead of the table");
 
     std::string resume_dir;
