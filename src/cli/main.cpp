@@ -14,6 +14,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/sweep_command.hpp"
+#include "experiments/limits.hpp"
 #include "io/names.hpp"
 #include "tumble/analysis/pair_collision.hpp"
 #include "tumble/contact/contact_law.hpp"
@@ -33,10 +34,17 @@ const CLI::Validator finite_non_negative(
     "NUMBER >= 0");
 const CLI::Validator finite_positive(
     [](std::string& text) {
-        const double v = std::strtod(text.c_str(), nullptr);
-        return std::isfinite(v) && v > 0.0 ? std::string() : "must be a finite number > 0, got " + text;
+        return tumble::experiments::finite_positive_problem(std::strtod(text.c_str(), nullptr), text);
     },
     "NUMBER > 0");
+// A thread count (CLI::NonNegativeNumber's message printed DBL_MAX in full).
+const CLI::Validator thread_count(
+    [](std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        return tumble::experiments::thread_count_problem(end != text.c_str() && *end == '\0' ? v : -1.0, text);
+    },
+    "THREADS >= 0");
 // An impact speed of tumble contact, m/s.
 const CLI::Validator impact_speed(
     [](std::string& text) {
@@ -152,7 +160,7 @@ int main(int argc, char** argv) {
     run_cmd->add_option("--checkpoint-every-steps", run.checkpoints.every_steps, "Steps between checkpoints (default: none)")
         ->check(CLI::NonNegativeNumber);
     const char* threads_help = "Threads of the time step (0: every core; default 1)";
-    run_cmd->add_option("--threads", run.threads, threads_help)->check(CLI::NonNegativeNumber);
+    run_cmd->add_option("--threads", run.threads, threads_help)->check(thread_count);
     const char* memory_help = "Refuse a run estimated to need more memory than this, GiB (default: half the machine's)";
     run_cmd->add_option("--max-memory", run.max_memory_gib, memory_help)->check(finite_positive);
     run_cmd->add_flag("--allow-soft", run.allow_soft,
@@ -173,7 +181,7 @@ int main(int argc, char** argv) {
         ->check(CLI::NonNegativeNumber);
     auto* seed_opt = bench_cmd->add_option("--seed", bench.seed, "Cube: seed of the random initial velocities");
     bench_cmd->add_flag("--json", bench.json, "Print one JSON object instead of the table");
-    bench_cmd->add_option("--threads", bench.threads, threads_help)->check(CLI::NonNegativeNumber);
+    bench_cmd->add_option("--threads", bench.threads, threads_help)->check(thread_count);
     auto* length_opt = bench_cmd->add_option("--length", bench.length, "Long drum: inner length, m (default 0.64)")
         ->check(finite_positive);
     auto* fill_opt = bench_cmd->add_option("--fill", bench.fill, "Long drum: fill fraction (default 0.3)")
@@ -297,7 +305,7 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("--checkpoint-every-revolutions", drum.checkpoint_revolutions,
                          "Revolutions between checkpoints while the drum turns (default 1; 0: not by revolutions)")
         ->check(finite_non_negative);
-    drum_cmd->add_option("--threads", drum.threads, threads_help)->check(CLI::NonNegativeNumber);
+    drum_cmd->add_option("--threads", drum.threads, threads_help)->check(thread_count);
     drum_cmd->add_option("--max-memory", drum.max_memory_gib, memory_help)->check(finite_positive);
     drum_cmd->add_flag("--large-drum", drum.large_drum,
                        "Accept a drum whose wall takes more than 50 times as many spheres as it holds grains and more "

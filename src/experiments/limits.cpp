@@ -62,6 +62,16 @@ void check_drum_durations(double revolutions, double omega, int samples_per_revo
                                 what, revolutions, rotation / revolutions, dt, steps, samples_per_revolution));
 }
 
+std::string finite_positive_problem(double value, const std::string& text) {
+    return std::isfinite(value) && value > 0.0 ? std::string() : "must be a finite number > 0, got " + text;
+}
+
+std::string thread_count_problem(double value, const std::string& text) {
+    return value >= 0.0 && value <= 1e9 && value == std::floor(value)
+               ? std::string()
+               : "must be a whole number >= 0 (0: every core), got " + text;
+}
+
 MemoryNeed scenario_memory(const Scenario& s, int threads) {
     double r_min = INFINITY, r_max = 0.0;
     for (const ParticleSpec& p : s.particles) r_min = std::min(r_min, p.radius), r_max = std::max(r_max, p.radius);

@@ -28,6 +28,14 @@ std::int64_t step_count(double seconds, double dt, const std::string& what);
 void check_drum_durations(double revolutions, double omega, int samples_per_revolution, double settle_max_time,
                           double dt);
 
+// The command line's checks of the numbers a run is given, in its words
+// (the option validators of cli/main.cpp), so that the Python functions
+// refuse their arguments alike, naming them: "" if `value` is fine, else
+// "must be ..., got TEXT" (TEXT: the value as given).
+std::string finite_positive_problem(double value, const std::string& text);
+// A thread count: a whole number >= 0 (0: every core).
+std::string thread_count_problem(double value, const std::string& text);
+
 // The memory a run will need, estimated from its inputs
 // (docs/BENCHMARKS.md, "Memory per sphere"), and what drives it.
 struct MemoryNeed {
