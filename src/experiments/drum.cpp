@@ -550,6 +550,11 @@ std::string analyze_drum(const std::string& directory, const io::AnalyzeOptions&
     if (io::resumable(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0))))
         throw Error(directory + ": the run is unfinished (its newest checkpoint is not at its end); finish it with "
                                 "tumble resume " + directory + ", which analyses it");
+    // One stopped before its first checkpoint has none to say so: then only
+    // its summary says that it finished.
+    if (io::checkpoint_files(directory).empty() && !fs::exists(fs::path(directory) / "summary.json"))
+        throw Error(directory + ": the run is unfinished (no checkpoint and no summary.json: it stopped before its "
+                                "first checkpoint); run it again");
     return io::analyze_drum_run(directory, options);
 }
 

@@ -391,6 +391,12 @@ TEST_F(Safety, AnalyzeRefusesAnUnfinishedRun) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(contains(r.output, "the run is unfinished")) << r.output;
     EXPECT_FALSE(fs::exists(out / "summary.json"));
+    // Stopped before its first checkpoint (none left), without a summary.
+    fs::remove_all(out / "checkpoints");
+    const auto none = tumble("analyze " + out.string());
+    EXPECT_EQ(none.exit_code, 2) << none.output;
+    EXPECT_TRUE(contains(none.output, "the run is unfinished (no checkpoint and no summary.json")) << none.output;
+    EXPECT_FALSE(fs::exists(out / "summary.json"));
 }
 
 // ---- 8b. a size that is a unit slip is refused before any work (issue 15)
