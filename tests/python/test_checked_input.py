@@ -18,7 +18,7 @@ from test_simulation import SCENARIO
 
 def python(code):
     """Runs `code` in a new interpreter that finds these tests' modules (a
-    crash there fails the test here, not the session)."""
+    crash there fails this test rather than ending the whole pytest run)."""
     path = os.pathsep.join([os.path.dirname(__file__), os.environ.get("PYTHONPATH", "")])
     return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
                           env={**os.environ, "PYTHONPATH": path})
