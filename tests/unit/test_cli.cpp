@@ -453,7 +453,7 @@ TEST_F(Cli, ContactRefusesTheMaterialsThatRunRefuses) {
     ASSERT_NE(sticky, box);
     const fs::path light_file = write("light.toml", light), sticky_file = write("sticky.toml", sticky);
     const std::pair<fs::path, std::string> cases[] = {
-        {light_file, light_file.string() + ": the time step is 0 s (set by a twentieth of the Hertz collision time"},
+        {light_file, light_file.string() + ": the time step is 0 s (set by "},
         {sticky_file, sticky_file.string() + ": pair m-m (W = 1e+300 J/m^2): its attraction alone "
                                              "would pull two grains at rest into each other"}};
     for (const auto& [file, message] : cases) {
