@@ -61,6 +61,7 @@ struct ContactOptions {
     std::string scenario_file;
     io::DrumSettings drum;  // when scenario_file is empty
     bool allow_unsafe_dt = false;  // the drum's --dt may exceed the safe maximum
+    bool allow_soft = false;       // as tumble run's (check_stiffness)
     std::vector<double> speeds{0.05, 0.1, 0.3, 1.0, 1.4};  // m/s
     bool json = false;
 };

@@ -8,6 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "experiments/drum_setup.hpp"
+#include "experiments/limits.hpp"
 #include "io/config.hpp"
 #include "io/json.hpp"
 #include "tumble/analysis/pair_collision.hpp"
@@ -122,6 +123,11 @@ void print_json(const analysis::ContactReport& report) {
 int contact_command(const ContactOptions& options) {
     const Scenario scenario = options.scenario_file.empty() ? build_drum(options.drum, options.allow_unsafe_dt).scenario
                                                             : io::load_run_config(options.scenario_file).scenario;
+    // tumble run's checks of the materials and the step they give, before
+    // any collision is computed.
+    const std::string source = options.scenario_file.empty() ? "command line" : options.scenario_file;
+    experiments::check_time_step(assess_time_step(scenario), source);
+    experiments::check_stiffness(scenario, options.allow_soft, source);
     const analysis::ContactReport report = analysis::contact_report(scenario, options.speeds);
     if (options.json)
         print_json(report);

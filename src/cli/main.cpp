@@ -2,6 +2,7 @@
 // The tumble command line: run, bench, drum, contact, analyze, plot, sweep, render, resume.
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -13,7 +14,9 @@
 
 #include "cli/commands.hpp"
 #include "cli/sweep_command.hpp"
+#include "experiments/limits.hpp"
 #include "io/names.hpp"
+#include "tumble/analysis/pair_collision.hpp"
 #include "tumble/contact/contact_law.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
@@ -31,10 +34,27 @@ const CLI::Validator finite_non_negative(
     "NUMBER >= 0");
 const CLI::Validator finite_positive(
     [](std::string& text) {
-        const double v = std::strtod(text.c_str(), nullptr);
-        return std::isfinite(v) && v > 0.0 ? std::string() : "must be a finite number > 0, got " + text;
+        return tumble::experiments::finite_positive_problem(std::strtod(text.c_str(), nullptr), text);
     },
     "NUMBER > 0");
+// A thread count (CLI::NonNegativeNumber's message printed DBL_MAX in full).
+const CLI::Validator thread_count(
+    [](std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        return tumble::experiments::thread_count_problem(end != text.c_str() && *end == '\0' ? v : -1.0, text);
+    },
+    "THREADS >= 0");
+// An impact speed of tumble contact, m/s.
+const CLI::Validator impact_speed(
+    [](std::string& text) {
+        const double v = std::strtod(text.c_str(), nullptr);
+        return v > 0.0 && v <= tumble::analysis::max_impact_speed
+                   ? std::string()
+                   : fmt::format("must be a number > 0 and at most {:g} m/s, got {}", tumble::analysis::max_impact_speed,
+                                 text);
+    },
+    "0 < SPEED <= 1000");
 // A seed that drum_run.toml can hold: 0 to 2^63 - 1, in decimal digits.
 const CLI::Validator seed_range(
     [](std::string& text) {
@@ -118,6 +138,10 @@ int usage_error(const CLI::App& app, const CLI::ParseError& error, int argc, cha
 int main(int argc, char** argv) {
     using namespace tumble::cli;
     std::setvbuf(stdout, nullptr, _IOLBF, 0);  // each report line reaches a log file at once
+    // A file-size limit (ulimit -f) would end the process with SIGXFSZ, with
+    // no message and the file cut; ignored, the write fails with EFBIG and
+    // its writer names the file and the reason ("File too large").
+    std::signal(SIGXFSZ, SIG_IGN);
     CLI::App app{"tumble: discrete-element simulation of visco-elastic spheres (Kohring's contact model)"};
     app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
     app.require_subcommand(1);
@@ -136,7 +160,7 @@ int main(int argc, char** argv) {
     run_cmd->add_option("--checkpoint-every-steps", run.checkpoints.every_steps, "Steps between checkpoints (default: none)")
         ->check(CLI::NonNegativeNumber);
     const char* threads_help = "Threads of the time step (0: every core; default 1)";
-    run_cmd->add_option("--threads", run.threads, threads_help)->check(CLI::NonNegativeNumber);
+    run_cmd->add_option("--threads", run.threads, threads_help)->check(thread_count);
     const char* memory_help = "Refuse a run estimated to need more memory than this, GiB (default: half the machine's)";
     run_cmd->add_option("--max-memory", run.max_memory_gib, memory_help)->check(finite_positive);
     run_cmd->add_flag("--allow-soft", run.allow_soft,
@@ -157,7 +181,7 @@ int main(int argc, char** argv) {
         ->check(CLI::NonNegativeNumber);
     auto* seed_opt = bench_cmd->add_option("--seed", bench.seed, "Cube: seed of the random initial velocities");
     bench_cmd->add_flag("--json", bench.json, "Print one JSON object instead of the table");
-    bench_cmd->add_option("--threads", bench.threads, threads_help)->check(CLI::NonNegativeNumber);
+    bench_cmd->add_option("--threads", bench.threads, threads_help)->check(thread_count);
     auto* length_opt = bench_cmd->add_option("--length", bench.length, "Long drum: inner length, m (default 0.64)")
         ->check(finite_positive);
     auto* fill_opt = bench_cmd->add_option("--fill", bench.fill, "Long drum: fill fraction (default 0.3)")
@@ -285,7 +309,7 @@ int main(int argc, char** argv) {
     drum_cmd->add_option("--checkpoint-every-revolutions", drum.checkpoint_revolutions,
                          "Revolutions between checkpoints while the drum turns (default 1; 0: not by revolutions)")
         ->check(finite_non_negative);
-    drum_cmd->add_option("--threads", drum.threads, threads_help)->check(CLI::NonNegativeNumber);
+    drum_cmd->add_option("--threads", drum.threads, threads_help)->check(thread_count);
     drum_cmd->add_option("--max-memory", drum.max_memory_gib, memory_help)->check(finite_positive);
     drum_cmd->add_flag("--large-drum", drum.large_drum,
                        "Accept a drum whose wall takes more than 50 times as many spheres as it holds grains and more "
@@ -322,8 +346,11 @@ int main(int argc, char** argv) {
     contact_cmd->add_flag("--allow-unsafe-dt", contact.allow_unsafe_dt,
                           "Accept a --dt above the safe maximum (to see what a larger step would do)")
         ->needs(contact_drum_flag);
+    contact_cmd->add_flag("--allow-soft", contact.allow_soft,
+                          "Accept materials so soft, or pairs so sticky, that grains sink into each other "
+                          "(refused otherwise, as by tumble run)");
     contact_cmd->add_option("--speeds", contact.speeds, "Impact speeds, m/s (default 0.05 0.1 0.3 1 1.4)")
-        ->check(finite_positive);
+        ->check(impact_speed);
     contact_cmd->add_flag("--json", contact.json, "Print one JSON object instead of the table");
 
     std::string resume_dir;

@@ -28,6 +28,7 @@
 #include "io/checkpoint.hpp"
 #include "experiments/limits.hpp"
 #include "io/drum_output.hpp"
+#include "io/output.hpp"
 #include "io/png.hpp"
 #include "io/render/scene.hpp"
 #include "io/snapshots.hpp"
@@ -200,8 +201,7 @@ int render_command(const RenderOptions& options) {
         throw Error((directory / "snapshots").string() +
                     ": no particle snapshots (NNNNNN.csv) to render; tumble drum writes them with --snapshots P "
                     "(per revolution), tumble run at the scenario's [output] snapshot_interval");
-    const std::string name = fs::weakly_canonical(fs::absolute(directory)).filename().string();
-    const fs::path movie = options.out.empty() ? directory / (name + ".mp4") : fs::path(options.out);
+    const fs::path movie = options.out.empty() ? io::default_movie_file(directory) : fs::path(options.out);
     const fs::path ffmpeg = options.frames_only ? fs::path() : find_on_path("ffmpeg");
     if (!options.frames_only && ffmpeg.empty())
         throw Error("ffmpeg not found on PATH, and it makes the movie " + movie.string() +

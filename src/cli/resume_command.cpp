@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // tumble resume DIR: continue an interrupted run from its newest intact
 // checkpoint; a damaged newer one is reported and skipped.
+#include <filesystem>
 #include <optional>
 
 #include <fmt/format.h>
@@ -53,11 +54,21 @@ int resume_command(const std::string& directory, bool quiet, double progress_eve
     if (revolutions > 0.0 && command != "drum")
         throw Error("--revolutions: the run in " + directory + " is not a drum run (tumble " + command +
                     "); only a drum run is lengthened");
+    // A run's results are written before the checkpoint that says it has
+    // finished: without them the record is not to be trusted (forged or
+    // damaged), and the run is finished again from the checkpoint's state.
+    const std::filesystem::path results =
+        std::filesystem::path(directory) / (command == "drum" ? "summary.json" : "run.json");
     if (record.integer("finished") && !(revolutions > 0.0)) {
-        if (talk)
-            fmt::print("tumble resume: the run in {} has finished ({}); nothing to do\n", directory,
-                       loaded.file.string());
-        return 0;
+        if (std::filesystem::exists(results)) {
+            if (talk)
+                fmt::print("tumble resume: the run in {} has finished ({}); nothing to do\n", directory,
+                           loaded.file.string());
+            return 0;
+        }
+        if (mpi::rank() == 0)
+            fmt::print(stderr, "tumble resume: warning: {} says the run has finished, but {} is missing; finishing "
+                               "it from there\n", loaded.file.string(), results.string());
     }
     if (talk) fmt::print("tumble resume: from {}\n", loaded.file.string());
     if (command == "run") return resume_run(std::move(loaded.checkpoint), directory, quiet, progress_every);

@@ -163,6 +163,7 @@ int run_command(const RunOptions& options) {
     const bool shared = mpi::size() > 1;
     Simulation sim(std::move(config.scenario), threads, shared ? Ranks::world : Ranks::one);
     const double dt = sim.dt();
+    check_time_step(sim.time_step_report(), options.scenario_file);
     RunPlan plan{options.scenario_file,
                  config.seed,
                  config.duration,

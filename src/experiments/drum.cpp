@@ -405,6 +405,7 @@ private:
 void lengthen(DrumPlan& plan, double revolutions, std::int64_t done, double dt, const fs::path& dir, bool quiet) {
     io::DrumRunInfo& info = plan.info;
     const double period = 2.0 * pi / info.omega;  // s
+    step_count(revolutions * period, dt, "--revolutions");  // a length in steps that a run can finish, first
     if (std::llround(revolutions * period / dt) <= done)  // the rotation's length in steps, as DrumLoop counts it
         throw Error(fmt::format("--revolutions {}: the run in {} has turned {:.4g} revolutions already; ask for more",
                                 revolutions, dir.string(), static_cast<double>(done) * dt / period));
@@ -550,6 +551,11 @@ std::string analyze_drum(const std::string& directory, const io::AnalyzeOptions&
     if (io::resumable(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0))))
         throw Error(directory + ": the run is unfinished (its newest checkpoint is not at its end); finish it with "
                                 "tumble resume " + directory + ", which analyses it");
+    // One stopped before its first checkpoint has none to say so: then only
+    // its summary says that it finished.
+    if (io::checkpoint_files(directory).empty() && !fs::exists(fs::path(directory) / "summary.json"))
+        throw Error(directory + ": the run is unfinished (no checkpoint and no summary.json: it stopped before its "
+                                "first checkpoint); run it again");
     return io::analyze_drum_run(directory, options);
 }
 

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "experiments/drum_setup.hpp"
+#include "tumble/analysis/pair_collision.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 #include "tumble/materials/pair_table.hpp"
@@ -59,6 +60,16 @@ void check_drum_durations(double revolutions, double omega, int samples_per_revo
         throw Error(fmt::format("{}: {:g} revolutions of {:g} s in steps of {:g} s (--dt) give {} steps, too few for "
                                 "a sample after the start ({} samples per revolution, --samples)",
                                 what, revolutions, rotation / revolutions, dt, steps, samples_per_revolution));
+}
+
+std::string finite_positive_problem(double value, const std::string& text) {
+    return std::isfinite(value) && value > 0.0 ? std::string() : "must be a finite number > 0, got " + text;
+}
+
+std::string thread_count_problem(double value, const std::string& text) {
+    return value >= 0.0 && value <= 1e9 && value == std::floor(value)
+               ? std::string()
+               : "must be a whole number >= 0 (0: every core), got " + text;
 }
 
 MemoryNeed scenario_memory(const Scenario& s, int threads) {
@@ -130,6 +141,23 @@ void check_stiffness(const Scenario& s, bool allowed, const std::string& source)
                                            R, v, h_max / (0.5 * R)) +
                         hint);
     }
+    if (!s.model.attraction) return;
+    for (const ContactPair& pair : contact_pairs(s)) {
+        const double pulled_in = analysis::equilibrium_overlap(analysis::normal_law(pair, s.model)) / pair.R_star;
+        if (!(pulled_in <= 1.0))  // NaN too: an attraction that overflows
+            throw Error(fmt::format("{}: pair {} (W = {:.3g} J/m^2): its attraction alone would pull two grains at "
+                                    "rest into each other by {:.3g} times their reduced radius (the paper's grains: "
+                                    "0.025). W is in J/m^2 (the paper's grains: 0.2) and E in Pa; if this pair is "
+                                    "meant, add --allow-soft",
+                                    source, pair.name, s.pair_properties[pair.a][pair.b].W, pulled_in));
+    }
+}
+
+void check_time_step(const TimeStepReport& t, const std::string& source) {
+    if (!(t.dt > 0.0) || !std::isfinite(t.dt))
+        throw Error(fmt::format("{}: the time step is {:g} s ({}), with which nothing advances; check the materials "
+                                "(density, moduli, radii) and the reference speed that set it",
+                                source, t.dt, t.automatic ? "set by " + t.recommended_by : "given"));
 }
 
 MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads, double skin) {

@@ -10,6 +10,7 @@
 
 #include "tumble/setup/drum.hpp"
 #include "tumble/sim/scenario.hpp"
+#include "tumble/sim/time_step.hpp"
 
 namespace tumble::experiments {
 
@@ -26,6 +27,14 @@ std::int64_t step_count(double seconds, double dt, const std::string& what);
 // points alike; tumble::Error naming the options otherwise.
 void check_drum_durations(double revolutions, double omega, int samples_per_revolution, double settle_max_time,
                           double dt);
+
+// The command line's checks of the numbers a run is given, in its words
+// (the option validators of cli/main.cpp), so that the Python functions
+// refuse their arguments alike, naming them: "" if `value` is fine, else
+// "must be ..., got TEXT" (TEXT: the value as given).
+std::string finite_positive_problem(double value, const std::string& text);
+// A thread count: a whole number >= 0 (0: every core).
+std::string thread_count_problem(double value, const std::string& text);
 
 // The memory a run will need, estimated from its inputs
 // (docs/BENCHMARKS.md, "Memory per sphere"), and what drives it.
@@ -55,8 +64,18 @@ void check_drum_size(const DrumGeometry& g, double grains, bool allowed, const s
 // of the radius (the paper's grains: 0.44 %), or of two meeting head-on at
 // the reference speed above their reduced radius (they would pass through
 // each other), is refused before any work, with the numbers, unless
-// `allowed` (tumble run --allow-soft). tumble::Error "SOURCE: ...".
+// `allowed` (tumble run --allow-soft). So is a surface energy W whose
+// attraction alone would pull two grains at rest into each other by more
+// than their reduced radius (the paper's grains: 2.5 %; nearly always W in
+// the wrong unit), for every kind of contact of the scenario.
+// tumble::Error "SOURCE: ...".
 void check_stiffness(const Scenario& s, bool allowed, const std::string& source);
+
+// The time step in use (TimeStepReport::dt) must be > 0 s and finite: a
+// density, modulus or radius out of range (rho = 1e-300 kg/m^3), or a
+// reference speed of 1e308 m/s, gives 0 s, with which nothing advances.
+// tumble::Error "SOURCE: ..." naming what set it.
+void check_time_step(const TimeStepReport& t, const std::string& source);
 
 // The limit: `gib` GiB if > 0, else half the machine's memory (or the
 // process's address-space limit, ulimit -v, if lower).

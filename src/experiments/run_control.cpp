@@ -46,8 +46,7 @@ Checkpointer::Checkpointer(std::filesystem::path run_directory, CheckpointPolicy
 }
 
 Checkpointer::Due Checkpointer::after_steps(const Simulation& sim, std::int64_t steps_done) {
-    constexpr std::int64_t health_every = 100;  // steps; the check costs about one force evaluation
-    if (sim.step_count() - checked_at_step_ >= health_every) check_health(sim);
+    if (sim.step_count() - checked_at_step_ >= health_check_steps) check_health(sim);
     const Due d = due(sim.step_count(), steps_done);
     // Shared among ranks: every rank writes its checkpoint, or none does (a
     // signal or the clock may reach one rank first).

@@ -45,6 +45,10 @@ bool stop_signalled();
 // the Python module).
 void clear_stop_signal();
 
+// Steps between two blow-up checks (health_problem) of a run: the check
+// costs about one force evaluation.
+inline constexpr std::int64_t health_check_steps = 100;
+
 class Checkpointer {
 public:
     Checkpointer(std::filesystem::path run_directory, CheckpointPolicy policy, HealthLimits limits);

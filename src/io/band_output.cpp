@@ -285,13 +285,14 @@ std::string describe_edges(const analysis::EdgeDiffusion& e, const analysis::Msd
 // band_edges.csv: per boundary of the start and block of revolutions, the
 // Matano plane and D at each level.
 void write_edge_blocks(const fs::path& file, const analysis::EdgeDiffusion& e) {
-    std::ofstream out = open_for_writing(file);
+    std::ostringstream out;
     out << "boundary,z_start,revolutions,matano";
     for (double u : analysis::edge_levels) out << ",D_u" << std::lround(100.0 * u);  // D_u25: numpy keeps no '.' in a name
     out << '\n';
     for (const analysis::EdgeBlock& b : e.blocks)
         out << fmt::format("{},{},{},{},{}\n", b.boundary, e.boundaries[b.boundary], b.revolutions, b.matano,
                            fmt::join(b.D, ","));
+    write_file_whole(file, out.str());
 }
 
 Json band_json(const analysis::Band& b, const std::string& rich, const std::string& poor) {
@@ -317,13 +318,11 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
     const std::size_t samples = h.samples.size();
 
     // bands.csv and band_positions.csv.
-    std::ofstream series = open_for_writing(out / "bands.csv");
-    std::ofstream positions = open_for_writing(out / "band_positions.csv");
+    std::ostringstream series, positions, spectrum;
     series << "revolutions,bands,rich_bands,mean,contrast,band_contrast,dominant_wavelength,dominant_share,"
               "core_fraction,periphery_fraction,core_excess,left_end_rich,left_end_fraction,right_end_rich,"
               "right_end_fraction\n";
     positions << "revolutions,band,rich,lo,hi,centre,small_fraction,grains\n";
-    std::ofstream spectrum = open_for_writing(out / "band_spectrum.csv");
     spectrum << "revolutions";
     const std::size_t modes = samples ? h.samples.front().power.size() : 0;
     for (std::size_t m = 1; m <= modes; ++m) spectrum << ",wavelength_" << m;
@@ -354,9 +353,9 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
                                      b.centre, b.small_fraction, b.grains);
         }
     }
-    check_written(series, out / "bands.csv");
-    check_written(positions, out / "band_positions.csv");
-    check_written(spectrum, out / "band_spectrum.csv");
+    write_file_whole(out / "bands.csv", series.str());
+    write_file_whole(out / "band_positions.csv", positions.str());
+    write_file_whole(out / "band_spectrum.csv", spectrum.str());
 
     double mean = 0.0, total = 0.0;
     for (std::size_t k = 0; k < samples; ++k)

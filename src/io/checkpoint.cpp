@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -398,6 +399,19 @@ std::string read_checkpoint_file(const fs::path& file, std::uintmax_t max_bytes)
 
 // Why the output files are shorter than when the checkpoint was written
 // (a power cut loses what was not yet on the disk), or empty.
+// The series a checkpoint records the lengths of are written a whole row
+// at a time: a length that ends inside a row (a forged record, with its
+// checksum made anew) would leave a cut row behind on resume.
+bool ends_a_row(const fs::path& file, std::int64_t length) {
+    if (length == 0) return true;
+    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return false;
+    char last = 0;
+    const bool read = ::pread(fd, &last, 1, static_cast<off_t>(length - 1)) == 1;
+    ::close(fd);
+    return read && last == '\n';
+}
+
 std::string recorded_lengths_problem(const CheckpointRecord& record, const fs::path& directory) {
     for (const auto& [key, value] : record.values()) {
         if (key.rfind("file:", 0) != 0) continue;
@@ -408,6 +422,23 @@ std::string recorded_lengths_problem(const CheckpointRecord& record, const fs::p
         if (ec || length < 0 || size < static_cast<std::uintmax_t>(length))
             return file.string() + " is shorter than when the checkpoint was written (" + std::to_string(length) +
                    " bytes)";
+        if (!ends_a_row(file, length))
+            return "its length of " + file.string() + ", " + std::to_string(length) + " bytes, ends inside a row";
+    }
+    return {};
+}
+
+// The times of the snapshots written before the checkpoint, which the
+// .pvd indexes are written from again: finite, in order, none after the
+// state's own time.
+std::string snapshot_times_problem(const Checkpoint& c) {
+    if (!c.record.has("snapshot_times")) return {};
+    double previous = -INFINITY;
+    for (double t : c.record.numbers("snapshot_times")) {
+        if (!(t >= previous && t <= c.state.time))
+            return fmt::format("record key \"snapshot_times\" holds {}, not a time in order up to the state's "
+                               "time {}", t, c.state.time);
+        previous = t;
     }
     return {};
 }
@@ -420,6 +451,8 @@ LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory, std::uint
         try {
             loaded.checkpoint = decode_checkpoint(read_checkpoint_file(*file, max_bytes), file->string());
             if (const std::string why = recorded_lengths_problem(loaded.checkpoint.record, run_directory); !why.empty())
+                throw Error(file->string() + ": " + why);
+            if (const std::string why = snapshot_times_problem(loaded.checkpoint); !why.empty())
                 throw Error(file->string() + ": " + why);
             loaded.file = *file;
             return loaded;

@@ -139,6 +139,9 @@ bool resumable(const std::filesystem::path& run_directory,
 // Output files: flush each (that exists) to the disk and keep its length under
 // "file:NAME", and cut each file back to its recorded length when resuming, so that what the
 // interrupted run wrote after the checkpoint is written again, identically.
+// The files are series written a whole row at a time: a checkpoint whose
+// length of one ends inside a row, or whose snapshot times are not in order
+// up to its state's time, is passed over as damaged (load_newest_checkpoint).
 void record_file_lengths(CheckpointRecord& record, const std::filesystem::path& directory,
                          std::initializer_list<const char*> names);
 void truncate_to_recorded_lengths(const CheckpointRecord& record, const std::filesystem::path& directory);

@@ -331,7 +331,7 @@ std::optional<analysis::DepthMobility> depth_mobility_of_run(const std::vector<a
 }
 
 void write_depth_mobility(const fs::path& file, const analysis::DepthMobility& m, const DrumRunInfo& info) {
-    std::ofstream out = open_for_writing(file);
+    std::ostringstream out;
     out << "layer,depth_lo,depth_hi";
     for (const DrumComponent& c : info.components)
         for (const char* what : {"samples", "msd_per_rev", "share", "occupancy"})
@@ -345,7 +345,7 @@ void write_depth_mobility(const fs::path& file, const analysis::DepthMobility& m
                                m.occupancy(c, layer));
         out << '\n';
     }
-    check_written(out, file);
+    write_file_whole(file, out.str());
 }
 
 
@@ -402,7 +402,7 @@ void write_axial_msd(const fs::path& file, const std::vector<analysis::GrainFram
         lag = b.lag;
         msd.push_back(analysis::weighted_msd(b, std::vector<double>(b.blocks(), 1.0)));
     }
-    std::ofstream out = open_for_writing(file);
+    std::ostringstream out;
     out << "lag";
     for (const DrumComponent& c : info.components) out << ",msd_" << column_name(c.name);
     out << '\n';
@@ -411,7 +411,7 @@ void write_axial_msd(const fs::path& file, const std::vector<analysis::GrainFram
         for (const auto& m : msd) out << ',' << m[l];
         out << '\n';
     }
-    check_written(out, file);
+    write_file_whole(file, out.str());
 }
 
 // A Hogg fit, or an undetermined one with the reason: no samples, or not
@@ -460,7 +460,7 @@ void analyze_bed_structure(const fs::path& dir, const std::vector<analysis::Grai
     std::vector<analysis::SpeciesEnergetics> energetics(info.components.size());
     double mean_diameter = 0.0;
     for (double r : steady.front().radius) mean_diameter += 2.0 * r / static_cast<double>(steady.front().radius.size());
-    std::ofstream out = open_for_writing(dir / "bed_structure.csv");
+    std::ostringstream out;
     out << "revolutions,slice,z,relative_volume,surface_angle";
     for (const DrumComponent& c : info.components) out << ",mean_distance_" << column_name(c.name);
     out << '\n';
@@ -495,13 +495,13 @@ void analyze_bed_structure(const fs::path& dir, const std::vector<analysis::Grai
         }
         (f == 0 ? first_rms : last_rms) = std::sqrt(rms);
     }
-    check_written(out, dir / "bed_structure.csv");
+    write_file_whole(dir / "bed_structure.csv", out.str());
     {
-        std::ofstream profile = open_for_writing(dir / "flow_profile.csv");
+        std::ostringstream profile;
         profile << "depth,depth_diameters,downhill_velocity\n";
         for (std::size_t k = 0; k < flow.bins(); ++k)
             profile << fmt::format("{},{},{}\n", flow.depth(k), flow.depth(k) / mean_diameter, flow.velocity(k));
-        check_written(profile, dir / "flow_profile.csv");
+        write_file_whole(dir / "flow_profile.csv", profile.str());
     }
     Json angles_json = Json::array();
     std::string angles_text;
@@ -774,7 +774,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
         const bool from_msd = msd[right].determined;
         const double D_profile = from_msd ? msd[right].D : fits[right].D;
         const std::string D_name = from_msd ? "the grains' MSD D" : "the pinned Hogg D";
-        std::ofstream out = open_for_writing(dir / "profile_comparison.csv");
+        std::ostringstream out;
         out << "revolutions,z,measured,hogg\n";
         Json rms_json = Json::array();
         auto rms_at = [&](std::size_t k, bool write) {
@@ -811,7 +811,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
             text << fmt::format("  C(z, N = {:.3g}) of {} against Hogg with {}: {}\n", profiles.revolutions[k],
                                 info.components[right].name, D_name, rms_text(rms, "rms difference"));
         }
-        check_written(out, dir / "profile_comparison.csv");
+        write_file_whole(dir / "profile_comparison.csv", out.str());
         summary["profile_comparison"] = rms_json;
         double sum = 0.0;
         std::size_t n = 0, late = 0;  // late: the profiles at N >= first_revolution

@@ -43,9 +43,10 @@ namespace {
 }  // namespace
 
 namespace {
-// A test hook (tests/unit/test_resume.cpp): with TUMBLE_TEST_KILL_AT_RENAME=N
+// A test hook (tests/unit/test_safety.cpp): with TUMBLE_TEST_KILL_AT_RENAME=N
 // in the environment, the process kills itself (SIGKILL) just before its Nth
-// rename of a file into place, as a power cut or kill -9 at that moment would.
+// rename of a file into place by write_file_atomically, as a power cut or
+// kill -9 at that moment would.
 void kill_point_for_tests() {
     static const long kill_at = [] {
         const char* n = std::getenv("TUMBLE_TEST_KILL_AT_RENAME");
@@ -56,7 +57,10 @@ void kill_point_for_tests() {
 }
 }  // namespace
 
-void write_file_atomically(const fs::path& file, std::string_view bytes) {
+namespace {
+// Writes `bytes` into file.tmp and renames it over `file`; with `to_disk`,
+// the file and then the directory are flushed to the disk (fsync) as well.
+void replace_file(const fs::path& file, std::string_view bytes, bool to_disk) {
     const fs::path temporary = file.string() + ".tmp";
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) fail_with_errno(temporary, "opening for writing");
@@ -73,26 +77,32 @@ void write_file_atomically(const fs::path& file, std::string_view bytes) {
         if (n <= 0) give_up("writing (disk full?)");
         done += static_cast<std::size_t>(n);
     }
-    if (::fsync(fd) != 0) give_up("flushing to disk");
+    if (to_disk && ::fsync(fd) != 0) give_up("flushing to disk");
     if (::close(fd) != 0) {
         const int saved = errno;
         ::unlink(temporary.c_str());
         errno = saved;
         fail_with_errno(temporary, "closing");
     }
-    kill_point_for_tests();
+    if (to_disk) kill_point_for_tests();
     if (::rename(temporary.c_str(), file.c_str()) != 0) {
         const int saved = errno;
         ::unlink(temporary.c_str());
         errno = saved;
         fail_with_errno(file, "renaming into place");
     }
+    if (!to_disk) return;
     const int dir = ::open(file.parent_path().empty() ? "." : file.parent_path().c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (dir >= 0) {
         ::fsync(dir);  // the rename itself reaches the disk
         ::close(dir);
     }
 }
+}  // namespace
+
+void write_file_atomically(const fs::path& file, std::string_view bytes) { replace_file(file, bytes, true); }
+
+void write_file_whole(const fs::path& file, std::string_view bytes) { replace_file(file, bytes, false); }
 
 void check_written(std::ofstream& out, const fs::path& file) {
     out.flush();
@@ -134,26 +144,25 @@ fs::path write_snapshot(const fs::path& directory, int number, const SnapshotDat
     const fs::path folder = directory / "snapshots";
     fs::create_directories(folder);
     const fs::path file = folder / fmt::format("{:06d}.csv", number);
-    std::ofstream out = open_for_writing(file);
     const ParticleStore& p = snapshot.particles;
     // The time and step on every row, so that snapshots concatenated stay apart.
     const std::string when = fmt::format("{},{}", snapshot.time, snapshot.step);
-    out << "time,step,id,x,y,z,vx,vy,vz,wx,wy,wz,radius,material,tag,kinematic\n";
+    fmt::memory_buffer out;
+    fmt::format_to(fmt::appender(out), "time,step,id,x,y,z,vx,vy,vz,wx,wy,wz,radius,material,tag,kinematic\n");
     for (std::size_t i : order_by_id(p)) {
         const Vec3 &x = p.position[i], &v = p.velocity[i], &w = p.angular_velocity[i];
-        out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", when, p.id[i], x.x, x.y, x.z, v.x, v.y,
-                           v.z, w.x, w.y, w.z, p.radius[i], snapshot.material_names[static_cast<std::size_t>(p.material[i])], p.tag[i],
-                           p.is_kinematic(i) ? 1 : 0);
+        fmt::format_to(fmt::appender(out), "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", when, p.id[i], x.x, x.y,
+                       x.z, v.x, v.y, v.z, w.x, w.y, w.z, p.radius[i],
+                       snapshot.material_names[static_cast<std::size_t>(p.material[i])], p.tag[i],
+                       p.is_kinematic(i) ? 1 : 0);
     }
-    check_written(out, file);
+    write_file_whole(file, {out.data(), out.size()});
     return file;
 }
 
-const char* const run_files[14] = {"summary.json",   "summary.txt",      "profile_comparison.csv",
-                                   "depth_mobility.csv", "run.json",     "drum_run.toml",
-                                   "time_series.csv", "drum_series.csv",  "profiles.csv",
-                                   "particles.pvd",   "contacts.pvd",     "snapshots",
-                                   "checkpoints",     "figures"};
+fs::path default_movie_file(const fs::path& directory) {
+    return directory / (fs::weakly_canonical(fs::absolute(directory)).filename().string() + ".mp4");
+}
 
 RunLock prepare_output_directory(const fs::path& directory, bool overwrite) {
     std::error_code ec;
@@ -168,11 +177,18 @@ RunLock prepare_output_directory(const fs::path& directory, bool overwrite) {
             if (fs::exists(directory / name, ec))
                 throw Error((directory / name).string() + ": exists, but tumble did not write " + directory.string() +
                             " (it has no " + run_lock_file + "); choose another directory");
-    if (overwrite)
-        for (const char* name : run_files) {
-            fs::remove_all(directory / name, ec);
-            if (ec) throw Error((directory / name).string() + ": cannot remove the earlier run's file: " + ec.message());
+    if (overwrite) {
+        std::vector<fs::path> files;
+        for (std::string_view name : run_files) {
+            files.push_back(directory / name);
+            files.push_back(directory / (std::string(name) + ".tmp"));  // of a write cut short
         }
+        files.push_back(default_movie_file(directory));
+        for (const fs::path& file : files) {
+            fs::remove_all(file, ec);
+            if (ec) throw Error(file.string() + ": cannot remove the earlier run's file: " + ec.message());
+        }
+    }
     return lock;
 }
 

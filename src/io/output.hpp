@@ -33,6 +33,11 @@ std::ofstream open_for_appending(const std::filesystem::path& file);
 // renamed over `file`, the directory flushed. On failure the temporary file
 // is removed and tumble::Error names it and the reason (e.g. "File too large").
 void write_file_atomically(const std::filesystem::path& file, std::string_view bytes);
+// The same without flushing to the disk, for the files written in one piece
+// that a run writes often or that are large (snapshots, tables, images): a
+// failed write or a kill leaves no cut file under `file`'s name, only the
+// cost of the fsync is saved (a power cut may still lose the newest of them).
+void write_file_whole(const std::filesystem::path& file, std::string_view bytes);
 // Flushes and reports a failed write (disk full, ...) as tumble::Error naming the file.
 void check_written(std::ofstream& out, const std::filesystem::path& file);
 
@@ -56,15 +61,32 @@ std::vector<std::size_t> order_by_id(const ParticleStore& p);
 std::filesystem::path write_snapshot(const std::filesystem::path& directory, int number, const SnapshotData& snapshot);
 std::filesystem::path write_snapshot(const std::filesystem::path& directory, int number, const Simulation& sim);
 
-// The files and folders a run writes into its directory (tumble run, tumble
-// drum and the analysis), summary.json first.
-extern const char* const run_files[14];
+// Every file and folder that tumble writes into a run directory: tumble run,
+// drum, resume, analyze (with --so-far), plot and render (with the movie
+// DIR/NAME.mp4, NAME the directory's, which has no fixed name and is removed
+// beside these). What --force clears, so it holds them all: a test runs each
+// command and checks every file it wrote against this list
+// (tests/unit/test_force.cpp). summary.json comes first: it marks a finished
+// drum run (tumble sweep), so it goes before anything else. Not the lock
+// file, and not a sweep's log.txt and failed.txt in its points' directories,
+// which the sweep keeps itself.
+inline constexpr std::string_view run_files[] = {
+    "summary.json",  "summary.txt",     "run.json",          "drum_run.toml",      "time_series.csv",
+    "drum_series.csv", "profiles.csv",  "band_profile.csv",  "profile_comparison.csv", "depth_mobility.csv",
+    "depth_mobility_long.csv", "axial_msd.csv", "bed_structure.csv", "flow_profile.csv", "bands.json",
+    "bands.csv",     "band_positions.csv", "band_spectrum.csv", "band_edges.csv",   "kymograph.png",
+    "particles.pvd", "contacts.pvd",    "snapshots",         "checkpoints",        "figures",
+    "so_far",        "frames"};
+
+// tumble render's movie by default: DIR/NAME.mp4, NAME the directory's.
+std::filesystem::path default_movie_file(const std::filesystem::path& directory);
 
 // Creates the output directory and locks it for this process (RunLock).
 // Refuses (tumble::Error) one that already holds a run, unless `overwrite`:
-// then the earlier run's files (run_files) are removed before anything new is
-// written. Only a directory that tumble wrote before (it holds the lock file)
-// is cleared; one with its own snapshots/ or checkpoints/ is refused.
+// then the earlier run's files (run_files, their temporary files FILE.tmp
+// and the movie) are removed before anything new is written. Only a
+// directory that tumble wrote before (it holds the lock file) is cleared;
+// one with its own snapshots/ or checkpoints/ is refused.
 RunLock prepare_output_directory(const std::filesystem::path& directory, bool overwrite);
 
 struct RunSummary {

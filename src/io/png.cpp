@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "io/output.hpp"
 #include "tumble/core/error.hpp"
 
 namespace tumble::io {
@@ -28,7 +29,14 @@ void write_png(const fs::path& file, const render::Image& image, bool fast) {
     png.height = static_cast<png_uint_32>(image.height());
     png.format = PNG_FORMAT_RGB;
     if (fast) png.flags |= PNG_IMAGE_FLAG_FAST;
-    if (!png_image_write_to_file(&png, file.c_str(), 0, image.data(), 0, nullptr)) fail(file, "write", png);
+    // Encoded in memory, then written whole (write_file_whole): a failed
+    // write or a kill leaves no cut image under the file's name.
+    png_alloc_size_t size = 0;
+    if (!png_image_write_get_memory_size(png, size, 0, image.data(), 0, nullptr)) fail(file, "write", png);
+    std::string bytes(size, '\0');
+    if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, image.data(), 0, nullptr)) fail(file, "write", png);
+    bytes.resize(size);
+    write_file_whole(file, bytes);
 }
 
 render::Image read_png(const fs::path& file) {

@@ -7,7 +7,6 @@
 #include <iterator>
 #include <numeric>
 #include <string_view>
-#include <system_error>
 #include <type_traits>
 
 #include <zlib.h>
@@ -93,11 +92,9 @@ public:
     // Closes the dataset and writes the XML, then the appended data.
     void write(const fs::path& file) {
         fmt::format_to(fmt::appender(xml_), "    </Piece>\n  </{}>\n  <AppendedData encoding=\"raw\">\n   _", type_);
-        std::ofstream out = open_for_writing(file);
-        out.write(xml_.data(), static_cast<std::streamsize>(xml_.size()));
-        out.write(appended_.data(), static_cast<std::streamsize>(appended_.size()));
-        out << "\n  </AppendedData>\n</VTKFile>\n";
-        check_written(out, file);
+        std::string bytes(xml_.data(), xml_.size());
+        bytes.append(appended_).append("\n  </AppendedData>\n</VTKFile>\n");
+        write_file_whole(file, bytes);
     }
 
 private:
@@ -152,11 +149,6 @@ void time_field(VtkFile& f, const SnapshotData& snapshot) {
     f.field("step", std::vector<std::int64_t>{snapshot.step});
 }
 
-void write_buffer(const fs::path& file, const Buffer& b) {
-    std::ofstream out = open_for_writing(file);
-    out.write(b.data(), static_cast<std::streamsize>(b.size()));
-    check_written(out, file);
-}
 
 // Escapes the five characters XML reserves, for an attribute value.
 std::string xml_attribute(std::string_view s) {
@@ -304,12 +296,7 @@ void PvdIndex::rewrite() const {
                        xml_attribute(path));
     fmt::format_to(fmt::appender(b), "  </Collection>\n</VTKFile>\n");
 
-    fs::path temporary = file_;
-    temporary += ".tmp";
-    write_buffer(temporary, b);
-    std::error_code ec;
-    fs::rename(temporary, file_, ec);  // atomic on POSIX file systems
-    if (ec) throw Error(file_.string() + ": cannot replace the index: " + ec.message());
+    write_file_whole(file_, {b.data(), b.size()});
 }
 
 }  // namespace tumble::io

@@ -49,7 +49,8 @@ void write_vtp_contact_network(const std::filesystem::path& file, const Simulati
 // A ParaView collection file (.pvd) that indexes datasets by time. The
 // index is written at construction (empty) and rewritten completely at every
 // add(), into a temporary file that is then renamed over it, so a crash
-// leaves either the old or the new index, never a broken one. Dataset paths
+// leaves either the old or the new index, never a broken one, and a failed
+// write leaves the old one and no temporary file. Dataset paths
 // are stored as given, relative to the directory of the .pvd file.
 // Keep one index per kind of dataset (e.g. particles.pvd, contacts.pvd).
 class PvdIndex {

@@ -55,9 +55,7 @@ void write_xyz_snapshot(const std::filesystem::path& file, const SnapshotData& s
                        species[static_cast<std::size_t>(p.material[i])], x.x, x.y, x.z, p.radius[i], p.id[i], v.x,
                        v.y, v.z, w.x, w.y, w.z, p.tag[i], p.is_kinematic(i) ? 1 : 0);
     }
-    std::ofstream out = open_for_writing(file);
-    out.write(b.data(), static_cast<std::streamsize>(b.size()));
-    check_written(out, file);
+    write_file_whole(file, {b.data(), b.size()});
 }
 
 }  // namespace tumble::io

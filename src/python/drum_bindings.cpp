@@ -1,15 +1,18 @@
 // SPDX-License-Identifier: MIT
 // The drum experiment (experiments/drum.hpp) for Python: its settings, the
 // protocol with a callback at every sample, and the analysis of a run.
+#include <fmt/format.h>
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
 #include "bindings.hpp"
 #include "experiments/drum.hpp"
+#include "experiments/limits.hpp"
 #include "io/drum_config.hpp"
 #include "io/toml_reader.hpp"
 #include "tumble/core/constants.hpp"
+#include "tumble/core/error.hpp"
 
 namespace tumble::python {
 
@@ -98,6 +101,15 @@ void bind_drum(py::module_& m) {
         [](const io::DrumSettings& settings, const std::function<void(py::object)>& on_sample, int threads, bool force,
            bool quiet, double checkpoint_revolutions, double checkpoint_minutes, std::int64_t stop_at_step,
            bool allow_unsafe_dt, double max_memory_gib) {
+            // As the command line checks --threads and --max-memory (0: the default).
+            if (const std::string why = experiments::thread_count_problem(threads, std::to_string(threads));
+                !why.empty())
+                throw Error("threads: " + why);
+            if (max_memory_gib != 0.0)
+                if (const std::string why = experiments::finite_positive_problem(max_memory_gib,
+                                                                                 fmt::format("{}", max_memory_gib));
+                    !why.empty())
+                    throw Error("max_memory_gib: " + why + " (0: half the machine's memory)");
             experiments::DrumRunOptions o;
             o.settings = settings;
             o.force = force;

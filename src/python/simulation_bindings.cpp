@@ -14,10 +14,12 @@
 #include "experiments/drum_setup.hpp"
 #include "experiments/limits.hpp"
 #include "experiments/machine.hpp"
+#include "experiments/run_control.hpp"
 #include "io/config.hpp"
 #include "io/output.hpp"
 #include "io/toml_reader.hpp"
 #include "tumble/sim/contact_network.hpp"
+#include "tumble/sim/health.hpp"
 #include "tumble/sim/simulation.hpp"
 
 namespace tumble::python {
@@ -97,8 +99,74 @@ py::dict contact_records(const Simulation& sim) {
 // the loop (KeyboardInterrupt) between two checks. Returns the steps done.
 // A step count from the caller: 0 is nothing to do, a negative one an error
 // (it would otherwise do nothing without a word).
+// More than any run can take is refused as tumble run refuses such a
+// duration (experiments::max_steps).
 void need_steps(std::int64_t steps, const char* what) {
     if (steps < 0) throw Error(fmt::format("{}: need a count >= 0, got {}", what, steps));
+    if (static_cast<double>(steps) > experiments::max_steps)
+        throw Error(fmt::format("{}: {} steps, more than any run can take (at most {:g})", what, steps,
+                                experiments::max_steps));
+}
+
+// The blow-up check of tumble run (sim/health.hpp): in full (with every
+// contact's overlap, which costs about a force evaluation) every
+// experiments::health_check_steps steps of the simulation, as tumble run
+// makes it; the particles' part (non-finite values, speeds, the region)
+// after every call as well, which costs little. A state that failed
+// raises, naming the step that made it: the steps of the call since its
+// last check are taken again one by one from the state captured there
+// (the same numbers: they are deterministic); an error of the engine on
+// the way (a non-finite position in the neighbour search) is found so too.
+using HealthCheck = std::string (*)(const Simulation&, const HealthLimits&);
+
+[[noreturn]] void blew_up(const std::string& problem) {
+    throw Error("the simulation blew up at " + problem + ". Check the time step (docs/MODEL.md) and the input");
+}
+
+void find_the_bad_step(Simulation& sim, const SimulationState& before, const HealthLimits& limits, std::int64_t end,
+                       HealthCheck check) {
+    sim.restore(before);
+    while (sim.step_count() < end) {
+        try {
+            sim.advance(1);
+        } catch (const Error& e) {
+            throw Error(fmt::format("the simulation blew up at step {}: {}", sim.step_count() + 1, e.what()));
+        }
+        if (const std::string problem = check(sim, limits); !problem.empty()) blew_up(problem);
+    }
+}
+
+// `steps` steps without the GIL, checked as above.
+void advance_checked(Simulation& sim, std::int64_t steps) {
+    const HealthLimits limits = default_health_limits(sim.scenario());
+    for (std::int64_t done = 0; done < steps;) {
+        const std::int64_t n = std::min(experiments::health_check_steps, steps - done);
+        const std::int64_t start = sim.step_count(), end = start + n;
+        const bool full = end / experiments::health_check_steps != start / experiments::health_check_steps;
+        const HealthCheck check = full ? health_problem : particle_health_problem;
+        std::optional<SimulationState> before;  // one step needs no search
+        if (n > 1) before = sim.capture();
+        std::string problem;
+        try {
+            py::gil_scoped_release engine_works;
+            sim.advance(n);
+            problem = check(sim, limits);
+        } catch (const Error& e) {
+            if (!before) throw Error(fmt::format("the simulation blew up at step {}: {}", end, e.what()));
+            problem = e.what();
+        }
+        if (!problem.empty()) {
+            if (before) find_the_bad_step(sim, *before, limits, end, check);
+            blew_up(problem);
+        }
+        done += n;
+    }
+}
+
+// A thread count as the command line's --threads is checked, naming `what`.
+void need_threads(int threads, const char* what) {
+    if (const std::string why = experiments::thread_count_problem(threads, std::to_string(threads)); !why.empty())
+        throw Error(std::string(what) + ": " + why);
 }
 
 std::int64_t run(py::object self, std::int64_t total, const py::object& until, std::int64_t check_every) {
@@ -107,10 +175,7 @@ std::int64_t run(py::object self, std::int64_t total, const py::object& until, s
     std::int64_t done = 0;
     while (done < total) {
         const std::int64_t n = std::min(check_every, total - done);
-        {
-            py::gil_scoped_release engine_works;
-            sim.advance(n);
-        }
+        advance_checked(sim, n);
         done += n;
         if (PyErr_CheckSignals() != 0) throw py::error_already_set();
         if (!until.is_none() && py::bool_(until(self))) break;
@@ -171,20 +236,23 @@ in space (at neighbour-list rebuilds): follow grains by `ids`, and read an
 array again after stepping rather than keeping an old view (a re-sort moves
 the store to other memory).)");
     sim.def(py::init([](const io::RunConfig& scenario, int threads) {
+                need_threads(threads, "threads");
                 return std::make_unique<Simulation>(scenario.scenario, experiments::resolve_threads(threads));
             }),
             py::arg("scenario"), py::arg("threads") = 1,
             "threads: of the time step (0: every core); the same count gives the same numbers bit for bit")
         .def(
-            "step", [](Simulation& s) { py::gil_scoped_release engine_works; s.step(); }, "One time step")
+            "step", [](Simulation& s) { advance_checked(s, 1); },
+            "One time step; tumble.Error if it made the state non-finite or unphysical (tumble run's blow-up check)")
         .def(
             "advance",
             [](Simulation& s, std::int64_t steps) {
                 need_steps(steps, "advance: steps");
-                py::gil_scoped_release engine_works;
-                s.advance(steps);
+                advance_checked(s, steps);
             },
-            py::arg("steps"), "`steps` time steps in one go (the same numbers as one step at a time)")
+            py::arg("steps"),
+            "`steps` time steps in one go (the same numbers as one step at a time); tumble.Error naming the step "
+            "that made the state non-finite or unphysical (tumble run's blow-up check)")
         .def(
             "run",
             [](py::object self, std::optional<std::int64_t> steps, std::optional<double> duration,

@@ -435,6 +435,45 @@ TEST(CliContact, RefusesMissingOrBadInput) {
     }
 }
 
+TEST(CliContact, AnImpactSpeedBeyondAnyFlowIsRefusedNamingSpeeds) {
+    for (const char* speed : {"1e308", "1001"}) {
+        const Result r = run_tumble(std::string("contact --drum --speeds ") + speed);
+        EXPECT_EQ(r.exit_code, 2) << r.output;
+        EXPECT_NE(r.output.find(std::string("--speeds: must be a number > 0 and at most 1000 m/s, got ") + speed),
+                  std::string::npos)
+            << r.output;
+    }
+    EXPECT_EQ(run_tumble("contact --drum --speeds 1000").exit_code, 0);
+}
+
+TEST_F(Cli, ContactRefusesTheMaterialsThatRunRefuses) {
+    // A density of 1e-300 kg/m^3 gives a time step of 0 s; W = 1e300 J/m^2
+    // pulls grains at rest into each other. Refused by both commands, with
+    // the same message, before any collision is computed.
+    const std::string box = tumble::test_support::walled_box_scenario("0.01");
+    const std::string light = std::regex_replace(box, std::regex("rho = [0-9.e+]+"), "rho = 1e-300");
+    const std::string sticky = std::regex_replace(box, std::regex("W = [0-9.e+]+"), "W = 1e300");
+    ASSERT_NE(light, box);
+    ASSERT_NE(sticky, box);
+    const fs::path light_file = write("light.toml", light), sticky_file = write("sticky.toml", sticky);
+    const std::pair<fs::path, std::string> cases[] = {
+        {light_file, light_file.string() + ": the time step is 0 s (set by "},
+        {sticky_file, sticky_file.string() + ": pair m-m (W = 1e+300 J/m^2): its attraction alone "
+                                             "would pull two grains at rest into each other"}};
+    for (const auto& [file, message] : cases) {
+        for (const std::string& command :
+             {"contact " + file.string(), "run -q " + file.string() + " --out " + (dir_ / "out").string()}) {
+            const Result r = run_tumble(command);
+            EXPECT_EQ(r.exit_code, 2) << command << ": " << r.output;
+            EXPECT_NE(r.output.find(message), std::string::npos) << command << ": " << r.output;
+            EXPECT_EQ(r.output.find("time step 0 s"), std::string::npos) << "no table: " << r.output;
+        }
+        EXPECT_FALSE(fs::exists(dir_ / "out" / "time_series.csv"));
+    }
+    // --allow-soft lets the sticky pair through, as tumble run's does.
+    EXPECT_EQ(run_tumble("contact --allow-soft " + sticky_file.string()).exit_code, 0);
+}
+
 TEST_F(Cli, DrumRefusesImpossibleSettingsAndWritesNothing) {
     const std::string out = " --out " + (dir_ / "drum").string();
     const std::pair<std::string, std::string> cases[] = {

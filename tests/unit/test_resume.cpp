@@ -233,6 +233,14 @@ TEST_F(Resume, AFinishedDrumRunIsLengthenedToTheLongerRun) {
     EXPECT_NE(endless.output.find("--revolutions: must be a finite number > 0, got inf"), std::string::npos)
         << endless.output;
     EXPECT_EQ(read_file(out / "summary.json"), summary);
+    // Finite, but more steps than any run can take: refused as that, not
+    // as fewer revolutions than turned (the step count overflowed).
+    const auto huge = tumble_run("resume -q " + out.string() + " --revolutions 1e308");
+    EXPECT_EQ(huge.exit_code, 2) << huge.output;
+    EXPECT_NE(huge.output.find("--revolutions: "), std::string::npos) << huge.output;
+    EXPECT_NE(huge.output.find("more than any run can take"), std::string::npos) << huge.output;
+    EXPECT_EQ(huge.output.find("already"), std::string::npos) << huge.output;
+    EXPECT_EQ(read_file(out / "summary.json"), summary);
     const auto longer = tumble_run("resume -q " + out.string() + " --revolutions 0.4");
     ASSERT_EQ(longer.exit_code, 0) << longer.output;
     std::size_t snapshots = 0;

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -254,6 +255,70 @@ TEST_F(Safety, ACheckpointWithValidChecksumButImpossibleContentsIsRefused) {
     }
 }
 
+TEST_F(Safety, ACheckpointWhoseRecordDoesNotFitItsFilesIsPassedOverForThePreviousOne) {
+    // Each forged with a valid checksum (the checkpoint written anew): a
+    // length of time_series.csv that ends inside a row (resumed, it left a
+    // cut row), and a snapshot time that is no time (particles.pvd got
+    // timestep="nan").
+    const fs::path scenario = write("snapshots.toml", tumble::test_support::walled_box_scenario(
+                                                          "0.02", "", "[output]\ntime_series_interval = 0.001\n"
+                                                                      "snapshot_interval = 0.005\n"));
+    const fs::path full = dir_ / "full";
+    ASSERT_EQ(tumble("run -q " + scenario.string() + " --out " + full.string()).exit_code, 0);
+    struct Case {
+        const char* what;
+        std::function<void(io::Checkpoint&)> alter;
+        const char* expect;
+    };
+    const std::vector<Case> cases = {
+        {"length",
+         [](io::Checkpoint& c) {
+             c.record.set("file:time_series.csv", c.record.integer("file:time_series.csv") - 5);
+         },
+         "bytes, ends inside a row"},
+        {"snapshot times",
+         [](io::Checkpoint& c) {
+             std::vector<double> times = c.record.numbers("snapshot_times");
+             times.back() = std::nan("");
+             c.record.set("snapshot_times", times);
+         },
+         "record key \"snapshot_times\" holds nan, not a time in order up to the state's time"},
+    };
+    for (const Case& k : cases) {
+        const fs::path out = dir_ / "run";
+        fs::remove_all(out);
+        ASSERT_EQ(tumble("run -q " + scenario.string() + " --out " + out.string() + " --stop-at-step 12").exit_code, 4);
+        io::Checkpoint c = io::load_newest_checkpoint(out).checkpoint;
+        ASSERT_FALSE(c.record.numbers("snapshot_times").empty());
+        k.alter(c);
+        io::write_checkpoint(out, c);
+        const auto r = tumble("resume " + out.string());
+        EXPECT_EQ(r.exit_code, 0) << k.what << ": " << r.output;
+        EXPECT_TRUE(contains(r.output, "000002.tck: ")) << k.what << ": " << r.output;
+        EXPECT_TRUE(contains(r.output, k.expect)) << k.what << ": " << r.output;
+        EXPECT_EQ(read_file(out / "time_series.csv"), read_file(full / "time_series.csv")) << k.what;
+        EXPECT_EQ(read_file(out / "particles.pvd"), read_file(full / "particles.pvd")) << k.what;
+    }
+}
+
+TEST_F(Safety, AFinishedFlagWithoutTheResultsIsNotTrusted) {
+    // Forged at step 20 of the run (with a valid checksum): resume said
+    // "has finished; nothing to do" and the run had no run.json.
+    const fs::path full = dir_ / "full", out = dir_ / "run";
+    ASSERT_EQ(tumble("run -q " + walled_box().string() + " --out " + full.string()).exit_code, 0);
+    io::Checkpoint c = stopped_box(out);
+    c.record.set("finished", std::int64_t{1});
+    io::write_checkpoint(out, c);
+    const auto r = tumble("resume -q " + out.string());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "says the run has finished, but " + (out / "run.json").string() + " is missing"))
+        << r.output;
+    EXPECT_EQ(read_file(out / "time_series.csv"), read_file(full / "time_series.csv"));
+    EXPECT_TRUE(fs::exists(out / "run.json"));
+    const auto again = tumble("resume " + out.string());
+    EXPECT_TRUE(contains(again.output, "has finished")) << again.output;
+}
+
 // ---- 5. bounded memory: a checkpoint that is no file or too large is skipped
 
 TEST_F(Safety, ACheckpointLinkedToDevZeroOrSparseAndHugeFallsBackToThePreviousOne) {
@@ -325,6 +390,12 @@ TEST_F(Safety, AnalyzeRefusesAnUnfinishedRun) {
     const auto r = tumble("analyze " + out.string());
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(contains(r.output, "the run is unfinished")) << r.output;
+    EXPECT_FALSE(fs::exists(out / "summary.json"));
+    // Stopped before its first checkpoint (none left), without a summary.
+    fs::remove_all(out / "checkpoints");
+    const auto none = tumble("analyze " + out.string());
+    EXPECT_EQ(none.exit_code, 2) << none.output;
+    EXPECT_TRUE(contains(none.output, "the run is unfinished (no checkpoint and no summary.json")) << none.output;
     EXPECT_FALSE(fs::exists(out / "summary.json"));
 }
 

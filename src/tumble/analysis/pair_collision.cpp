@@ -196,8 +196,9 @@ double sticking_speed(const NormalLaw& law) {
 
 ContactReport contact_report(const Scenario& scenario, const std::vector<double>& speeds) {
     for (double v : speeds)
-        if (!(v > 0.0) || !std::isfinite(v))
-            throw Error("contact: impact speeds must be finite and > 0 m/s, got " + std::to_string(v));
+        if (!(v > 0.0 && v <= max_impact_speed))
+            throw Error("contact: impact speeds must be > 0 and at most " + std::to_string(static_cast<int>(max_impact_speed)) +
+                        " m/s, got " + std::to_string(v));
     ContactReport report;
     report.time_step = assess_time_step(scenario);
     report.reference_speed = scenario.time_step.reference_speed;

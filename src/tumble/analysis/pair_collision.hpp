@@ -74,6 +74,10 @@ double pull_off_force(const NormalLaw& law);
 // max_sticking_speed until a converged collision rebounds, then bisection to
 // 1e-6 relative. Returns max_sticking_speed if none rebounds up to it.
 inline constexpr double max_sticking_speed = 10.0;  // m/s; the Hertz overlap exceeds R* not far above
+// The fastest impact contact_report takes, m/s: far beyond any granular
+// flow (a bullet's speed), where even stiff grains pass into each other; a
+// larger speed is a slip of the input (1e308 would overflow the collision).
+inline constexpr double max_impact_speed = 1000.0;
 double sticking_speed(const NormalLaw& law);
 
 struct Impact {
@@ -100,7 +104,7 @@ struct ContactReport {
 };
 
 // Every kind of contact of the scenario (contact_pairs()) at the given impact
-// speeds (m/s, each > 0 and finite; tumble::Error otherwise).
+// speeds (m/s, each > 0 and at most max_impact_speed; tumble::Error otherwise).
 ContactReport contact_report(const Scenario& scenario, const std::vector<double>& speeds);
 
 }  // namespace tumble::analysis

@@ -74,13 +74,23 @@ HealthLimits default_health_limits(const Scenario& s) {
     return limits;
 }
 
-std::string health_problem(const Simulation& sim, const HealthLimits& limits) {
+namespace {
+std::string health_problem(const Simulation& sim, const HealthLimits& limits, bool contacts) {
     std::string problem;
     for (std::size_t i = 0; i < sim.particles().size() && problem.empty(); ++i)
         problem = particle_problem(sim.particles(), i, limits);
-    if (problem.empty()) problem = contact_problem(sim, limits);
+    if (problem.empty() && contacts) problem = contact_problem(sim, limits);
     if (problem.empty()) return "";
     return message("step ", sim.step_count(), " (t = ", sim.time(), " s): ", problem);
+}
+}  // namespace
+
+std::string health_problem(const Simulation& sim, const HealthLimits& limits) {
+    return health_problem(sim, limits, true);
+}
+
+std::string particle_health_problem(const Simulation& sim, const HealthLimits& limits) {
+    return health_problem(sim, limits, false);
 }
 
 }  // namespace tumble

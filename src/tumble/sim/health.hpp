@@ -34,5 +34,9 @@ HealthLimits default_health_limits(const Scenario& s);
 // Checks non-finite positions, velocities and spins; speeds; the region;
 // and the overlap of every pair of the neighbour list with a free sphere.
 std::string health_problem(const Simulation& sim, const HealthLimits& limits);
+// The same without the contacts: the particles' positions, velocities and
+// spins, speeds and region, which costs a small part of a step (the
+// contacts' overlaps cost about a force evaluation).
+std::string particle_health_problem(const Simulation& sim, const HealthLimits& limits);
 
 }  // namespace tumble

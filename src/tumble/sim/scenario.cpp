@@ -50,13 +50,8 @@ std::string scenario_problem(const Scenario& s) {
     if (any_wall && (s.domain.wall_material < 0 || s.domain.wall_material >= n_materials))
         return "domain: unknown wall material";
     if (!finite(s.gravity)) return "gravity must be finite";
-    for (std::size_t k = 0; k < s.motions.size(); ++k) {
-        const RigidMotion& m = s.motions[k];
-        if (!(norm(m.axis_direction) > 0.0)) return "motion " + std::to_string(k) + ": axis direction is zero";
-        if (!finite(m.axis_point) || !finite(m.axis_direction) || !finite(m.velocity) ||
-            !std::isfinite(m.angular_velocity))
-            return "motion " + std::to_string(k) + ": values must be finite";
-    }
+    for (std::size_t k = 0; k < s.motions.size(); ++k)
+        if (auto why = motion_problem(s.motions[k]); !why.empty()) return "motion " + std::to_string(k) + ": " + why;
     if (s.particles.empty()) return "no particles";
     if (s.particles.size() >= (std::size_t{1} << 31)) return "too many particles (at most 2^31 - 1)";
     for (std::size_t i = 0; i < s.particles.size(); ++i) {
@@ -86,6 +81,13 @@ std::string scenario_problem(const Scenario& s) {
                 return who + "its radius exceeds the distance between the walls along " + "xyz"[k];
         }
     }
+    return {};
+}
+
+std::string motion_problem(const RigidMotion& m) {
+    if (!(norm(m.axis_direction) > 0.0)) return "axis direction is zero";
+    if (!finite(m.axis_point) || !finite(m.axis_direction) || !finite(m.velocity) || !std::isfinite(m.angular_velocity))
+        return "values must be finite";
     return {};
 }
 

@@ -82,6 +82,10 @@ struct Scenario {
 // materials, pair table completeness and symmetry, particle radii, material
 // and motion indices, and that the particles fit in periodic axes.
 std::string scenario_problem(const Scenario& s);
+// Reason why a prescribed motion cannot be followed (a zero axis, a value
+// not finite), or empty: of the scenario's motions and of a new one given
+// to Simulation::set_motion alike.
+std::string motion_problem(const RigidMotion& m);
 
 // The largest overlap between two particles of the scenario, relative to the
 // smaller radius, and which two (indices into Scenario::particles).

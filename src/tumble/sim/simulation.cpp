@@ -488,7 +488,8 @@ std::vector<MotionNow> Simulation::motions_now(double time) const {
 
 void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
     if (k >= motions_.size()) throw Error("set_motion: no motion " + std::to_string(k));
-    if (!(norm(motion.axis_direction) > 0.0)) throw Error("set_motion: axis direction is zero");
+    if (auto why = motion_problem(motion); !why.empty())
+        throw Error("set_motion: motion " + std::to_string(k) + ": " + why);
     ParticleStore& p = particles_;
     for (std::size_t i = 0; i < owned_; ++i)
         if (p.motion[i] == static_cast<std::int32_t>(k)) p.reference_position[i] = p.position[i] - p.image_shift[i];
