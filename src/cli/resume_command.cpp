@@ -39,16 +39,11 @@ int resume_command(const std::string& directory, bool quiet, double progress_eve
     const bool shared_files = io::newest_checkpoint_kind(directory, max_bytes).ranks > 1;
     const bool as_many = shared_files && load_newest_ranks(directory, max_bytes) == who.ranks;
     const io::CheckpointRank files = as_many ? who : io::CheckpointRank{};
-    io::LoadedCheckpoint loaded = shared_files && !as_many ? io::load_whole_checkpoint(directory, max_bytes)
-                                                           : io::load_newest_checkpoint(directory, max_bytes, files);
+    io::LoadedCheckpoint loaded = files.ranks > 1   ? io::load_shared_checkpoint(directory, max_bytes, files)
+                                  : shared_files ? io::load_whole_checkpoint(directory, max_bytes)
+                                                 : io::load_newest_checkpoint(directory, max_bytes, files);
     for (const std::string& why : loaded.rejected)
         fmt::print(stderr, "tumble resume: {}warning: {}; using the previous checkpoint\n", mpi::line_prefix(), why);
-    if (files.ranks > 1) {  // the ranks resume from checkpoints written together
-        const double number = std::stod(loaded.file.filename().string().substr(0, 6));
-        if (mpi::max(number) != -mpi::max(-number))
-            throw Error(directory + ": the ranks' newest intact checkpoints are not of the same moment (one was "
-                                    "damaged); resume is not possible from mixed checkpoints");
-    }
     const io::CheckpointRecord& record = loaded.checkpoint.record;
     const std::string command = record.text("command");
     if (revolutions > 0.0 && command != "drum")

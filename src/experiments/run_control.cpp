@@ -94,6 +94,8 @@ io::Checkpoint checkpoint_of(const Simulation& sim) {
     io::Checkpoint c{{}, sim.scenario(), sim.capture()};
     c.record.set("threads", std::int64_t{sim.threads()});
     c.record.set("ranks", std::int64_t{checkpoint_rank(sim).ranks});
+    // So that a rank's file renamed to another rank's name is told apart.
+    c.record.set("rank", std::int64_t{checkpoint_rank(sim).rank});
     return c;
 }
 

@@ -18,6 +18,7 @@
 #include "io/binary.hpp"
 #include "io/output.hpp"
 #include "io/toml_reader.hpp"
+#include "tumble/core/mpi.hpp"
 
 namespace tumble::io {
 
@@ -34,6 +35,10 @@ static_assert(sizeof(MotionClock) == sizeof(RigidMotion) + sizeof(double));
 
 constexpr std::string_view magic = "TUMBLECK";
 constexpr std::size_t header_size = magic.size() + sizeof(std::uint32_t) + sizeof(std::uint64_t);
+
+// The message tag of the ranks' accounts of their files (load_shared_checkpoint),
+// apart from those of the slabs (sim/slabs.cpp).
+constexpr int checkpoint_agreement_tag = 200;
 
 // ---- the record
 
@@ -444,10 +449,14 @@ std::string snapshot_times_problem(const Checkpoint& c) {
 }
 }  // namespace
 
-LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory, std::uintmax_t max_bytes, CheckpointRank who) {
-    LoadedCheckpoint loaded;
-    const std::vector<fs::path> files = checkpoint_files(run_directory, who);
+namespace {
+// The newest of `files` (oldest first) numbered at most `up_to` that reads
+// back intact, its output files at least as long as it recorded, into
+// `loaded`; `loaded.rejected` gets why each newer one did not. False if none.
+bool load_newest_of(const std::vector<fs::path>& files, const fs::path& run_directory, std::uintmax_t max_bytes,
+                    long up_to, LoadedCheckpoint& loaded) {
     for (auto file = files.rbegin(); file != files.rend(); ++file) {
+        if (any_checkpoint_number(*file) > up_to) continue;
         try {
             loaded.checkpoint = decode_checkpoint(read_checkpoint_file(*file, max_bytes), file->string());
             if (const std::string why = recorded_lengths_problem(loaded.checkpoint.record, run_directory); !why.empty())
@@ -455,15 +464,136 @@ LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory, std::uint
             if (const std::string why = snapshot_times_problem(loaded.checkpoint); !why.empty())
                 throw Error(file->string() + ": " + why);
             loaded.file = *file;
-            return loaded;
+            return true;
         } catch (const Error& e) {
             loaded.rejected.push_back(e.what());
         }
     }
+    return false;
+}
+
+// Why none of a rank's files could be loaded.
+std::string no_checkpoint_reason(const fs::path& run_directory, const std::vector<fs::path>& files,
+                                 const LoadedCheckpoint& loaded, CheckpointRank who) {
     std::string reason = files.empty() ? "no checkpoints (RUN/checkpoints/NNNNNN" + rank_suffix(who) + ")"
                                        : "no intact checkpoint";
     for (const std::string& why : loaded.rejected) reason += "\n  " + why;
-    throw Error(run_directory.string() + ": cannot resume: " + reason);
+    return run_directory.string() + ": cannot resume: " + reason;
+}
+
+// What a rank's checkpoint file says of the moment and the run it belongs
+// to, compared among the files of one checkpoint before they are used
+// together.
+struct RankFile {
+    std::string file;  // empty: the rank has none; `problem` says why
+    std::string problem;
+    std::int64_t step = 0;
+    double time = 0.0;
+    std::int64_t ranks = 0;
+    std::int64_t rank = -1;  // the record's "rank"; -1 in files written before it was kept
+    std::uint32_t run = 0;   // the run: a checksum of its command and scenario
+};
+
+RankFile rank_file(const Checkpoint& c, const fs::path& file) {
+    ByteWriter scenario;
+    scenario.put(c.record.has("command") ? c.record.text("command") : std::string());
+    put_scenario(scenario, c.scenario);
+    return {file.string(),
+            {},
+            c.state.step,
+            c.state.time,
+            c.record.has("ranks") ? c.record.integer("ranks") : 1,
+            c.record.has("rank") ? c.record.integer("rank") : -1,
+            crc32(scenario.take())};
+}
+
+std::string encode_rank_file(const RankFile& f) {
+    ByteWriter w;
+    w.put(f.file);
+    w.put(f.problem);
+    w.put(f.step);
+    w.put(f.time);
+    w.put(f.ranks);
+    w.put(f.rank);
+    w.put(f.run);
+    return w.take();
+}
+
+RankFile decode_rank_file(std::string_view bytes) {
+    ByteReader r(bytes, "a rank's checkpoint summary");
+    RankFile f;
+    f.file = r.get_string("file");
+    f.problem = r.get_string("problem");
+    f.step = r.get<std::int64_t>("step");
+    f.time = r.get<double>("time");
+    f.ranks = r.get<std::int64_t>("ranks");
+    f.rank = r.get<std::int64_t>("rank");
+    f.run = r.get<std::uint32_t>("run");
+    return f;
+}
+
+// Why rank `rank`'s file `f` does not belong with rank 0's `first` (the
+// same moment of the same run on as many ranks), or empty.
+std::string rank_file_mismatch(const RankFile& f, std::int64_t rank, const RankFile& first) {
+    const std::string first_name = fs::path(first.file).filename().string();
+    if (f.run != first.run)
+        return fmt::format("{}: rank 0's {} is of another run (another command or scenario): the ranks' files are of "
+                           "different runs", f.file, first_name);
+    if (f.step != first.step || f.time != first.time)
+        return fmt::format("{}: step {} (time {:.9g} s), rank 0's {} step {} (time {:.9g} s): the ranks' files are of "
+                           "different moments", f.file, f.step, f.time, first_name, first.step, first.time);
+    if (f.ranks != first.ranks)
+        return fmt::format("{}: record key \"ranks\" is {}, rank 0's {} {}: the ranks' files are of runs on "
+                           "different numbers of ranks", f.file, f.ranks, first_name, first.ranks);
+    if (f.rank >= 0 && f.rank != rank)
+        return fmt::format("{}: record key \"rank\" is {}: written by rank {}, not rank {} (a renamed file)", f.file,
+                           f.rank, f.rank, rank);
+    return {};
+}
+}  // namespace
+
+LoadedCheckpoint load_newest_checkpoint(const fs::path& run_directory, std::uintmax_t max_bytes, CheckpointRank who) {
+    LoadedCheckpoint loaded;
+    const std::vector<fs::path> files = checkpoint_files(run_directory, who);
+    if (load_newest_of(files, run_directory, max_bytes, std::numeric_limits<long>::max(), loaded)) return loaded;
+    throw Error(no_checkpoint_reason(run_directory, files, loaded, who));
+}
+
+LoadedCheckpoint load_shared_checkpoint(const fs::path& run_directory, std::uintmax_t max_bytes, CheckpointRank who) {
+    LoadedCheckpoint loaded;
+    const std::vector<fs::path> files = checkpoint_files(run_directory, who);
+    bool have = load_newest_of(files, run_directory, max_bytes, std::numeric_limits<long>::max(), loaded);
+    // The ranks agree on one number: the newest that every rank holds intact.
+    // A rank whose newest is newer than another's goes back to that one; each
+    // round lowers the highest number, and every rank makes the same rounds.
+    for (;;) {
+        const double mine = have ? static_cast<double>(any_checkpoint_number(loaded.file)) : -1.0;
+        const double lowest = -mpi::max(-mine), highest = mpi::max(mine);
+        if (lowest == highest || lowest < 0) break;
+        if (mine > lowest) {
+            loaded.rejected.push_back(loaded.file.string() + ": not every rank has an intact checkpoint of this number");
+            have = load_newest_of(files, run_directory, max_bytes, static_cast<long>(lowest), loaded);
+        }
+    }
+    // Then every rank has every rank's account of its file (each sends its
+    // own round the ring), so that all find the same verdict and stop alike.
+    RankFile mine = have ? rank_file(loaded.checkpoint, loaded.file) : RankFile{};
+    if (!have) mine.problem = no_checkpoint_reason(run_directory, files, loaded, who);
+    const std::string own = encode_rank_file(mine);
+    std::vector<RankFile> all(static_cast<std::size_t>(who.ranks));
+    all[static_cast<std::size_t>(who.rank)] = mine;
+    for (int k = 1; k < who.ranks; ++k) {
+        const int from = (who.rank - k + who.ranks) % who.ranks;
+        const mpi::Bytes in = mpi::exchange((who.rank + k) % who.ranks, mpi::Bytes(own.begin(), own.end()), from,
+                                            checkpoint_agreement_tag);
+        all[static_cast<std::size_t>(from)] = decode_rank_file(std::string_view(in.data(), in.size()));
+    }
+    for (std::size_t r = 0; r < all.size(); ++r)
+        if (all[r].file.empty()) throw Error(fmt::format("rank {}: {}", r, all[r].problem));
+    for (std::size_t r = 1; r < all.size(); ++r)
+        if (const std::string why = rank_file_mismatch(all[r], static_cast<std::int64_t>(r), all[0]); !why.empty())
+            throw Error(why + "; resume is not possible from them (restore every rank's file of one checkpoint)");
+    return loaded;
 }
 
 LoadedCheckpoint load_whole_checkpoint(const fs::path& run_directory, std::uintmax_t max_bytes) {
@@ -473,10 +603,14 @@ LoadedCheckpoint load_whole_checkpoint(const fs::path& run_directory, std::uintm
     if (ranks < 2 || ranks > 1'000'000)
         throw Error(first.file.string() + ": record key \"ranks\" is " + std::to_string(ranks) +
                     ", not the rank count of a run on several ranks");
+    const RankFile first_file = rank_file(first.checkpoint, first.file);
     std::vector<SimulationState> parts{std::move(first.checkpoint.state)};
     for (std::int64_t r = 1; r < ranks; ++r) {
         const fs::path file = run_directory / "checkpoints" / (number + ".r" + std::to_string(r) + ".tck");
-        parts.push_back(decode_checkpoint(read_checkpoint_file(file, max_bytes), file.string()).state);
+        Checkpoint part = decode_checkpoint(read_checkpoint_file(file, max_bytes), file.string());
+        if (const std::string why = rank_file_mismatch(rank_file(part, file), r, first_file); !why.empty())
+            throw Error(why + "; cannot resume from them");
+        parts.push_back(std::move(part.state));
     }
     first.checkpoint.state = whole_state(parts);
     first.checkpoint.record.set("ranks", std::int64_t{1});  // a whole state now, for any number of ranks

@@ -17,7 +17,8 @@
 // A run shared among MPI ranks (sim/slabs.hpp) keeps one file per rank,
 // RUN/checkpoints/NNNNNN.rR.tck for rank R, each written by its rank with
 // that rank's spheres and ghosts (no rank gathers the whole state), the
-// scenario in each, and the rank count in the record ("ranks").
+// scenario in each, and the rank count and its rank in the record ("ranks",
+// "rank").
 #pragma once
 
 #include <cstdint>
@@ -115,12 +116,24 @@ LoadedCheckpoint load_newest_checkpoint(const std::filesystem::path& run_directo
                                         std::uintmax_t max_bytes = std::numeric_limits<std::uintmax_t>::max(),
                                         CheckpointRank who = {});
 
+// The checkpoint of rank `who` of a run shared among as many ranks: the
+// newest number of which every rank holds an intact file (a rank whose newer
+// file is damaged takes the ranks back with it; each such file is in
+// `rejected`). Collective: every rank calls it, before any other exchange;
+// the ranks then compare their files' steps, times, rank counts, ranks and
+// runs (command and scenario), and every rank throws the same tumble::Error,
+// naming the files and what differs, if they do not belong together or a
+// rank has no intact file.
+LoadedCheckpoint load_shared_checkpoint(const std::filesystem::path& run_directory, std::uintmax_t max_bytes,
+                                        CheckpointRank who);
+
 // The newest checkpoint of a run shared among ranks as one whole state
 // (tumble/sim/simulation.hpp, whole_state()): rank 0's newest intact file,
 // then the files of the other ranks of that moment, merged; its record is
 // rank 0's, with "ranks" 1. For a resume on another number of ranks (every
 // rank reading every file: the whole state in memory meanwhile).
-// tumble::Error if a file is missing or damaged.
+// tumble::Error if a file is missing or damaged, or not of rank 0's moment
+// and run.
 LoadedCheckpoint load_whole_checkpoint(const std::filesystem::path& run_directory,
                                        std::uintmax_t max_bytes = std::numeric_limits<std::uintmax_t>::max());
 

@@ -173,4 +173,45 @@ TEST_F(MpiRun, DrumOnTwoRanksStopsAndResumesBitwise) {
     EXPECT_TRUE(fs::exists(whole / "summary.json"));
 }
 
+// The ranks' files must be of one moment of one run: rank 1's newest file
+// replaced by its previous one, or by rank 0's file of the same number, is
+// refused at once (exit 2, no hang) with the files and what differs; a
+// damaged newest file of one rank takes both ranks back to their previous
+// checkpoint.
+TEST_F(MpiRun, RanksFilesOfDifferentMomentsAreRefused) {
+    const fs::path dir = dir_ / "mixed", cp = dir / "checkpoints";
+    auto r = run_command(mpirun(2, "run -q " + scenario_ + " -o " + dir.string() +
+                                       " --checkpoint-every-steps 400 --stop-at-step 1000"));
+    ASSERT_EQ(r.exit_code, 4) << r.output;
+    // Kept: 000002 (step 800) and 000003 (step 1000) of each rank.
+    ASSERT_TRUE(fs::exists(cp / "000002.r1.tck") && fs::exists(cp / "000003.r1.tck")) << r.output;
+    const fs::path backup = dir_ / "000003.r1.tck";
+    fs::copy_file(cp / "000003.r1.tck", backup);
+    // Bounded: before the ranks compared their files this spun or aborted.
+    const std::string resume = "timeout 120 env " + mpirun(2, "resume -q " + dir.string());
+
+    fs::copy_file(cp / "000002.r1.tck", cp / "000003.r1.tck", fs::copy_options::overwrite_existing);
+    r = run_command(resume);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find((cp / "000003.r1.tck").string() + ": step 800"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("rank 0's 000003.r0.tck step 1000"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("the ranks' files are of different moments"), std::string::npos) << r.output;
+
+    fs::copy_file(cp / "000003.r0.tck", cp / "000003.r1.tck", fs::copy_options::overwrite_existing);
+    r = run_command(resume);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find((cp / "000003.r1.tck").string() + ": record key \"rank\" is 0"), std::string::npos)
+        << r.output;
+
+    // Damaged (cut short): both ranks go on from 000002, with a warning.
+    fs::copy_file(backup, cp / "000003.r1.tck", fs::copy_options::overwrite_existing);
+    fs::resize_file(cp / "000003.r1.tck", fs::file_size(backup) / 2);
+    r = run_command("timeout 300 env " + mpirun(2, "resume " + dir.string()));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find((cp / "000003.r0.tck").string() + ": not every rank has an intact checkpoint"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("from " + (cp / "000002.r0.tck").string()), std::string::npos) << r.output;
+}
+
 }  // namespace
