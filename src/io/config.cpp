@@ -18,6 +18,7 @@
 #include "io/toml_reader.hpp"
 #include "io/particle_csv.hpp"
 #include "tumble/sim/time_step.hpp"
+#include "tumble/walls/wall.hpp"
 #include "tumble/setup/generators.hpp"
 
 namespace tumble::io {
@@ -70,13 +71,14 @@ public:
 
     RunConfig read(const toml::table& root) {
         r_.only_keys(root, "", {"simulation", "time_step", "domain", "model", "neighbor", "material", "pair",
-                                "motion", "particles", "output"});
+                                "motion", "wall", "particles", "output"});
         config_.source = r_.file();
         read_simulation(*r_.table(root, "simulation", true));
         read_materials(root);
         read_pairs(root);
         read_motions(root);
         read_domain(*r_.table(root, "domain", true));
+        read_walls(root);
         read_model(r_.table(root, "model", false));
         read_time_step(r_.table(root, "time_step", false));
         read_neighbor(r_.table(root, "neighbor", false));
@@ -230,6 +232,94 @@ private:
         } else if (any_wall) {
             r_.fail(join(p, "wall_material"), "missing: required when domain.walls has an axis set");
         }
+    }
+
+    // [[wall]]: an analytic wall (walls/wall.hpp). The keys that describe
+    // its shape are those of the shape alone; a cylinder with `caps` gets a
+    // disc at each end, "NAME.start" and "NAME.end", of `cap_material`
+    // (else its own).
+    void read_walls(const toml::table& root) {
+        const auto entries = r_.tables(root, "", "wall");
+        std::vector<std::string> names;
+        for (std::size_t i = 0; i < entries.size(); ++i) {
+            const toml::table& t = *entries[i];
+            const std::string p = at("wall", i);
+            Wall w;
+            w.name = r_.string(r_.required(t, p, "name"), join(p, "name"));
+            w.shape = r_.keyword(r_.required(t, p, "shape"), join(p, "shape"), wall_shapes)->value;
+            const std::vector<std::string_view> common{"name", "shape", "material", "motion", "point"};
+            std::vector<std::string_view> keys = common;
+            switch (w.shape) {
+                case WallShape::plane: keys.insert(keys.end(), {"normal"}); break;
+                case WallShape::rectangle: keys.insert(keys.end(), {"normal", "edge", "size"}); break;
+                case WallShape::disc: keys.insert(keys.end(), {"normal", "radius"}); break;
+                case WallShape::cylinder:
+                    keys.insert(keys.end(), {"axis", "radius", "length", "inside", "caps", "cap_material"});
+                    break;
+                case WallShape::cone: keys.insert(keys.end(), {"axis", "radius", "end_radius", "length", "inside"}); break;
+            }
+            r_.only_keys(t, p, keys);
+            w.material = material_index(r_.required(t, p, "material"), join(p, "material"));
+            if (const toml::node* n = t.get("motion")) w.motion = motion_index(*n, join(p, "motion"));
+            w.point = r_.vec3(t, p, "point").value_or(Vec3{});
+            const bool revolution = w.shape == WallShape::cylinder || w.shape == WallShape::cone;
+            const std::string direction = revolution ? "axis" : "normal";
+            w.normal = unit(t, p, direction, Vec3{0.0, 0.0, 1.0});
+            switch (w.shape) {
+                case WallShape::plane: break;
+                case WallShape::rectangle: {
+                    const Vec3 edge = unit(t, p, "edge", Vec3{1.0, 0.0, 0.0});
+                    const Vec3 in_plane = edge - dot(edge, w.normal) * w.normal;
+                    if (!(norm(in_plane) > 1e-9))
+                        r_.fail(join(p, "edge"), "must not be parallel to the normal", t.get("edge"));
+                    w.edge = (1.0 / norm(in_plane)) * in_plane;
+                    const std::string key = join(p, "size");
+                    const toml::array& a = r_.array(r_.required(t, p, "size"), key, 2, "an array of 2 lengths [along edge, across]");
+                    w.half_width = 0.5 * r_.number(*a.get(0), at(key, 0), Bound::positive);
+                    w.half_height = 0.5 * r_.number(*a.get(1), at(key, 1), Bound::positive);
+                    break;
+                }
+                case WallShape::disc: w.radius = r_.required_number(t, p, "radius", Bound::positive); break;
+                case WallShape::cylinder:
+                    w.radius = r_.required_number(t, p, "radius", Bound::positive);
+                    w.length = r_.number(t, p, "length", Bound::positive, w.length);
+                    break;
+                case WallShape::cone:
+                    w.radius = r_.required_number(t, p, "radius", Bound::non_negative);
+                    w.end_radius = r_.required_number(t, p, "end_radius", Bound::non_negative);
+                    w.length = r_.required_number(t, p, "length", Bound::positive);
+                    break;
+            }
+            if (const toml::node* n = t.get("inside")) w.inside = r_.boolean(*n, join(p, "inside"));
+            if (const std::string why = wall_problem(w); !why.empty()) r_.fail(p, why, &t);
+            const bool caps = t.get("caps") && r_.boolean(*t.get("caps"), join(p, "caps"));
+            if (t.get("cap_material") && !caps) r_.fail(join(p, "cap_material"), "given, but caps is not true", t.get("cap_material"));
+            if (caps && std::isinf(w.length)) r_.fail(join(p, "caps"), "an infinite cylinder has no ends to cap", t.get("caps"));
+            std::vector<Wall> made{w};
+            if (caps) {
+                Wall cap = w;
+                cap.shape = WallShape::disc;
+                if (const toml::node* n = t.get("cap_material")) cap.material = material_index(*n, join(p, "cap_material"));
+                cap.name = w.name + ".start";
+                made.push_back(cap);
+                cap.name = w.name + ".end";
+                cap.point = w.point + w.length * w.normal;
+                made.push_back(cap);
+            }
+            for (const Wall& m : made) {
+                if (std::find(names.begin(), names.end(), m.name) != names.end())
+                    r_.fail(join(p, "name"), fmt::format("duplicate wall name \"{}\"", m.name), t.get("name"));
+                names.push_back(m.name);
+                s().walls.push_back(m);
+            }
+        }
+    }
+
+    // A direction at `key`, made a unit vector; it must not be zero.
+    Vec3 unit(const toml::table& t, const std::string& path, const std::string& key, Vec3 fallback) const {
+        const Vec3 v = r_.vec3(t, path, key).value_or(fallback);
+        if (!(norm(v) > 0.0)) r_.fail(join(path, key), "must not be the zero vector", t.get(key));
+        return (1.0 / norm(v)) * v;
     }
 
     void read_model(const toml::table* t) {

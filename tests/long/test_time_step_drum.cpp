@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Issue 13: the drum's observables at the automatic step (t_c/20 = 1.08 m*/c
-// with the dashpot of integrate/dashpot.hpp, chosen from single collisions,
-// docs/MODEL.md "Time step") against a quarter of it, where every collision
-// is converged to 0.12 %. The default drum (two
+// The drum's observables at the automatic step (0.7 m*/c with the dashpot of
+// integrate/dashpot.hpp, docs/MODEL.md "Time step") against a quarter of it,
+// where every collision is converged to better than 0.12 %. The default drum (two
 // components, 1000 grains, 5 rad/s), seeds 1-3, 4 revolutions after settling,
 // at each step; per run the dynamic angle of repose (summary.json), each
 // material's kinetic energy per grain (drum_series.csv, mean over N >= 1) and

@@ -39,10 +39,9 @@ TEST(ContactPairs, TheDrumHasItsFiveKindsOfContact) {
 // The bounds: restitution and contact time at the automatic step
 // within 1 % of the converged integration, for every pair of the drum at
 // 0.05 to 1.4 m/s (the largest, sqrt(5 g R_drum), is the step's reference).
-// Measured at the automatic step (t_c/20 of the 2-2 pair at 1.4 m/s,
-// 4.03e-5 s, 1.08 m*/c), with the dashpot of integrate/dashpot.hpp: within
-// 0.59 % (restitution) and 0.81 % (contact time), both for the 2-2 pair at
-// 1.4 m/s.
+// Measured at the automatic step (0.7 m*/c of the 2-2 pair at 1.4 m/s,
+// 2.61e-5 s), with the dashpot of integrate/dashpot.hpp: within 0.26 %
+// (restitution) and 0.44 % (contact time).
 TEST(ContactReport, AtTheDrumStepRestitutionAndContactTimeAreWithinOnePercentOfConverged) {
     const ContactReport report = contact_report(drum(), {0.05, 0.1, 0.3, 1.0, 1.4});
     ASSERT_EQ(report.pairs.size(), 5u);
@@ -57,7 +56,7 @@ TEST(ContactReport, AtTheDrumStepRestitutionAndContactTimeAreWithinOnePercentOfC
 
 // Convergence: at a quarter of the automatic step the worst errors fall at
 // least as a first-order scheme's would (4-fold). Measured: restitution
-// 0.594 % -> 0.041 % (14-fold), contact time 0.807 % -> 0.116 % (7-fold).
+// 0.256 % -> 0.018 % (14-fold), contact time 0.441 % -> 0.062 % (7-fold).
 TEST(ContactReport, AtAQuarterOfTheStepTheErrorsFallAtLeastFourfold) {
     const std::vector<double> speeds{0.05, 0.1, 0.3, 1.0, 1.4};
     tumble::Scenario quarter = drum();

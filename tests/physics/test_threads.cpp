@@ -166,10 +166,10 @@ TEST(Threads, ShortDrumNeighbourBuildDoesNotDependOnTheThreadCount) {
 // which the force sums of the particles where the threads' parts of the
 // pair list meet are added, the last bit of a sum. In this collisional flow
 // such a difference grows with every collision (measured at the automatic
-// step when it was 0.7 m*/c: nothing after 200 steps, 4.9e-18 m in the
-// positions and 4.5e-12 rad/s in the spins after 300, 4.9e-7 m after 1200:
-// e-folding in about 30 steps; at the present step, 1.54 times larger,
-// 9.5e-18 m and 3.3e-12 rad/s after 200 steps, 6.2e-10 rad/s after 300),
+// step, 0.7 m*/c: nothing after 200 steps, 4.9e-18 m in the positions and
+// 4.5e-12 rad/s in the spins after 300, 4.9e-7 m after 1200: e-folding in
+// about 30 steps; at t_c/20, 1.54 times larger, 9.5e-18 m and 3.3e-12
+// rad/s after 200 steps, 6.2e-10 rad/s after 300),
 // so the bound holds for this step count only: 1e-12 of the grain
 // radius (2.4 mm), of the 1 m/s throw speed, and of that speed over the
 // radius for spins, 100 to 1000 times what is measured. A physical

@@ -117,6 +117,22 @@ TEST(Checkpoint, RestoredWalledBoxContinuesBitForBit) {
     expect_restored_run_matches(s, 3001, 2000, false);
 }
 
+// The small drum's grains in a smooth drum instead of its wall spheres: a
+// turning capped cylinder of the wall material. The walls come back from the
+// file (format 7) with their contact histories.
+TEST(Checkpoint, RestoredSmoothDrumContinuesBitForBit) {
+    Scenario s = small_drum();
+    std::erase_if(s.particles, [](const ParticleSpec& p) { return p.motion != free_motion; });
+    s.motions[0].angular_velocity = 5.0;
+    const Wall mantle{.name = "mantle", .shape = WallShape::cylinder, .point = {0.0, 0.0, -0.015},
+                      .radius = 0.015, .length = 0.03, .material = 2, .motion = 0};
+    Wall cap{.name = "cap", .shape = WallShape::disc, .point = mantle.point, .radius = 0.015, .material = 2, .motion = 0};
+    s.walls = {mantle, cap};
+    cap.point.z = 0.015;
+    s.walls.push_back(cap);
+    expect_restored_run_matches(s, 1999, 3000, false);
+}
+
 TEST(Checkpoint, RestoreRefusesAStateOfAnotherScenario) {
     Simulation drum(small_drum());
     Simulation box(walled_box());

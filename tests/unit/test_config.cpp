@@ -565,3 +565,87 @@ TEST(ConfigExamples, TwoSpheresAndCsvDemoParse) {
     EXPECT_EQ(csv.scenario.particles[27].radius, 0.003);
     EXPECT_EQ(csv.scenario.particles[26].velocity, (tumble::Vec3{0, 0, -0.2}));
 }
+
+// ---------------------------------------------------------------- walls
+
+namespace {
+const std::string two_materials = base + material_2 + R"(
+[[pair]]
+materials = ["material-1", "material-2"]
+mu = 0.2
+W = 0.2
+
+[[pair]]
+materials = ["material-2", "material-2"]
+mu = 0.5
+W = 0.2
+
+[[motion]]
+name = "turn"
+angular_velocity = 5.0
+)";
+
+const std::string drum_wall = R"(
+[[wall]]
+name = "drum"
+shape = "cylinder"
+material = "material-1"
+motion = "turn"
+point = [0.0, 0.0, -0.01]
+axis = [0.0, 0.0, 2.0]
+radius = 0.015
+length = 0.02
+caps = true
+cap_material = "material-2"
+)";
+}  // namespace
+
+// A capped cylinder is its mantle and a disc at each end, named after it,
+// of the cap material; the axis is made a unit vector.
+TEST(ConfigWalls, ACappedCylinderIsItsMantleAndTwoDiscs) {
+    const RunConfig c = parse(two_materials + drum_wall);
+    const auto& walls = c.scenario.walls;
+    ASSERT_EQ(walls.size(), 3u);
+    EXPECT_EQ(walls[0].name, "drum");
+    EXPECT_EQ(walls[0].shape, tumble::WallShape::cylinder);
+    EXPECT_EQ(walls[0].normal, (tumble::Vec3{0.0, 0.0, 1.0}));
+    EXPECT_EQ(walls[0].radius, 0.015);
+    EXPECT_EQ(walls[0].length, 0.02);
+    EXPECT_TRUE(walls[0].inside);
+    EXPECT_EQ(walls[0].material, 0);
+    EXPECT_EQ(walls[0].motion, 0);
+    EXPECT_EQ(walls[1].name, "drum.start");
+    EXPECT_EQ(walls[1].shape, tumble::WallShape::disc);
+    EXPECT_EQ(walls[1].point, (tumble::Vec3{0.0, 0.0, -0.01}));
+    EXPECT_EQ(walls[1].material, 1);
+    EXPECT_EQ(walls[2].name, "drum.end");
+    EXPECT_NEAR(walls[2].point.z, 0.01, 1e-18);
+    EXPECT_EQ(walls[2].motion, 0);
+}
+
+// Each shape takes its own keys only, and each value is checked where it
+// is read, with the key named.
+TEST(ConfigWalls, BadWallsAreRefusedNamingTheKey) {
+    const std::string w = two_materials;
+    expect_error(w + drum_wall + "end_radius = 0.01\n", "wall[0].end_radius", "unknown key");
+    expect_error(replace(w + drum_wall, "shape = \"cylinder\"", "shape = \"cylindre\""), "wall[0].shape",
+                 "unknown choice \"cylindre\" (did you mean \"cylinder\"?)");
+    expect_error(replace(w + drum_wall, "axis = [0.0, 0.0, 2.0]", "axis = [0.0, 0.0, 0.0]"), "wall[0].axis",
+                 "must not be the zero vector");
+    expect_error(replace(w + drum_wall, "radius = 0.015\n", ""), "wall[0].radius", "missing required key");
+    expect_error(replace(w + drum_wall, "radius = 0.015", "radius = -0.015"), "wall[0].radius", "must be > 0");
+    expect_error(replace(w + drum_wall, "material = \"material-1\"\nmotion", "material = \"steel\"\nmotion"), "wall[0].material",
+                 "unknown material \"steel\"");
+    expect_error(replace(w + drum_wall, "motion = \"turn\"", "motion = \"spin\""), "wall[0].motion",
+                 "unknown motion \"spin\"");
+    expect_error(replace(w + drum_wall, "caps = true", "caps = false"), "wall[0].cap_material",
+                 "given, but caps is not true");
+    expect_error(replace(w + drum_wall, "length = 0.02\n", ""), "wall[0].caps", "an infinite cylinder has no ends");
+    expect_error(w + drum_wall + drum_wall, "wall[1].name", "duplicate wall name \"drum\"");
+    expect_error(w + "[[wall]]\nname = \"tip\"\nshape = \"cone\"\nmaterial = \"material-1\"\nradius = 0.0\n"
+                     "end_radius = 0.0\nlength = 0.01\n",
+                 "wall[0]", "its radii must be finite, >= 0 and not both 0");
+    expect_error(w + "[[wall]]\nname = \"plate\"\nshape = \"rectangle\"\nmaterial = \"material-1\"\nsize = [0.01, 0.02]\n"
+                     "edge = [0.0, 0.0, 1.0]\n",
+                 "wall[0].edge", "must not be parallel to the normal");
+}

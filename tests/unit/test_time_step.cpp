@@ -72,12 +72,12 @@ TEST(TimeStep, MaterialOneAtOneMetrePerSecondMatchesHandFormulas) {
     EXPECT_NEAR(r.creep_time, hand.creep, hand.creep * round_off);
     EXPECT_NEAR(hand.creep, 1.0714e-3, 1e-7);
     const double recommended =
-        std::min({hand.collision / 20.0, 1.1 * hand.viscous, hand.creep / 25.0, 0.2 * hand.rayleigh});
+        std::min({hand.collision / 20.0, 0.7 * hand.viscous, hand.creep / 25.0, 0.2 * hand.rayleigh});
     const double maximum = std::min({hand.collision / 10.0, 2.0 * hand.viscous, 0.5 * hand.rayleigh});
     EXPECT_NEAR(r.recommended, recommended, recommended * round_off);
     EXPECT_NEAR(r.maximum, maximum, maximum * round_off);
     // At 1 m/s the creep sets the step (tau/25 = 42.9 us < t_c/20 = 64.7 us
-    // < 1.1 m*/c = 106 us) and the collision time the maximum (t_c/10 =
+    // < 0.7 m*/c = 67.4 us) and the collision time the maximum (t_c/10 =
     // 129 us < 2 m*/c = 192 us).
     EXPECT_NEAR(r.recommended, hand.creep / 25.0, recommended * round_off);
     EXPECT_NEAR(r.maximum, hand.collision / 10.0, maximum * round_off);

@@ -24,8 +24,11 @@ double potential_energy(const NormalLaw& law, double h) {
 }
 
 // The pair's two spheres (sphere a at -x, moving at +x; the partner at +x,
-// or a flat wall at x = gap/2), a gap of two steps apart, approaching at
-// relative speed v with zero total momentum for two free spheres.
+// or a wall at x = gap/2), a gap of two steps apart, approaching at
+// relative speed v with zero total momentum for two free spheres. The wall
+// is a plane where the pair's R* is the grain's radius, else the inside of
+// a cylinder about z whose curvature kappa gives that R* (walls/wall.hpp:
+// R* = R / sqrt(1 - kappa R), so kappa = (1 - (R/R*)^2) / R).
 Scenario pair_scenario(const Scenario& base, const ContactPair& pair, const ContactModel& model, double v, double dt) {
     Scenario s;
     s.materials = base.materials;
@@ -45,9 +48,20 @@ Scenario pair_scenario(const Scenario& base, const ContactPair& pair, const Cont
     grain.material = static_cast<std::int32_t>(pair.a);
     s.particles.push_back(grain);
     if (pair.partner == Partner::flat_wall) {
-        s.domain.hi.x = 0.5 * gap;
-        s.domain.walls = {true, false, false};
-        s.domain.wall_material = static_cast<std::int32_t>(pair.b);
+        Wall wall;
+        wall.name = "wall";
+        wall.material = static_cast<std::int32_t>(pair.b);
+        const double ratio = pair.R_a / pair.R_star, curvature = (1.0 - ratio * ratio) / pair.R_a;
+        if (curvature == 0.0) {
+            wall.point = {0.5 * gap, 0.0, 0.0};
+            wall.normal = {-1.0, 0.0, 0.0};
+        } else {
+            wall.shape = WallShape::cylinder;
+            wall.radius = 1.0 / std::abs(curvature);
+            wall.inside = curvature > 0.0;
+            wall.point = {0.5 * gap + (wall.inside ? -wall.radius : wall.radius), 0.0, 0.0};
+        }
+        s.walls.push_back(wall);
         return s;
     }
     ParticleSpec partner;
@@ -123,7 +137,7 @@ Collision engine_collision(const Scenario& base, const ContactPair& pair, const 
     const bool wall = pair.partner == Partner::flat_wall;
     auto overlap = [&] {
         const std::size_t i = index(0);
-        if (wall) return p.position[i].x + p.radius[i] - sim.scenario().domain.hi.x;
+        if (wall) return p.radius[i] - wall_touch(sim.scenario().walls[0], p.position[i]).distance;
         const std::size_t j = index(1);
         return p.radius[i] + p.radius[j] - norm(p.position[j] - p.position[i]);
     };

@@ -66,24 +66,31 @@ inline ContactGeometry make_contact_geometry(const Vec3& d, double distance, dou
     return c;
 }
 
-// Contact of sphere i with a flat wall at rest, seen as a sphere of infinite
-// radius: n is the wall's unit normal pointing into the space of i, distance
-// the distance of the centre of i from the wall plane; v_i and kick_i as
-// v_ij and kick_ij above.
-inline ContactGeometry make_wall_geometry(const Vec3& n, double distance, double R_i, const Vec3& v_i,
-                                          const Vec3& kick_i, const Vec3& omega_i) {
+// Contact of sphere i with a wall (walls/wall.hpp; a flat box wall is an
+// infinite plane), seen as a sphere of infinite mass: n is the wall's unit
+// normal pointing towards the centre of i, distance that of the centre from
+// the wall's surface along n, R_star the Hertz radius of the sphere against
+// the wall's curvature there (R_i on a flat face); v_i and kick_i as v_ij
+// and kick_ij above, with v_wall the velocity of the wall's surface at the
+// contact point and omega_wall its angular velocity (both zero for a wall
+// at rest).
+inline ContactGeometry make_wall_geometry(const Vec3& n, double distance, double R_i, double R_star, const Vec3& v_i,
+                                          const Vec3& kick_i, const Vec3& omega_i, const Vec3& v_wall = {},
+                                          const Vec3& omega_wall = {}) {
     ContactGeometry c;
     c.n = n;
     c.overlap = R_i - distance;
-    c.R_star = R_i;
+    c.R_star = R_star;
     c.contact_radius = std::sqrt(c.R_star * c.overlap);
     c.lever_i = R_i - 0.5 * c.overlap;
     c.lever_j = 0.0;
-    const Vec3 v = v_i - c.lever_i * cross(omega_i, c.n);
+    // The contact point as part of i minus as part of the wall:
+    // (v_i + omega_i x (-lever_i n)) - v_wall.
+    const Vec3 v = v_i - v_wall - c.lever_i * cross(omega_i, c.n);
     const double v_n_half = dot(v, c.n);
     c.v_t = v - v_n_half * c.n;
     c.v_n = v_n_half + dot(kick_i, c.n);
-    c.w_n = dot(omega_i, c.n);
+    c.w_n = dot(omega_i - omega_wall, c.n);
     return c;
 }
 

@@ -52,6 +52,12 @@ std::string scenario_problem(const Scenario& s) {
     if (!finite(s.gravity)) return "gravity must be finite";
     for (std::size_t k = 0; k < s.motions.size(); ++k)
         if (auto why = motion_problem(s.motions[k]); !why.empty()) return "motion " + std::to_string(k) + ": " + why;
+    for (const Wall& w : s.walls) {
+        const std::string who = "wall " + w.name + ": ";
+        if (auto why = wall_problem(w); !why.empty()) return who + why;
+        if (w.material < 0 || w.material >= n_materials) return who + "unknown material";
+        if (w.motion < -1 || w.motion >= static_cast<std::int32_t>(s.motions.size())) return who + "unknown motion";
+    }
     if (s.particles.empty()) return "no particles";
     if (s.particles.size() >= (std::size_t{1} << 31)) return "too many particles (at most 2^31 - 1)";
     for (std::size_t i = 0; i < s.particles.size(); ++i) {

@@ -14,6 +14,7 @@
 #include "tumble/core/vec3.hpp"
 #include "tumble/materials/material.hpp"
 #include "tumble/particles/particle_store.hpp"
+#include "tumble/walls/wall.hpp"
 
 namespace tumble {
 
@@ -62,6 +63,7 @@ struct Scenario {
     TimeStepSettings time_step;
     NeighborSettings neighbor;
     std::vector<RigidMotion> motions;
+    std::vector<Wall> walls;  // smooth walls besides the box's flat ones (walls/wall.hpp)
     std::vector<ParticleSpec> particles;
 
     // The free particles (of every rank, when the run is shared among ranks).

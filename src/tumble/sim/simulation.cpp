@@ -42,8 +42,23 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
     dt_ = time_step_report_.dt;
     particles_ = make_particle_store(scenario_);
     const double skin = scenario_.neighbor.skin > 0.0 ? scenario_.neighbor.skin : default_skin(scenario_);
-    const auto& walls = scenario_.domain.walls;
-    if (walls[0] || walls[1] || walls[2]) wall_history_.resize(6 * particles_.size());  // by global id
+    const Domain& box = scenario_.domain;
+    for (int axis = 0; axis < 3; ++axis)  // the box's flat walls, facing into the box
+        for (int side = 0; side < 2 && box.walls[axis]; ++side) {
+            Wall face;
+            face.name = std::string(side == 0 ? "lo " : "hi ") + "xyz"[axis];
+            face.point = side == 0 ? box.lo : box.hi;
+            face.normal = Vec3{};
+            face.normal[axis] = side == 0 ? 1.0 : -1.0;
+            face.material = box.wall_material;
+            walls_.push_back(face);
+            wall_slot_.push_back(static_cast<std::size_t>(2 * axis + side));
+        }
+    for (std::size_t k = 0; k < scenario_.walls.size(); ++k) {
+        walls_.push_back(scenario_.walls[k]);
+        wall_slot_.push_back(6 + k);
+    }
+    if (!walls_.empty()) wall_history_.resize(wall_slots() * particles_.size());  // by global id
     if (ranks == Ranks::world && mpi::size() > 1) {
         const int axis = decomposition_axis(scenario_.domain);
         slabs_ = std::make_unique<Slabs>(scenario_.domain, axis, particles_, 2.0 * scenario_.largest_radius() + skin);
@@ -59,7 +74,7 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
     run_in_team(chunks(), [&](Team& team) {
         rebuild(team);
         locate_kinds(team);
-        compute_forces(team, Sums::all, [](int, IndexRange) {});
+        compute_forces(team, Sums::all, motions_now(time_), [](int, IndexRange) {});
     });
     note_build(time_);
 }
@@ -88,7 +103,7 @@ void Simulation::rebuild(Team& team, bool keep_histories) {
         particles_.resize(owned_);
         if (slabs_ && neighbors_.builds() % Slabs::rebalance_every == 0 && neighbors_.builds() > 0)
             slabs_->rebalance(particles_, owned_, neighbors_.pairs());  // the cuts where the work now is, before the spheres migrate
-        if (slabs_) slabs_->migrate(particles_, histories_, wall_history_);
+        if (slabs_) slabs_->migrate(particles_, histories_, wall_history_, wall_slots());
         owned_ = particles_.size();
     });
     neighbors_.arrange(particles_, team);
@@ -252,7 +267,7 @@ void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) 
     }
     const DisplacementLimit since_this_build = limit();  // the list's positions may have changed with a rebuild
     const Sums sums = after == After::stop ? Sums::all : Sums::free;
-    compute_forces(team, sums, [&](int c, IndexRange r) {  // F(t + dt), with v(t + dt/2) and v(t + dt) predicted
+    compute_forces(team, sums, now, [&](int c, IndexRange r) {  // F(t + dt), with v(t + dt/2) and v(t + dt) predicted
         if (after == After::step)  // v(t + dt/2) -> v(t + dt) -> v(t + 3dt/2), x(t + dt) -> x(t + 2dt); F = 0
             drifted_far_[static_cast<std::size_t>(c)] +=
                 kick_kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r), since_this_build);
@@ -296,6 +311,7 @@ void Simulation::prepare_chunks() {
     touched_from_.resize(count);
     moved_.resize(count);
     drifted_far_.assign(count, 0);
+    chunk_wall_load_.resize(count * scenario_.walls.size());
     chunk_kinds_.resize(count);
     chunk_first_wall_.resize(count);
     if (wall_from_.size() != count + 1) {  // a new chunk count: equal shares of the wall until the next rebuild
@@ -349,8 +365,10 @@ void add_and_clear(double* __restrict sum, double* __restrict part, std::size_t 
 // between calls every particle's forces are complete (a user reads the
 // load on each wall sphere), as are those from the set-up.
 template <class Then>
-void Simulation::compute_forces(Team& team, Sums sums, Then&& then) {
+void Simulation::compute_forces(Team& team, Sums sums, const std::vector<MotionNow>& now, Then&& then) {
     ParticleStore& p = particles_;
+    std::vector<PlacedWall> walls;  // where the motions have carried them
+    for (const Wall& w : walls_) walls.push_back(place_wall(w, w.motion >= 0 ? &now[static_cast<std::size_t>(w.motion)] : nullptr));
     PairList& pairs = neighbors_.pairs();
     const std::size_t n = p.size();
     if (recording_) records_.clear();
@@ -389,9 +407,11 @@ void Simulation::compute_forces(Team& team, Sums sums, Then&& then) {
         const std::array<IndexRange, 2> own = own_parts(team, c);  // free, kinematic
         add_chunk_sums(own[0]);
         if (sums == Sums::all) add_chunk_sums(own[1]);
-        for (const IndexRange part : own) {
-            if (!wall_history_.empty()) add_wall_forces(part);
-            then(c, part);
+        const std::size_t n_walls = scenario_.walls.size(), part = static_cast<std::size_t>(c);
+        std::fill_n(chunk_wall_load_.begin() + static_cast<std::ptrdiff_t>(part * n_walls), n_walls, WallLoad{});
+        for (const IndexRange r : own) {
+            if (!walls_.empty()) add_wall_forces(r, walls, c);
+            then(c, r);
         }
     });
 }
@@ -409,38 +429,62 @@ void Simulation::clear_chunk_sums(IndexRange r) {
     }
 }
 
-// Flat walls at both ends of each walled axis: every free sphere of range r
-// closer to a wall than its radius is in contact with it (a sphere of
-// infinite radius). Each particle only touches its own forces and wall
-// histories.
-void Simulation::add_wall_forces(IndexRange r) {
+// The walls (walls/wall.hpp; the box's flat walls are infinite planes):
+// every free sphere of range r nearer to a wall than its radius is in
+// contact with it. Each particle only touches its own forces and wall
+// histories, and chunk c its own sums of the loads on the walls.
+void Simulation::add_wall_forces(IndexRange r, const std::vector<PlacedWall>& walls, int c) {
     ParticleStore& p = particles_;
-    const Domain& box = scenario_.domain;
+    const std::size_t slots = wall_slots();
+    WallLoad* loads = chunk_wall_load_.data() + static_cast<std::size_t>(c) * scenario_.walls.size();
     for (std::size_t i = r.begin; i < r.end; ++i) {
         if (p.is_kinematic(i)) continue;
-        for (int axis = 0; axis < 3; ++axis) {
-            if (!box.walls[axis]) continue;
-            for (int side = 0; side < 2; ++side) {
-                const int face = 2 * axis + side;
-                ContactHistory& history = wall_history_[6 * static_cast<std::size_t>(p.id[i]) + face];
-                const double distance = side == 0 ? p.position[i][axis] - box.lo[axis] : box.hi[axis] - p.position[i][axis];
-                if (distance >= p.radius[i]) {
-                    if (!history.is_zero()) history = ContactHistory{};
-                    continue;
-                }
-                Vec3 n;
-                n[axis] = side == 0 ? 1.0 : -1.0;  // from the wall into the box
-                ContactGeometry g = make_wall_geometry(n, distance, p.radius[i], p.velocity[i], p.half_kick[i],
-                                                       p.angular_velocity[i]);
-                const PairCoefficients& c = pair_table_(p.material[i], box.wall_material);
-                treat_dashpot(g, c, p.inv_mass[i], dt_, history);
-                const ContactForces f = contact_law(c, g, scenario_.model, dt_, history);
-                p.force[i] += f.force_i;
-                p.torque[i] += f.torque_i;
-                if (recording_) records_.push_back({p.id[i], wall_id(face), g, f, history});
+        for (std::size_t k = 0; k < walls.size(); ++k) {
+            const std::size_t slot = wall_slot_[k];
+            ContactHistory& history = wall_history_[slots * static_cast<std::size_t>(p.id[i]) + slot];
+            const WallContact wall = wall_contact(walls[k], p.position[i]);
+            const WallTouch& t = wall.touch;
+            if (t.distance >= p.radius[i]) {
+                if (!history.is_zero()) history = ContactHistory{};
+                continue;
             }
+            ContactGeometry g = make_wall_geometry(t.n, t.distance, p.radius[i], wall_contact_radius(p.radius[i], t.curvature),
+                                                   p.velocity[i], p.half_kick[i], p.angular_velocity[i], wall.velocity,
+                                                   wall.angular_velocity);
+            const PairCoefficients& coefficients = pair_table_(p.material[i], walls[k].wall->material);
+            treat_dashpot(g, coefficients, p.inv_mass[i], dt_, history);
+            const ContactForces f = contact_law(coefficients, g, scenario_.model, dt_, history);
+            p.force[i] += f.force_i;
+            p.torque[i] += f.torque_i;
+            if (slot >= 6) {  // the wall feels -F at the contact, and the couples' reaction
+                WallLoad& load = loads[slot - 6];
+                load.force -= f.force_i;
+                load.torque -= f.torque_i + cross(p.position[i] - walls[k].origin, f.force_i);
+            }
+            if (recording_) records_.push_back({p.id[i], wall_id(slot), g, f, history});
         }
     }
+}
+
+std::vector<WallLoad> Simulation::wall_loads() const {
+    const std::size_t n_walls = scenario_.walls.size();
+    std::vector<WallLoad> sum(n_walls);
+    for (std::size_t c = 0; c * n_walls < chunk_wall_load_.size(); ++c)
+        for (std::size_t k = 0; k < n_walls; ++k) {
+            sum[k].force += chunk_wall_load_[c * n_walls + k].force;
+            sum[k].torque += chunk_wall_load_[c * n_walls + k].torque;
+        }
+    if (slabs_) {
+        std::vector<double> numbers;
+        for (const WallLoad& l : sum)
+            for (const Vec3& v : {l.force, l.torque}) numbers.insert(numbers.end(), {v.x, v.y, v.z});
+        mpi::sum(numbers);
+        for (std::size_t k = 0; k < n_walls; ++k) {
+            sum[k].force = {numbers[6 * k], numbers[6 * k + 1], numbers[6 * k + 2]};
+            sum[k].torque = {numbers[6 * k + 3], numbers[6 * k + 4], numbers[6 * k + 5]};
+        }
+    }
+    return sum;
 }
 
 void Simulation::note_build(double time) {
@@ -586,7 +630,7 @@ void Simulation::restore(SimulationState state) {
         why = text.str();
     }
     if (why.empty() && state.wall_history.size() != wall_history_.size())
-        why = "its wall-contact history does not match the domain";
+        why = "its wall-contact history does not match the domain's walls and the scenario's";
     if (why.empty() && state.motions.size() != motions_.size()) why = "its number of prescribed motions differs";
     if (!why.empty()) throw Error("restoring a simulation state: " + why);
     particles_ = std::move(state.particles);
@@ -643,6 +687,7 @@ SimulationState whole_state(const std::vector<SimulationState>& ranks) {
     std::int64_t largest = -1;  // ids are 0 .. N-1; own.size() below marks an id no rank owns
     for (const auto& [id, where] : own) largest = std::max(largest, id);
     std::vector<std::size_t> index_of_id(static_cast<std::size_t>(largest + 1), own.size());
+    const std::size_t slots = whole.wall_history.size() / index_of_id.size();  // wall histories per sphere
     for (const auto& [id, where] : own) {
         const auto [r, i] = where;
         if (index_of_id[static_cast<std::size_t>(id)] != own.size())
@@ -650,7 +695,7 @@ SimulationState whole_state(const std::vector<SimulationState>& ranks) {
         index_of_id[static_cast<std::size_t>(id)] = whole.particles.size();
         whole.particles.append(ranks[r].particles, i);
         if (!whole.wall_history.empty())
-            for (std::size_t f = 6 * static_cast<std::size_t>(id); f < 6 * static_cast<std::size_t>(id) + 6; ++f)
+            for (std::size_t f = slots * static_cast<std::size_t>(id); f < slots * static_cast<std::size_t>(id + 1); ++f)
                 whole.wall_history[f] = ranks[r].wall_history[f];
     }
     whole.owned = whole.particles.size();
@@ -711,20 +756,21 @@ Observables Simulation::observe() const {
         if (scenario_.model.elastic) o.contact_energy += hertz_energy(c.E_star, a, overlap);
         if (scenario_.model.attraction) o.contact_energy += attraction_energy(c.attraction, a, overlap);
     }
-    const Domain& box = scenario_.domain;
-    for (std::size_t i = 0; i < owned_ && !wall_history_.empty(); ++i)
-        for (int axis = 0; axis < 3; ++axis) {
-            if (!box.walls[axis] || p.is_kinematic(i)) continue;
-            for (double distance : {p.position[i][axis] - box.lo[axis], box.hi[axis] - p.position[i][axis]}) {
-                const double overlap = p.radius[i] - distance;
-                if (overlap <= 0.0) continue;
-                const PairCoefficients& c = pair_table_(p.material[i], box.wall_material);
-                const double a = std::sqrt(p.radius[i] * overlap);
-                ++o.contacts;
-                o.max_overlap_ratio = std::max(o.max_overlap_ratio, overlap / p.radius[i]);
-                if (scenario_.model.elastic) o.contact_energy += hertz_energy(c.E_star, a, overlap);
-                if (scenario_.model.attraction) o.contact_energy += attraction_energy(c.attraction, a, overlap);
-            }
+    std::vector<PlacedWall> walls;
+    const std::vector<MotionNow> now = motions_now(time_);
+    for (const Wall& w : walls_) walls.push_back(place_wall(w, w.motion >= 0 ? &now[static_cast<std::size_t>(w.motion)] : nullptr));
+    for (std::size_t i = 0; i < owned_; ++i)
+        for (const PlacedWall& w : walls) {
+            if (p.is_kinematic(i)) continue;
+            const WallTouch t = wall_contact(w, p.position[i]).touch;
+            const double overlap = p.radius[i] - t.distance;
+            if (overlap <= 0.0) continue;
+            const PairCoefficients& c = pair_table_(p.material[i], w.wall->material);
+            const double a = std::sqrt(wall_contact_radius(p.radius[i], t.curvature) * overlap);
+            ++o.contacts;
+            o.max_overlap_ratio = std::max(o.max_overlap_ratio, overlap / p.radius[i]);
+            if (scenario_.model.elastic) o.contact_energy += hertz_energy(c.E_star, a, overlap);
+            if (scenario_.model.attraction) o.contact_energy += attraction_energy(c.attraction, a, overlap);
         }
     if (slabs_) {  // the sums of every rank's own spheres and pairs
         std::vector<double> sums;

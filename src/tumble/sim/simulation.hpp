@@ -43,9 +43,15 @@ struct Observables {
     std::int64_t neighbor_builds = 0;
 };
 
-// The id that stands for a flat wall in a ContactRecord: face = 2 axis + (0 at
-// lo, 1 at hi).
-constexpr std::int64_t wall_id(int face) { return -1 - face; }
+// The id that stands for a wall in a ContactRecord: slot = 2 axis + (0 at
+// lo, 1 at hi) for the box's flat walls, 6 + k for Scenario::walls[k].
+constexpr std::int64_t wall_id(std::size_t slot) { return -1 - static_cast<std::int64_t>(slot); }
+
+// The load the grains put on a wall: force (N) and torque (N m) about where
+// the wall's point is.
+struct WallLoad {
+    Vec3 force, torque;
+};
 
 // Where a simulation runs: on this process alone, or shared among the ranks
 // of the MPI world, a slab of the domain each (sim/slabs.hpp; with one rank
@@ -118,6 +124,12 @@ public:
     // where they are.
     void set_motion(std::size_t k, const RigidMotion& motion);
 
+    // The loads on the walls of Scenario::walls, in their order, from the
+    // forces of the last step (or of the set-up): the sums over each chunk's
+    // grains, in chunk order. Shared among ranks, the sums over the ranks
+    // (collective).
+    std::vector<WallLoad> wall_loads() const;
+
     // When on, every step keeps a record of each contact (for tests and
     // diagnostics; slows the force loop).
     void set_contact_recording(bool on) { recording_ = on; }
@@ -136,10 +148,14 @@ private:
     // or the kinematic ones too (where the state is seen: after the last
     // step of an advance(), after the set-up).
     enum class Sums { free, all };
+    // The forces at `time` (where `now` has the motions then).
     template <class Then>
-    void compute_forces(Team& team, Sums sums, Then&& then);
+    void compute_forces(Team& team, Sums sums, const std::vector<MotionNow>& now, Then&& then);
     void clear_chunk_sums(IndexRange r);
-    void add_wall_forces(IndexRange r);
+    void add_wall_forces(IndexRange r, const std::vector<PlacedWall>& walls, int c);
+    // The history slots per sphere: the box's six faces, then one per wall
+    // of the scenario (wall_history_ at slots x id + slot).
+    std::size_t wall_slots() const { return 6 + scenario_.walls.size(); }
     // Where each prescribed motion is at a time (for move_kinematic()).
     std::vector<MotionNow> motions_now(double time) const;
     // What follows a step in its team: another step, or the end of the
@@ -209,9 +225,15 @@ private:
     // spheres from its axis.
     std::optional<double> list_time_;
     std::vector<double> motion_reach_;
-    // History of the contacts with the six flat walls, at 6 id + face (ids are
-    // dense, 0 .. N-1); empty when the domain has no walls.
+    // The walls in force: the box's flat walls as infinite planes, then the
+    // scenario's, each with its history slot. History of the contacts with
+    // them at wall_slots() id + slot (ids are dense, 0 .. N-1); empty when
+    // there are no walls. Per chunk the loads on the scenario's walls
+    // (chunks x walls).
+    std::vector<Wall> walls_;
+    std::vector<std::size_t> wall_slot_;
     std::vector<ContactHistory> wall_history_;
+    std::vector<WallLoad> chunk_wall_load_;
     // Shared among ranks: the slabs, the spheres this rank owns (the first
     // owned_ of the store; all of them on one rank), the keyed histories of
     // a rebuild, and whether a sphere of any rank moved far enough for one.

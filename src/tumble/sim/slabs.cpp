@@ -149,7 +149,8 @@ void Slabs::keep_own(ParticleStore& p) const {
     p.keep(own);
 }
 
-void Slabs::migrate(ParticleStore& p, std::vector<KeyedHistory>& histories, std::vector<ContactHistory>& wall_history) {
+void Slabs::migrate(ParticleStore& p, std::vector<KeyedHistory>& histories, std::vector<ContactHistory>& wall_history,
+                    std::size_t wall_slots) {
     ++traffic_.rebuilds;
     std::array<std::vector<std::uint32_t>, 2> leaving;
     std::vector<std::uint32_t> staying;
@@ -157,8 +158,8 @@ void Slabs::migrate(ParticleStore& p, std::vector<KeyedHistory>& histories, std:
         const double x = p.position[i][axis_];
         (x < lo() ? leaving[0] : x >= hi() ? leaving[1] : staying).push_back(static_cast<std::uint32_t>(i));
     }
-    // Per side: the spheres (each with its six flat-wall histories when the
-    // domain has walls), then the histories of their pairs.
+    // Per side: the spheres (each with its wall histories when there are
+    // walls), then the histories of their pairs.
     std::array<mpi::Bytes, 2> out;
     for (int s = 0; s < 2; ++s) {
         mpi::Bytes& b = out[static_cast<std::size_t>(s)];
@@ -170,7 +171,8 @@ void Slabs::migrate(ParticleStore& p, std::vector<KeyedHistory>& histories, std:
             put_particle(b, p, i);
             ids.push_back(p.id[i]);
             if (!wall_history.empty())
-                for (int face = 0; face < 6; ++face) put(b, wall_history[6 * static_cast<std::size_t>(p.id[i]) + face]);
+                for (std::size_t slot = 0; slot < wall_slots; ++slot)
+                    put(b, wall_history[wall_slots * static_cast<std::size_t>(p.id[i]) + slot]);
         }
         std::sort(ids.begin(), ids.end());
         std::vector<KeyedHistory> theirs;
@@ -193,8 +195,8 @@ void Slabs::migrate(ParticleStore& p, std::vector<KeyedHistory>& histories, std:
         for (std::size_t k = 0; k < count; ++k) {
             get_particle(r, p);
             if (!wall_history.empty())
-                for (int face = 0; face < 6; ++face)
-                    wall_history[6 * static_cast<std::size_t>(p.id.back()) + face] = r.get<ContactHistory>();
+                for (std::size_t slot = 0; slot < wall_slots; ++slot)
+                    wall_history[wall_slots * static_cast<std::size_t>(p.id.back()) + slot] = r.get<ContactHistory>();
         }
         const auto arrived = r.get<std::size_t>();
         for (std::size_t k = 0; k < arrived; ++k) histories.push_back(r.get<KeyedHistory>());

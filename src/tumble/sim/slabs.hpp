@@ -76,10 +76,11 @@ public:
     void keep_own(ParticleStore& p) const;
     // At a rebuild, on the own spheres (no ghosts in p): those that left the
     // slab go to the neighbour with their histories (of pairs and of the
-    // flat walls, at 6 id + face); those that arrive are appended, their
+    // walls, wall_slots per sphere at wall_slots id + slot); those that arrive are appended, their
     // histories to `histories` (after the rank's own: a pair it computed
     // itself keeps its record, HistoryTable) and into `wall_history`.
-    void migrate(ParticleStore& p, std::vector<KeyedHistory>& histories, std::vector<ContactHistory>& wall_history);
+    void migrate(ParticleStore& p, std::vector<KeyedHistory>& histories, std::vector<ContactHistory>& wall_history,
+                 std::size_t wall_slots);
     // After the sort: copies of the own spheres within reach of each cut go
     // to the neighbours; theirs are appended as ghosts.
     void make_ghosts(ParticleStore& p);

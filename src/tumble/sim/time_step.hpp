@@ -10,7 +10,8 @@
 //  - viscous time m*/c with c = 2 B* sqrt(R* h_max), the Kuwabara-Kono
 //    damping at the deepest overlap (the dashpot's time treatment,
 //    integrate/dashpot.hpp, keeps a single contact stable at any step; its
-//    errors grow with dt / (m*/c));
+//    errors grow with dt / (m*/c); a bed in lasting contact, as in a slow
+//    drum, needs 0.7 m*/c for its diffusion to converge);
 //  - creep time tau = B*/E* of an over-damped contact (c^2 > 4 m* k with
 //    k = 2 E* sqrt(R* h_max) the Hertz stiffness there, i.e. tau > 4 m*/c):
 //    after the impact the spheres creep apart as exp(-t/tau) (eq. 4's
@@ -32,7 +33,7 @@
 //    contact by 1.8 % at t_c/20 and 0.64 % at t_t/10;
 // and for every material of free particles the Rayleigh time
 //      t_R = pi R sqrt(rho/G) / (0.1631 nu + 0.8766).
-// Recommended step: min(t_c/20, 1.1 m*/c, tau/25, 0.25 m*/c ringing, t_t/10, 0.2 t_R).
+// Recommended step: min(t_c/20, 0.7 m*/c, tau/25, 0.25 m*/c ringing, t_t/10, 0.2 t_R).
 // Largest step accepted: min(t_c/10, 2 m*/c, t_t/5, 0.5 t_R).
 // (The fractions and why: docs/MODEL.md, "Time step".)
 #pragma once

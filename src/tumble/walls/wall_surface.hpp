@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: MIT
+// A wall's surface as triangles, for drawing it (ParaView, Python): where
+// its motion has carried it, infinite planes and cylinders cut to a box
+// they are drawn across, curved surfaces by `segments` facets around.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "tumble/core/domain.hpp"
+#include "tumble/walls/wall.hpp"
+
+namespace tumble {
+
+struct WallSurface {
+    std::vector<Vec3> vertices;                          // m
+    std::vector<std::array<std::uint32_t, 3>> triangles;  // vertex indices, counter-clockwise seen from n (planes)
+};
+
+WallSurface wall_surface(const PlacedWall& placed, const Domain& bounds, int segments = 48);
+
+}  // namespace tumble
