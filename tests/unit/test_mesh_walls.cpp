@@ -418,17 +418,20 @@ TriangleMesh bumpy_surface() {
     return mesh;
 }
 
-TEST(MeshWalls, GridCandidatesHoldEveryFaceASphereTouches) {
-    const MeshTopology mesh(bumpy_surface());
-    const double R_max = 0.1;
-    FacetGrid grid(0.07, R_max);  // a cell smaller than the reach: faces in many cells
+// Random spheres (fixed seed) with centres in [lo, hi] and radii up to
+// R_max: the grid's candidates hold every face within R_max (brute force),
+// they give the same contacts as all faces, and a sphere that overlaps the
+// surface has a contact, the deepest at the surface's nearest point.
+void expect_grid_and_contacts(const MeshTopology& mesh, const Vec3& lo, const Vec3& hi, double R_max, double cell) {
+    FacetGrid grid(cell, R_max);
     grid.rebuild(mesh);
     std::mt19937_64 rng(20240611);
     std::vector<MeshContact> from_grid, from_all;
     const std::vector<std::uint32_t> every = all_faces(mesh);
     int touching = 0;
     for (int trial = 0; trial < 4000; ++trial) {
-        const Vec3 c{-0.15 + 1.3 * uniform(rng), -0.15 + 1.3 * uniform(rng), -0.25 + 0.5 * uniform(rng)};
+        const Vec3 c{lo.x + (hi.x - lo.x) * uniform(rng), lo.y + (hi.y - lo.y) * uniform(rng),
+                     lo.z + (hi.z - lo.z) * uniform(rng)};
         const double R = R_max * (0.1 + 0.9 * uniform(rng));
         const std::span<const std::uint32_t> candidates = grid.candidates(c);
         ASSERT_TRUE(std::is_sorted(candidates.begin(), candidates.end()));
@@ -441,7 +444,6 @@ TEST(MeshWalls, GridCandidatesHoldEveryFaceASphereTouches) {
                     << "face " << f << " at " << distance << " missing for trial " << trial;
             }
         }
-        // The same contacts from the grid's candidates as from all faces.
         mesh_contacts(mesh, c, R, candidates, from_grid);
         mesh_contacts(mesh, c, R, every, from_all);
         ASSERT_EQ(from_grid.size(), from_all.size());
@@ -450,9 +452,7 @@ TEST(MeshWalls, GridCandidatesHoldEveryFaceASphereTouches) {
             EXPECT_EQ(from_grid[k].id, from_all[k].id);
             EXPECT_EQ(from_grid[k].overlap, from_all[k].overlap);
         }
-        // No gap: a sphere that overlaps the surface has a contact, and the
-        // deepest is at the surface's nearest point (the brute-force
-        // distance; both routes round differently, 1e-15 apart).
+        // Both routes to the distance round differently, 1e-15 apart at most.
         if (nearest < R) {
             ++touching;
             ASSERT_FALSE(from_all.empty()) << "trial " << trial;
@@ -467,7 +467,20 @@ TEST(MeshWalls, GridCandidatesHoldEveryFaceASphereTouches) {
             EXPECT_TRUE(from_all.empty());
         }
     }
-    EXPECT_GT(touching, 500);  // the trials exercised the contacts
+    EXPECT_GT(touching, 400);  // the trials exercised the contacts
+}
+
+TEST(MeshWalls, GridCandidatesHoldEveryFaceASphereTouches) {
+    // A cell smaller than the reach: each face in many cells.
+    expect_grid_and_contacts(MeshTopology(bumpy_surface()), {-0.15, -0.15, -0.25}, {1.15, 1.15, 0.25}, 0.1, 0.07);
+    // The box turned about an oblique axis: large tilted faces, whose
+    // bounding boxes hold many cells the face is far from; convex edges
+    // and corners.
+    TriangleMesh box = unit_box();
+    const Vec3 k = (1.0 / std::sqrt(6.0)) * Vec3{1.0, -1.0, 2.0};
+    const double co = std::cos(0.9), si = std::sin(0.9);
+    for (Vec3& v : box.vertices) v = co * v + si * cross(k, v) + ((1.0 - co) * dot(k, v)) * k;
+    expect_grid_and_contacts(MeshTopology(box), {-1.0, -1.0, -0.5}, {1.8, 1.8, 2.0}, 0.3, 0.15);
 }
 
 TEST(MeshWalls, MovedMeshKeepsItsIdsAndTheGridFollows) {

@@ -2,12 +2,13 @@
 // The faces of a mesh that a sphere may touch, found in O(1): a uniform grid
 // of cubic cells over the mesh's bounding box grown by `reach`, each cell
 // listing (in increasing order) the faces whose bounding box, grown by
-// `reach`, overlaps the cell. The candidates of a centre c are its cell's
-// list, and they hold every face within `reach` of c: if a face's point q
-// has |c - q| <= reach, then |c_i - q_i| <= reach on each axis, so c lies in
-// the face's box grown by reach, and so does c's cell in part. The lists may
-// hold faces farther away (mesh_contacts drops them at the cost of one dot
-// product each).
+// `reach`, overlaps the cell and whose plane comes within `reach` of the
+// cell. The candidates of a centre c are its cell's list, and they hold
+// every face within `reach` of c: if a face's point q has |c - q| <= reach,
+// then |c_i - q_i| <= reach on each axis, so c lies in the face's box grown
+// by reach, and c, a point of its cell, lies within reach of the face's
+// plane. The lists may hold faces farther away (mesh_contacts drops them
+// at the cost of a few dot products each).
 //
 // reach: the largest radius of the spheres, plus how far they may move
 // between rebuilds if the candidates are kept (none when they are looked
@@ -49,7 +50,7 @@ public:
     std::array<std::size_t, 3> cells() const { return dims_; }
 
 private:
-    double cell_, reach_;
+    double cell_, per_cell_, reach_;  // m, 1/m, m
     Vec3 origin_;                          // the low corner of cell (0, 0, 0), m
     std::array<std::size_t, 3> dims_{};    // cells along x, y, z
     std::vector<std::uint32_t> start_;     // cell (i, j, k) = i + nx (j + ny k) lists faces_[start_[cell] .. start_[cell + 1])
