@@ -194,8 +194,10 @@ TEST(MeshWalls, ATurnedPlaneOfTrianglesGivesOneContactEverywhere) {
     // triangles' normals now differ in the last bits, so the two faces of an
     // edge no longer compute exactly opposite sides, and a centre over an
     // edge may be claimed by both (rule 4 keeps one) or by neither (the
-    // edge then gives the contact). Still one contact everywhere, equal to
-    // the plane's to a few ulps of the coordinates.
+    // edge then gives the contact); over a vertex every test may fail (rule
+    // 5 then takes the nearest point: at (0.1, 0.4) for one). Still one
+    // contact everywhere, equal to the plane's to a few ulps of the
+    // coordinates.
     TriangleMesh triangles = plane_mesh(10, 1.0);
     const Vec3 k = (1.0 / std::sqrt(14.0)) * Vec3{1.0, 2.0, 3.0};
     const double a = 0.7, co = std::cos(a), si = std::sin(a);
@@ -274,8 +276,9 @@ TEST(MeshWalls, SphereOnTheTopBesideAnEdgeFeelsTheTopAlone) {
 
 TEST(MeshWalls, CornerOfABoxGivesOneVertexContact) {
     const MeshTopology box(unit_box());
-    const Vec3 r{0.1, 0.15, 0.2};
+    const Vec3 r{0.1, 0.15, 0.2};  // beyond the corner (1, 1, 1) on every edge at it
     const std::vector<MeshContact> out = contacts(box, Vec3{1.0, 1.0, 1.0} + r, 0.3);
+    // Hand values: q = (1, 1, 1), n = r / |r|, h = R - |r|; round-off.
     ASSERT_EQ(out.size(), 1u);
     EXPECT_EQ(out[0].feature, MeshFeature::vertex);
     EXPECT_EQ(out[0].id, 7u);
@@ -349,6 +352,7 @@ TEST(MeshWalls, NearlyFlatCreaseGivesTwoContactsAsTheHeaderSays) {
 TEST(MeshWalls, SingleTriangleHasOpenEdgesAndCornersOnBothSides) {
     const MeshTopology one(weld_triangles(std::vector<std::array<Vec3, 3>>{{Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 0}}}));
     const double R = 0.3;
+    // Hand values throughout; 1e-15 is round-off.
     // Beyond the side y = 0, above the plane: the edge, n from it.
     std::vector<MeshContact> out = contacts(one, {0.4, -0.1, 0.2}, R);
     ASSERT_EQ(out.size(), 1u);
