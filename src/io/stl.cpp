@@ -37,7 +37,8 @@ bool finite(const Vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && 
 // Rot v = cos(a) v + sin(a) (k x v) + (1 - cos(a)) (k . v) k, as a matrix.
 class Placement {
 public:
-    Placement(const StlPlacement& p, const fs::path& file) : scale_(p.scale), offset_(p.offset), turn_(p.rotation.has_value()) {
+    Placement(const StlPlacement& p, const fs::path& file)
+        : scale_(p.scale), offset_(p.offset), turn_(p.rotation.has_value()) {
         if (!(p.scale > 0.0) || !std::isfinite(p.scale))
             throw ConfigError(file, "scale", fmt::format("must be a positive number, got {}", p.scale));
         if (!finite(p.offset)) throw ConfigError(file, "offset", "must be finite");
@@ -70,7 +71,8 @@ private:
     std::array<Vec3, 3> rows_;
 };
 
-// A word of the file for a message: at most 40 bytes, others as \xNN.
+// A word of the file for a message: its first 40 bytes, those that are not
+// printable ASCII as \xNN.
 std::string shown(std::string_view word) {
     std::string out = "\"";
     for (std::size_t i = 0; i < word.size() && i < 40; ++i) {

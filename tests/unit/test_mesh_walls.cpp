@@ -349,8 +349,13 @@ TEST(MeshWalls, NearlyFlatCreaseGivesTwoContactsAsTheHeaderSays) {
     EXPECT_EQ(contacts(MeshTopology(crease), {1.01 * d * t, 0.37, d}, R).size(), 1u);
 }
 
+// The triangle (0, 0, 0), (1, 0, 0), (0, 1, 0): N = +z, every edge open.
+TriangleMesh single_triangle() {
+    return weld_triangles(std::vector<std::array<Vec3, 3>>{{Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 0}}});
+}
+
 TEST(MeshWalls, SingleTriangleHasOpenEdgesAndCornersOnBothSides) {
-    const MeshTopology one(weld_triangles(std::vector<std::array<Vec3, 3>>{{Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 0}}}));
+    const MeshTopology one(single_triangle());
     const double R = 0.3;
     // Hand values throughout; 1e-15 is round-off.
     // Beyond the side y = 0, above the plane: the edge, n from it.
@@ -384,7 +389,7 @@ TEST(MeshWalls, SingleTriangleHasOpenEdgesAndCornersOnBothSides) {
 }
 
 TEST(MeshWalls, SphereOutOfReachHasNoContact) {
-    const MeshTopology one(weld_triangles(std::vector<std::array<Vec3, 3>>{{Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 0}}}));
+    const MeshTopology one(single_triangle());
     const double R = 0.3;
     EXPECT_TRUE(contacts(one, {0.2, 0.2, 0.3}, R).empty());           // touching the face: h = 0
     EXPECT_TRUE(contacts(one, {0.4, -0.2, 0.23}, R).empty());         // 0.3048 from the edge
@@ -531,7 +536,8 @@ std::string refusal(const TriangleMesh& mesh) {
 TEST(MeshWalls, BadMeshesAreRefusedNamingTheTriangle) {
     const std::vector<Vec3> v{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}};
     EXPECT_EQ(refusal({v, {}}), "the mesh has no triangles");
-    EXPECT_EQ(refusal({v, {{0, 1, 2}, {0, 1, 7}}}), "triangle 2: vertex id 7 is out of range (the mesh has 4 vertices)");
+    EXPECT_EQ(refusal({v, {{0, 1, 2}, {0, 1, 7}}}),
+              "triangle 2: vertex id 7 is out of range (the mesh has 4 vertices)");
     EXPECT_EQ(refusal({v, {{0, 1, 1}}}), "triangle 1: uses a vertex twice (vertex ids 0, 1, 1)");
     EXPECT_EQ(refusal({v, {{0, 1, 2}, {0, 1, 3}}}),
               "triangle 2: degenerate: its area, 0 m^2, is not above 1e-12 times its longest edge squared, 4 m^2 "
@@ -541,7 +547,8 @@ TEST(MeshWalls, BadMeshesAreRefusedNamingTheTriangle) {
               std::string::npos);
     EXPECT_EQ(refusal({v, {{0, 1, 2}, {3, 1, 2}, {2, 1, 0}}}),
               "triangle 3: repeats triangle 1 (the same three vertices): its forces would count twice");
-    EXPECT_EQ(refusal({{{0, 0, 0}, {1, 0, 0}, {0, NAN, 0}}, {{0, 1, 2}}}), "triangle 1: corner 3 is not finite: (0, nan, 0)");
+    EXPECT_EQ(refusal({{{0, 0, 0}, {1, 0, 0}, {0, NAN, 0}}, {{0, 1, 2}}}),
+              "triangle 1: corner 3 is not finite: (0, nan, 0)");
 }
 
 TEST(MeshWalls, MovingAMeshOntoADegenerateTriangleLeavesItUnchanged) {

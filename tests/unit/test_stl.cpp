@@ -177,7 +177,8 @@ TEST_F(Stl, BadFilesAreRefusedNamingFileWhereAndWhy) {
 
     std::vector<Triangle> with_nan = {box[0], box[1]};
     with_nan[1][2].y = NAN;
-    EXPECT_EQ(refusal(file("x.stl", binary_stl(with_nan))), name + ": triangle 2: corner 3: y is not a finite number (nan)");
+    EXPECT_EQ(refusal(file("x.stl", binary_stl(with_nan))),
+              name + ": triangle 2: corner 3: y is not a finite number (nan)");
 
     // ASCII: line 1 solid; 2-8 the first facet (its corners on 4-6); 9-15 the second.
     std::string text = ascii_stl({box[0], box[1]});
@@ -213,7 +214,8 @@ TEST_F(Stl, BadFilesAreRefusedNamingFileWhereAndWhy) {
     // The placement is checked before the file is read (it need not exist).
     io::StlPlacement bad;
     bad.scale = 0.0;
-    EXPECT_EQ(refusal(dir_ / "missing.stl", bad), (dir_ / "missing.stl").string() + ": scale: must be a positive number, got 0");
+    EXPECT_EQ(refusal(dir_ / "missing.stl", bad),
+              (dir_ / "missing.stl").string() + ": scale: must be a positive number, got 0");
     bad.scale = 1.0;
     bad.rotation = io::StlRotation{{0.0, 0.0, 0.0}, 1.0};
     EXPECT_EQ(refusal(dir_ / "missing.stl", bad),

@@ -45,16 +45,13 @@ public:
     // when c lies outside the grid (farther than reach from every face).
     std::span<const std::uint32_t> candidates(const Vec3& c) const;
 
-    double cell() const { return cell_; }
-    double reach() const { return reach_; }
-    std::array<std::size_t, 3> cells() const { return dims_; }
-
 private:
-    double cell_, per_cell_, reach_;  // m, 1/m, m
-    Vec3 origin_;                          // the low corner of cell (0, 0, 0), m
-    std::array<std::size_t, 3> dims_{};    // cells along x, y, z
-    std::vector<std::uint32_t> start_;     // cell (i, j, k) = i + nx (j + ny k) lists faces_[start_[cell] .. start_[cell + 1])
-    std::vector<std::uint32_t> faces_;
+    double cell_, per_cell_, reach_;     // m, 1/m, m
+    Vec3 origin_;                        // the low corner of cell (0, 0, 0), m
+    std::array<std::size_t, 3> dims_{};  // cells along x, y, z
+    // Cell (i, j, k), number i + nx (j + ny k), lists faces_[start_[cell]] to
+    // faces_[start_[cell + 1] - 1].
+    std::vector<std::uint32_t> start_, faces_;
 };
 
 }  // namespace tumble

@@ -59,7 +59,9 @@ void compressed_rows(std::size_t keys, const Pairs& pairs, std::vector<std::uint
 }  // namespace
 
 MeshError::MeshError(std::size_t triangle, std::string reason)
-    : Error("triangle " + std::to_string(triangle + 1) + ": " + reason), triangle_(triangle), reason_(std::move(reason)) {}
+    : Error("triangle " + std::to_string(triangle + 1) + ": " + reason),
+      triangle_(triangle),
+      reason_(std::move(reason)) {}
 
 TriangleMesh weld_triangles(std::span<const std::array<Vec3, 3>> corners) {
     // Key: the bits of the three coordinates, -0 made +0 by adding +0.
@@ -235,10 +237,10 @@ void MeshTopology::update_geometry() {
     vertex_plane_.assign(vertices_.size(), no_face);
     for (std::uint32_t v = 0; v < vertices_.size(); ++v) {
         const std::span<const std::uint32_t> faces = vertex_faces(v), edges = vertex_edges(v);
-        const bool flat = !faces.empty() &&
-                          std::all_of(edges.begin(), edges.end(),
-                                      [&](std::uint32_t e) { return edge_geometry_[e].plane != no_face; }) &&
-                          std::all_of(faces.begin(), faces.end(), [&](std::uint32_t f) { return parallel(faces[0], f); });
+        const bool flat =
+            !faces.empty() &&
+            std::all_of(edges.begin(), edges.end(), [&](std::uint32_t e) { return edge_geometry_[e].plane != no_face; }) &&
+            std::all_of(faces.begin(), faces.end(), [&](std::uint32_t f) { return parallel(faces[0], f); });
         if (flat) vertex_plane_[v] = faces[0];
     }
 }
