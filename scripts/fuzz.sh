@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # Fuzzes the input readers with libFuzzer: the scenario reader (TOML), the
-# particle CSV reader and the checkpoint decoder, each for a bounded time,
-# with AddressSanitizer and UndefinedBehaviorSanitizer. Not part of CI.
+# particle CSV reader, the checkpoint decoder and the STL reader (with the
+# mesh built and one sphere's contacts), each for a bounded time, with
+# AddressSanitizer and UndefinedBehaviorSanitizer. Not part of CI.
 #     bash scripts/fuzz.sh [SECONDS_PER_TARGET]     (default 60)
 # Builds into build-fuzz/ with clang; installs clang and libclang-rt-14-dev
 # (the libFuzzer runtime) if missing. Seeds: the examples and the corpus of
-# bad files (tests/data/bad), and a checkpoint of a tiny drum run. Findings
-# (crashes, leaks, timeouts, out-of-memory) are written as
-# build-fuzz/TARGET-findings/crash-*; the script then exits non-zero.
+# bad files (tests/data/bad), the STL files of tests/data/stl, and a
+# checkpoint of a tiny drum run. Findings (crashes, leaks, timeouts,
+# out-of-memory) are written as build-fuzz/TARGET-findings/crash-*; the
+# script then exits non-zero.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
@@ -15,13 +17,14 @@ bash scripts/install-deps.sh clang libclang-rt-14-dev
 
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DTUMBLE_FUZZ=ON \
   -DTUMBLE_TESTS=OFF >/dev/null
-cmake --build build-fuzz -j2 --target fuzz_scenario fuzz_particle_csv fuzz_checkpoint
+cmake --build build-fuzz -j2 --target fuzz_scenario fuzz_particle_csv fuzz_checkpoint fuzz_stl
 
 seeds=build-fuzz/seeds
 rm -rf "$seeds"
-mkdir -p "$seeds/fuzz_scenario" "$seeds/fuzz_particle_csv" "$seeds/fuzz_checkpoint"
+mkdir -p "$seeds/fuzz_scenario" "$seeds/fuzz_particle_csv" "$seeds/fuzz_checkpoint" "$seeds/fuzz_stl"
 cp examples/*.toml tests/data/bad/*.toml "$seeds/fuzz_scenario/"
 cp examples/*.csv tests/data/bad/*.csv "$seeds/fuzz_particle_csv/"
+cp tests/data/stl/*.stl "$seeds/fuzz_stl/"
 if [ -x build/tumble ]; then  # a real checkpoint to start from (the normal build)
   rm -rf "$seeds/drum"
   build/tumble drum -q --mode self --grains 4 --length 0.02 --diameter 0.02 --revolutions 0.1 --no-plot \
@@ -33,7 +36,7 @@ if ! compgen -G "$seeds/fuzz_checkpoint/*.tck" >/dev/null; then
 fi
 
 status=0
-for target in fuzz_scenario fuzz_particle_csv fuzz_checkpoint; do
+for target in fuzz_scenario fuzz_particle_csv fuzz_checkpoint fuzz_stl; do
   corpus=build-fuzz/corpus/$target findings=build-fuzz/$target-findings
   mkdir -p "$corpus" "$findings"
   echo "fuzz: $target for $seconds s" >&2
