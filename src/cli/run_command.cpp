@@ -72,8 +72,8 @@ public:
             const std::vector<double>& snapshot_times)
         : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)),
           checkpoints_(dir_, policy, default_health_limits(sim.scenario())) {
-        if (mpi::rank() == 0) series_.emplace(dir_ / "time_series.csv", sim.scenario().materials, continuing);
-        if (plan_.snapshot_every) snapshots_.emplace(dir_, snapshot_times);
+        if (mpi::rank() == 0) series_.emplace(dir_ / "time_series.csv", sim.scenario(), continuing);
+        if (plan_.snapshot_every) snapshots_.emplace(dir_, snapshot_times, !sim.scenario().walls.empty());
     }
 
     int run() {

@@ -130,7 +130,7 @@ public:
             plan_.progress = progress_style(true, 0.0);
             return;
         }
-        series_.emplace(dir_ / "time_series.csv", sim.scenario().materials, continuing);
+        series_.emplace(dir_ / "time_series.csv", sim.scenario(), continuing);
         if (continuing && plan_.rotating) drum_series_.emplace(dir_, plan_.info, true);
         if (continuing && plan_.rotating && plan_.info.band_bins > 0) band_profile_.emplace(dir_, plan_.info.band_bins, true);
         band_field_.inner_length = plan_.info.inner_length;

@@ -25,15 +25,16 @@ namespace {
 // The peak comes with a checkpoint: the simulation (about 700 bytes per
 // sphere with its 3 list pairs, docs/BENCHMARKS.md "Memory per sphere"),
 // its captured copy and the encoded file, each with the neighbour list (50
-// bytes per further pair) and the flat walls' contact history (240); 48 per
-// extra thread. Measured: 1.85 kB per sphere for lattices of 97336 and
-// 343000 spheres (maximum resident size of tumble run, 2026-11-30).
+// bytes per further pair) and the walls' contact history (40 per wall slot:
+// the box's six faces and one per smooth wall); 48 per extra thread.
+// Measured: 1.85 kB per sphere for lattices of 97336 and 343000 spheres
+// (maximum resident size of tumble run, 2026-11-30).
 constexpr double bytes_per_sphere = 1900.0, bytes_per_pair = 3 * 50.0, bytes_per_thread = 48.0,
-                 bytes_for_walls = 3 * 240.0;
+                 bytes_per_wall_slot = 3 * 40.0;
 
-double estimate(double spheres, double pairs_per_sphere, bool walls, int threads) {
+double estimate(double spheres, double pairs_per_sphere, double wall_slots, int threads) {
     return spheres * (bytes_per_sphere + bytes_per_pair * std::max(0.0, pairs_per_sphere - 3.0) +
-                      bytes_per_thread * (threads - 1) + (walls ? bytes_for_walls : 0.0));
+                      bytes_per_thread * (threads - 1) + bytes_per_wall_slot * wall_slots);
 }
 
 std::string gib(double bytes) { return fmt::format("{:.3g} GiB", bytes / (1024.0 * 1024.0 * 1024.0)); }
@@ -79,8 +80,9 @@ MemoryNeed scenario_memory(const Scenario& s, int threads) {
     const double skin = s.neighbor.skin > 0.0 ? s.neighbor.skin : 0.2 * r_max;
     // Pairs within reach in a dense packing (solid fraction 0.64), each stored once.
     const double pairs = std::min(0.5 * (n - 1.0), 0.5 * 0.64 * std::pow((2.0 * r_max + skin) / r_min, 3));
-    const bool walls = s.domain.walls[0] || s.domain.walls[1] || s.domain.walls[2];
-    MemoryNeed need{estimate(n, pairs, walls, threads),
+    const bool box_walls = s.domain.walls[0] || s.domain.walls[1] || s.domain.walls[2];
+    const double wall_slots = box_walls || !s.walls.empty() ? 6.0 + static_cast<double>(s.walls.size()) : 0.0;
+    MemoryNeed need{estimate(n, pairs, wall_slots, threads),
                     fmt::format("{} spheres, {:.3g} neighbour pairs each", s.particles.size(), pairs)};
     if (pairs > 3.0 && s.neighbor.skin > 0.0) need.driver += " (neighbor.skin)";
     return need;
@@ -168,7 +170,7 @@ MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads, double
     const double R = paper::material_1().radius;  // m
     const double listed = skin > 0.0 ? skin : drum_skin_per_radius * R;  // m
     const double pairs = 3.0 * std::max(1.0, std::pow((2.0 * R + listed) / (2.2 * R), 3));
-    MemoryNeed need{estimate(grains + wall, pairs, false, threads), ""};
+    MemoryNeed need{estimate(grains + wall, pairs, 0.0, threads), ""};
     need.driver = wall > grains ? fmt::format("the drum's wall, {:.3g} spheres (--length, --diameter, --wall-radius)", wall)
                                 : fmt::format("{:.3g} grains (--grains, --fill)", grains);
     if (pairs > 6.0) need.driver += fmt::format(", {:.3g} neighbour pairs each (--skin)", pairs);

@@ -105,7 +105,8 @@ void put_scenario(ByteWriter& w, const Scenario& s) {
         w.put(wall.name);
         w.put(static_cast<std::uint8_t>(wall.shape));
         for (const Vec3& v : {wall.point, wall.normal, wall.edge}) w.put(v);
-        for (double v : {wall.half_width, wall.half_height, wall.radius, wall.end_radius, wall.length}) w.put(v);
+        for (double v : {wall.half_width, wall.half_height, wall.radius, wall.hole_radius, wall.end_radius, wall.length})
+            w.put(v);
         w.put(wall.inside);
         w.put(wall.material);
         w.put(wall.motion);
@@ -162,14 +163,15 @@ Scenario get_scenario(ByteReader& r, std::uint32_t version) {
     s.neighbor.sort_every = r.get<std::int32_t>("neighbour settings");
     s.motions = r.get_array<RigidMotion>("motions");
     if (version >= 7) {  // before: no walls besides the box's
-        s.walls.resize(r.count(8 + 1 + 3 * sizeof(Vec3) + 5 * sizeof(double) + 1 + 2 * sizeof(std::int32_t), "walls"));
+        s.walls.resize(r.count(8 + 1 + 3 * sizeof(Vec3) + 6 * sizeof(double) + 1 + 2 * sizeof(std::int32_t), "walls"));
         for (Wall& wall : s.walls) {
             wall.name = r.get_string("wall name");
             const auto shape = r.get<std::uint8_t>("wall shape");
             if (shape > static_cast<std::uint8_t>(WallShape::cone)) r.fail("wall shape: unknown shape");
             wall.shape = static_cast<WallShape>(shape);
             for (Vec3* v : {&wall.point, &wall.normal, &wall.edge}) *v = r.get<Vec3>("wall");
-            for (double* v : {&wall.half_width, &wall.half_height, &wall.radius, &wall.end_radius, &wall.length})
+            for (double* v : {&wall.half_width, &wall.half_height, &wall.radius, &wall.hole_radius, &wall.end_radius,
+                              &wall.length})
                 *v = r.get<double>("wall");
             wall.inside = r.get_bool("wall");
             wall.material = r.get<std::int32_t>("wall material");

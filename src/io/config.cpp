@@ -252,7 +252,7 @@ private:
             switch (w.shape) {
                 case WallShape::plane: keys.insert(keys.end(), {"normal"}); break;
                 case WallShape::rectangle: keys.insert(keys.end(), {"normal", "edge", "size"}); break;
-                case WallShape::disc: keys.insert(keys.end(), {"normal", "radius"}); break;
+                case WallShape::disc: keys.insert(keys.end(), {"normal", "radius", "hole_radius"}); break;
                 case WallShape::cylinder:
                     keys.insert(keys.end(), {"axis", "radius", "length", "inside", "caps", "cap_material"});
                     break;
@@ -279,7 +279,10 @@ private:
                     w.half_height = 0.5 * r_.number(*a.get(1), at(key, 1), Bound::positive);
                     break;
                 }
-                case WallShape::disc: w.radius = r_.required_number(t, p, "radius", Bound::positive); break;
+                case WallShape::disc:
+                    w.radius = r_.required_number(t, p, "radius", Bound::positive);
+                    w.hole_radius = r_.number(t, p, "hole_radius", Bound::non_negative, 0.0);
+                    break;
                 case WallShape::cylinder:
                     w.radius = r_.required_number(t, p, "radius", Bound::positive);
                     w.length = r_.number(t, p, "length", Bound::positive, w.length);
@@ -447,7 +450,8 @@ private:
                 r_.fail(ckey, fmt::format("more than {} spheres in the scenario", max_particles), t.get("counts"));
         }
         const double spacing = r_.required_number(t, p, "spacing", Bound::positive);
-        std::vector<ParticleSpec> out = lattice(origin, counts, spacing, default_radius(d, material), material);
+        std::vector<ParticleSpec> out = lattice(origin, counts, spacing, default_radius(d, material), material, s_const().walls);
+        if (out.empty()) r_.fail(p, "every site of the lattice touches or lies beyond a [[wall]]", &t);
         apply_defaults(out, d);
         return out;
     }
@@ -494,7 +498,8 @@ private:
         std::vector<ParticleSpec> out;
         try {
             out = random_fill(lo, hi, count, radius_min, radius_max, material,
-                              block_seed(config_.seed, block, Stream::placement), config_.scenario.particles);
+                              block_seed(config_.seed, block, Stream::placement), config_.scenario.particles,
+                              config_.scenario.walls);
         } catch (const ConfigError&) {
             throw;
         } catch (const tumble::Error& e) {
@@ -678,6 +683,17 @@ private:
                     fmt::format("{} overlaps {} by {:.3g} of the smaller radius, more than "
                                 "simulation.max_initial_overlap = {}",
                                 describe_under_key(worst.b), describe(worst.a), worst.ratio, show(max_initial_overlap_)));
+        for (std::size_t i = 0; i < sc.particles.size(); ++i)  // a grain that starts in or beyond a wall
+            for (std::size_t k = 0; k < sc.walls.size(); ++k) {
+                const ParticleSpec& q = sc.particles[i];
+                const double ratio = 1.0 - wall_touch(sc.walls[k], q.position).distance / q.radius;
+                if (q.motion == free_motion && ratio > max_initial_overlap_)
+                    r_.fail(key_of(i), fmt::format("{} overlaps wall \"{}\" by {:.3g} of its radius{}, more than "
+                                                   "simulation.max_initial_overlap = {}",
+                                                   describe_under_key(i), sc.walls[k].name, ratio,
+                                                   ratio > 1.0 ? " (its centre lies beyond the wall)" : "",
+                                                   show(max_initial_overlap_)));
+            }
 
         if (const std::string why = scenario_problem(sc); !why.empty()) r_.fail("scenario", why);
         try {

@@ -109,13 +109,15 @@ void check_written(std::ofstream& out, const fs::path& file) {
     if (!out) throw Error(file.string() + ": write failed (disk full or file system error)");
 }
 
-TimeSeriesWriter::TimeSeriesWriter(const fs::path& file, const std::vector<Material>& materials, bool continuing)
+TimeSeriesWriter::TimeSeriesWriter(const fs::path& file, const Scenario& scenario, bool continuing)
     : path_(file), out_(continuing ? open_for_appending(file) : open_for_writing(file)) {
     if (continuing) return;
     out_ << "time,step,kinetic_translational,kinetic_rotational,contact_energy,contacts,max_overlap_ratio,"
             "neighbor_builds";
-    for (const Material& m : materials)
+    for (const Material& m : scenario.materials)
         out_ << fmt::format(",particles_{0},kinetic_translational_{0},kinetic_rotational_{0}", column_name(m.name));
+    for (const Wall& w : scenario.walls)
+        out_ << fmt::format(",wall_{0}_fx,wall_{0}_fy,wall_{0}_fz,wall_{0}_tx,wall_{0}_ty,wall_{0}_tz", column_name(w.name));
     out_ << '\n';
     check_written(out_, path_);
 }
@@ -125,6 +127,8 @@ void TimeSeriesWriter::write(const Observables& o) {
                         o.contact_energy, o.contacts, o.max_overlap_ratio, o.neighbor_builds);
     for (const MaterialEnergies& e : o.per_material)
         out_ << fmt::format(",{},{},{}", e.particles, e.kinetic_translational, e.kinetic_rotational);
+    for (const WallLoad& l : o.wall_loads)
+        out_ << fmt::format(",{},{},{},{},{},{}", l.force.x, l.force.y, l.force.z, l.torque.x, l.torque.y, l.torque.z);
     out_ << '\n';
     check_written(out_, path_);
 }

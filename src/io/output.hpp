@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // What a run writes into its output directory:
 //   time_series.csv       one row per sample: time, energies (total and per
-//                         material), contacts, largest overlap, list builds
+//                         material), contacts, largest overlap, list builds,
+//                         the load on each smooth wall
 //   snapshots/NNNNNN.csv  per-particle state, rows ordered by global id, each
 //                         with the time and step of the snapshot
 //   run.json              the settings in force, the time step and its limits,
@@ -44,8 +45,10 @@ void check_written(std::ofstream& out, const std::filesystem::path& file);
 class TimeSeriesWriter {
 public:
     // continuing: append to the file as it stands (a resumed run), no header.
-    TimeSeriesWriter(const std::filesystem::path& file, const std::vector<Material>& materials,
-                     bool continuing = false);
+    // The columns: those of Observables, per material of the scenario, and
+    // per wall of it the load (wall_NAME_fx, _fy, _fz in N; _tx, _ty, _tz
+    // in N m, about where the wall's point is).
+    TimeSeriesWriter(const std::filesystem::path& file, const Scenario& scenario, bool continuing = false);
     void write(const Observables& o);
 
 private:
@@ -75,7 +78,7 @@ inline constexpr std::string_view run_files[] = {
     "drum_series.csv", "profiles.csv",  "band_profile.csv",  "profile_comparison.csv", "depth_mobility.csv",
     "depth_mobility_long.csv", "axial_msd.csv", "bed_structure.csv", "flow_profile.csv", "bands.json",
     "bands.csv",     "band_positions.csv", "band_spectrum.csv", "band_edges.csv",   "kymograph.png",
-    "particles.pvd", "contacts.pvd",    "snapshots",         "checkpoints",        "figures",
+    "particles.pvd", "contacts.pvd",    "walls.pvd",         "snapshots",         "checkpoints",        "figures",
     "so_far",        "frames"};
 
 // tumble render's movie by default: DIR/NAME.mp4, NAME the directory's.

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "io/snapshot_data.hpp"
 
+#include <optional>
+
 namespace tumble::io {
 
 SnapshotData snapshot_of(const Simulation& sim) {
@@ -12,7 +14,19 @@ SnapshotData snapshot_of(const Simulation& sim) {
     s.step = sim.step_count();
     for (const Material& m : sim.scenario().materials) s.material_names.push_back(m.name);
     s.domain = sim.scenario().domain;
+    for (const Wall& w : sim.scenario().walls) s.wall_names.push_back(w.name);
+    s.walls = wall_surfaces(sim);
     return s;
+}
+
+std::vector<WallSurface> wall_surfaces(const Simulation& sim) {
+    std::vector<WallSurface> drawn;
+    for (const Wall& w : sim.scenario().walls) {
+        std::optional<MotionNow> now;
+        if (w.motion >= 0) now = sim.motion_now(static_cast<std::size_t>(w.motion));
+        drawn.push_back(wall_surface(place_wall(w, now ? &*now : nullptr), sim.scenario().domain));
+    }
+    return drawn;
 }
 
 }  // namespace tumble::io

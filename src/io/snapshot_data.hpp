@@ -15,6 +15,7 @@
 #include "tumble/particles/particle_store.hpp"
 #include "tumble/sim/contact_network.hpp"
 #include "tumble/sim/simulation.hpp"
+#include "tumble/walls/wall_surface.hpp"
 
 namespace tumble::io {
 
@@ -26,10 +27,16 @@ struct SnapshotData {
     std::int64_t step = 0;
     std::vector<std::string> material_names;
     Domain domain;
+    std::vector<std::string> wall_names;  // Scenario::walls
+    std::vector<WallSurface> walls;       // each drawn where its motion has carried it (walls/wall_surface.hpp)
 };
 
 // Collective when `sim` is shared among ranks: every rank calls it, rank 0
 // gets the whole snapshot, the others an empty one (no particles).
 SnapshotData snapshot_of(const Simulation& sim);
+
+// The surfaces of the scenario's smooth walls where their motions have
+// carried them at sim.time(), infinite ones cut to the domain box.
+std::vector<WallSurface> wall_surfaces(const Simulation& sim);
 
 }  // namespace tumble::io

@@ -22,13 +22,15 @@ namespace {
 fs::path dataset(std::size_t number, const char* extension) {
     return fs::path("snapshots") / fmt::format("{:06d}.{}", number, extension);
 }
+fs::path walls_dataset(std::size_t number) { return fs::path("snapshots") / fmt::format("{:06d}_walls.vtp", number); }
 }  // namespace
 
-SnapshotSeries::SnapshotSeries(const fs::path& directory, const std::vector<double>& earlier_times)
+SnapshotSeries::SnapshotSeries(const fs::path& directory, const std::vector<double>& earlier_times, bool walls)
     : directory_(directory) {
     if (mpi::rank() == 0) {  // shared among ranks, rank 0 writes the snapshots
         particles_.emplace(directory / "particles.pvd");
         contacts_.emplace(directory / "contacts.pvd");
+        if (walls) walls_.emplace(directory / "walls.pvd");
         fs::create_directories(directory / "snapshots");
     }
     for (double time : earlier_times) add_to_indexes(time);
@@ -42,6 +44,7 @@ void SnapshotSeries::write(const Simulation& sim) {
         write_vtu_snapshot(directory_ / dataset(number, "vtu"), snapshot);
         write_xyz_snapshot(directory_ / dataset(number, "xyz"), snapshot);
         write_vtp_contact_network(directory_ / dataset(number, "vtp"), snapshot);
+        if (walls_) write_vtp_walls(directory_ / walls_dataset(number), snapshot);
     }
     add_to_indexes(sim.time());
 }
@@ -50,6 +53,7 @@ void SnapshotSeries::add_to_indexes(double time) {
     const std::size_t number = times_.size();
     if (particles_) particles_->add(time, dataset(number, "vtu"));
     if (contacts_) contacts_->add(time, dataset(number, "vtp"));
+    if (walls_) walls_->add(time, walls_dataset(number));
     times_.push_back(time);
 }
 

@@ -4,8 +4,9 @@
 //   snapshots/NNNNNN.vtu   the same for ParaView (vtk_output.hpp)
 //   snapshots/NNNNNN.xyz   the same as extended XYZ, for OVITO (xyz_output.hpp)
 //   snapshots/NNNNNN.vtp   the contact network: a line per contact with its normal force
-// and two ParaView time-series indexes in the run directory, particles.pvd
-// and contacts.pvd (open them in ParaView: File > Open). The CSV files are
+//   snapshots/NNNNNN_walls.vtp  the smooth walls, where a scenario has them
+// and the ParaView time-series indexes in the run directory, particles.pvd,
+// contacts.pvd and walls.pvd (open them in ParaView: File > Open). The CSV files are
 // read back for `tumble render`. A run shared among MPI ranks writes the same
 // files, gathered on rank 0 (write() is then collective).
 #pragma once
@@ -26,7 +27,9 @@ class SnapshotSeries {
 public:
     // earlier_times: the times of the snapshots a resumed run has already
     // written (their files are kept; the indexes are rewritten to list them).
-    explicit SnapshotSeries(const std::filesystem::path& directory, const std::vector<double>& earlier_times = {});
+    // walls: the scenario has smooth walls (Scenario::walls), drawn too.
+    explicit SnapshotSeries(const std::filesystem::path& directory, const std::vector<double>& earlier_times = {},
+                            bool walls = false);
     void write(const Simulation& sim);
     const std::vector<double>& times() const { return times_; }
 
@@ -34,7 +37,7 @@ private:
     void add_to_indexes(double time);
 
     std::filesystem::path directory_;
-    std::optional<PvdIndex> particles_, contacts_;  // on rank 0 only
+    std::optional<PvdIndex> particles_, contacts_, walls_;  // on rank 0 only
     std::vector<double> times_;
 };
 

@@ -276,6 +276,38 @@ void write_vtp_contact_network(const fs::path& file, const SnapshotData& snapsho
     f.write(file);
 }
 
+void write_vtp_walls(const fs::path& file, const SnapshotData& snapshot) {
+    std::vector<Vec3> points;
+    std::vector<std::int64_t> connectivity, offsets;
+    std::vector<std::int32_t> wall;
+    for (std::size_t k = 0; k < snapshot.walls.size(); ++k) {
+        const WallSurface& s = snapshot.walls[k];
+        const auto first = static_cast<std::int64_t>(points.size());
+        points.insert(points.end(), s.vertices.begin(), s.vertices.end());
+        for (const auto& t : s.triangles) {
+            for (std::uint32_t v : t) connectivity.push_back(first + v);
+            offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+            wall.push_back(static_cast<std::int32_t>(k));
+        }
+    }
+    VtkFile f("PolyData");
+    f.text("    <FieldData>\n");
+    time_field(f, snapshot);
+    f.strings("wall_names", snapshot.wall_names);
+    f.text(fmt::format("    </FieldData>\n    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
+                       "NumberOfStrips=\"0\" NumberOfPolys=\"{}\">\n",
+                       points.size(), wall.size()));
+    f.text("      <CellData Scalars=\"wall\">\n");
+    f.array("wall", wall);
+    f.text("      </CellData>\n      <Points>\n");
+    f.array("position", components(points), 3);
+    f.text("      </Points>\n      <Polys>\n");
+    f.array("connectivity", connectivity);
+    f.array("offsets", offsets);
+    f.text("      </Polys>\n");
+    f.write(file);
+}
+
 PvdIndex::PvdIndex(fs::path file) : file_(std::move(file)) { rewrite(); }
 
 void PvdIndex::add(double time, const fs::path& dataset_relative_path) {

@@ -21,6 +21,11 @@
 //                id_i, id_j (Int64), normal_force F_n (N, > 0 repulsive),
 //                overlap h (m), normal n (j -> i). Flat-wall contacts are not
 //                included (see tumble/sim/contact_network.hpp).
+//   NNNNNN_walls.vtp  the smooth walls (Scenario::walls), where their motions
+//                have carried them: VTK PolyData, triangles (walls/
+//                wall_surface.hpp; infinite planes and cylinders cut to the
+//                box). Cell data: wall (Int32, index into the scenario's walls,
+//                whose names are in the FieldData String array "wall_names").
 //   *.pvd        a ParaView collection: one DataSet entry per (time, file).
 //
 // Both data files carry the simulated time in FieldData "TimeValue" (s),
@@ -45,6 +50,9 @@ void write_vtu_snapshot(const std::filesystem::path& file, const Simulation& sim
 // Writes the contact network of `sim` to `file` (.vtp), or tumble::Error.
 void write_vtp_contact_network(const std::filesystem::path& file, const SnapshotData& snapshot);
 void write_vtp_contact_network(const std::filesystem::path& file, const Simulation& sim);
+
+// Writes the walls of a snapshot to `file` (.vtp), or tumble::Error.
+void write_vtp_walls(const std::filesystem::path& file, const SnapshotData& snapshot);
 
 // A ParaView collection file (.pvd) that indexes datasets by time. The
 // index is written at construction (empty) and rewritten completely at every

@@ -17,10 +17,12 @@
 #include "experiments/run_control.hpp"
 #include "io/config.hpp"
 #include "io/output.hpp"
+#include "io/snapshot_data.hpp"
 #include "io/toml_reader.hpp"
 #include "tumble/sim/contact_network.hpp"
 #include "tumble/sim/health.hpp"
 #include "tumble/sim/simulation.hpp"
+#include "tumble/walls/wall_surface.hpp"
 
 namespace tumble::python {
 
@@ -64,6 +66,29 @@ py::dict contacts(const Simulation& sim) {
                     py::arg("point") = array_of(point, copy), py::arg("normal") = array_of(normal, copy),
                     py::arg("overlap") = array_of(overlap, copy), py::arg("normal_force") = array_of(normal_force, copy),
                     py::arg("slip") = array_of(slip, copy), py::arg("angular_slip") = array_of(angular_slip, copy));
+}
+
+// The smooth walls (Scenario::walls) where their motions have carried them:
+// per wall its name, its surface as vertices (m, N x 3) and triangles
+// (vertex indices, M x 3), its load from the last step (force, N; torque
+// about where its point is, N m).
+py::list walls(const Simulation& sim) {
+    const std::vector<WallSurface> drawn = io::wall_surfaces(sim);
+    const std::vector<WallLoad> loads = sim.wall_loads();
+    py::list out;
+    const py::handle copy;
+    for (std::size_t k = 0; k < drawn.size(); ++k) {
+        const WallSurface& s = drawn[k];
+        std::vector<std::int64_t> flat;
+        for (const auto& t : s.triangles) flat.insert(flat.end(), t.begin(), t.end());
+        py::array triangles = array_of(flat, copy);
+        triangles = triangles.attr("reshape")(static_cast<py::ssize_t>(s.triangles.size()), 3);
+        out.append(py::dict(py::arg("name") = sim.scenario().walls[k].name, py::arg("vertices") = array_of(s.vertices, copy),
+                            py::arg("triangles") = triangles,
+                            py::arg("force") = array_of(std::vector<Vec3>{loads[k].force}, copy).attr("reshape")(3),
+                            py::arg("torque") = array_of(std::vector<Vec3>{loads[k].torque}, copy).attr("reshape")(3)));
+    }
+    return out;
 }
 
 // The contacts the last step recorded (Simulation::set_contact_recording),
@@ -309,12 +334,18 @@ the store to other memory).)");
              "j to i), overlap (m), normal_force (N, > 0 pushes apart), and their history: slip (the tangential "
              "displacement of i relative to j, m; eq. 8) and angular_slip (rad; eq. 9). Flat-wall contacts are "
              "not listed")
+        .def("walls", &walls,
+             "the smooth walls ([[wall]]) where their motions have carried them, one dict each: name, vertices "
+             "(m, N x 3) and triangles (vertex indices, M x 3) of its surface (infinite planes and cylinders cut to "
+             "the domain box), and the load of the last step: force (N, on the wall) and torque (N m, about where "
+             "its point is). Collective when shared among MPI ranks")
         .def("set_contact_recording", &Simulation::set_contact_recording, py::arg("on"),
              "Keep a record of every contact of each step, with its forces (contact_records); slows the force "
              "loop, which then runs on one thread")
         .def("contact_records", &contact_records,
              "The contacts of the last step as recorded (set_contact_recording), as columns (copies): id_i, id_j "
-             "(a flat wall is -1 - face, face = 2 axis + (0 at lo, 1 at hi)), normal (j to i), overlap (m), force "
+             "(a wall is -1 - slot: slot = 2 axis + (0 at lo, 1 at hi) for the box's flat walls, 6 + k for the "
+             "k-th [[wall]]), normal (j to i), overlap (m), force "
              "(on i; j feels -force, N), torque_i, torque_j (N m), normal_force (N), twisting_couple (N m), slip, "
              "angular_slip (the history after the step)")
         .def(

@@ -90,6 +90,35 @@ void expect_agreement(const tumble::Scenario& s, int steps, double R, double spe
 
 TEST(Slabs, WalledDrumAgreesWithOneProcess) { expect_agreement(short_drum(), 200, R2, 1.0, "short drum"); }
 
+// The short drum's grains in a smooth drum (a turning capped cylinder, no
+// wall spheres): the smooth walls' contact histories migrate with their
+// grains (one slot per wall and grain) and the loads on the walls are the
+// sums over the ranks: the same tolerances and reason, the loads within
+// 1e-8 of the largest, as the forces.
+TEST(Slabs, SmoothDrumAgreesWithOneProcess) {
+    tumble::Scenario s = short_drum();
+    std::erase_if(s.particles, [](const tumble::ParticleSpec& p) { return p.motion != tumble::free_motion; });
+    const double R = 0.04, half = 0.03;
+    const tumble::Wall mantle{.name = "mantle", .shape = tumble::WallShape::cylinder, .point = {0.0, 0.0, -half},
+                              .radius = R, .length = 2.0 * half, .material = 2, .motion = 0};
+    tumble::Wall cap{.name = "start", .shape = tumble::WallShape::disc, .point = mantle.point, .radius = R,
+                     .material = 2, .motion = 0};
+    s.walls = {mantle, cap};
+    cap.name = "end";
+    cap.point.z = half;
+    s.walls.push_back(cap);
+    expect_agreement(s, 200, R2, 1.0, "smooth drum");
+    Simulation alone(s, 1), shared(s, 1, Ranks::world);
+    alone.advance(200);
+    shared.advance(200);
+    const std::vector<tumble::WallLoad> a = alone.wall_loads(), b = shared.wall_loads();
+    ASSERT_EQ(a.size(), 3u);
+    double F = 0.0;
+    for (const tumble::WallLoad& l : a) F = std::max(F, tumble::norm(l.force));
+    EXPECT_GT(F, 0.0);  // the grains were thrown at the wall
+    for (std::size_t k = 0; k < a.size(); ++k) EXPECT_LE(tumble::norm(a[k].force - b[k].force), 1e-8 * F) << k;
+}
+
 // Hybrid: threads inside each rank (the chunks of the pair list sum in
 // another order again); the same tolerance.
 TEST(Slabs, TwoThreadsPerRankAgreeWithOneProcess) {

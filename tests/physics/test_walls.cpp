@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "io/config.hpp"
 #include "physics_helpers.hpp"
 #include "tumble/sim/time_step.hpp"
 #include "tumble/walls/wall.hpp"
@@ -57,6 +58,9 @@ TEST(WallShapes, TouchOfEachShapeAtHandWorkedPoints) {
     disc.radius = 1.0;
     expect_touch(wall_touch(disc, {0.3, 0.4, 0.25}), 0.25, {0, 0, 1}, 0.0, "disc, face");
     expect_touch(wall_touch(disc, {1.3, 0.0, 0.4}), 0.5, {0.6, 0, 0.8}, 0.0, "disc, rim");
+    disc.hole_radius = 0.5;  // an annulus
+    expect_touch(wall_touch(disc, {0.7, 0.0, -0.25}), 0.25, {0, 0, -1}, 0.0, "annulus, face from below");
+    expect_touch(wall_touch(disc, {0.2, 0.0, 0.4}), 0.5, {-0.6, 0, 0.8}, 0.0, "annulus, the hole's rim");
 
     Wall cylinder = shape(WallShape::cylinder);
     cylinder.radius = 1.0;
@@ -198,8 +202,8 @@ TEST(Walls, AGrainOnAMovingBeltEndsAtTwoSeventhsOfItsSpeed) {
     // here) it is 1 / (1 + 5/2 (L/R)^2), 2.5e-3 above 2/7. What is left is
     // the ringing spring's average over 100 ms.
     const double L = R1 - 0.5 * h, expected = 1.0 / (1.0 + 2.5 * (L / R1) * (L / R1));
-    report("the grain's speed / the belt's vs 1 / (1 + 5/2 (L/R)^2)", mean / V, expected, 5e-4);
-    EXPECT_LT(relative_difference(mean / V, expected), 5e-4);
+    report("the grain's speed / the belt's vs 1 / (1 + 5/2 (L/R)^2)", mean / V, expected, 1e-4);
+    EXPECT_LT(relative_difference(mean / V, expected), 1e-4);  // measured 9e-6
     EXPECT_GT(relative_difference(mean / V, 2.0 / 7.0), 1e-3);  // the lever's share shows
 }
 
@@ -249,6 +253,43 @@ TEST(Walls, TheLoadOnAWallIsTheWeightItCarries) {
     EXPECT_LT(std::hypot(loads[0].force.x, loads[0].force.y), 1e-9 * weight);
     // (0.02, 0, 0) x (0, 0, -m g) = (0, 0.02 m g, 0).
     EXPECT_LT(relative_difference(loads[0].torque.y, 0.02 * weight), 1e-6);
+}
+
+}  // namespace
+}  // namespace physics_test
+
+namespace physics_test {
+namespace {
+
+// examples/hopper.toml for 0.3 s: the beads, placed inside the cone by the
+// fill, flow out through the orifice and none passes through the mantle:
+// every bead still above the orifice lies inside the cone. A bead that had
+// passed through would overlap it by more than its radius; the deepest
+// contact measured, at the orifice's rim, is 0.10 of a radius (soft beads,
+// E = 5 MPa, squeezed by the flow against a sharp edge).
+TEST(Walls, TheExampleHopperDischargesThroughItsOrificeOnly) {
+    const tumble::io::RunConfig c = tumble::io::load_run_config(std::string(TUMBLE_SOURCE_DIR) + "/examples/hopper.toml");
+    const Wall& cone = c.scenario.walls.at(0);
+    ASSERT_EQ(cone.shape, WallShape::cone);
+    tumble::Simulation sim(c.scenario);
+    sim.advance(static_cast<std::int64_t>(0.3 / sim.dt()));
+    const tumble::ParticleStore& p = sim.particles();
+    std::size_t out = 0;
+    double deepest = 0.0;  // the largest overlap with the cone, over the radius
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        if (p.position[i].z < -p.radius[i]) {
+            ++out;
+            continue;
+        }
+        deepest = std::max(deepest, 1.0 - tumble::wall_touch(cone, p.position[i]).distance / p.radius[i]);
+    }
+    std::printf("  [measured] %zu of %zu beads out after 0.3 s; deepest overlap with the cone %.3g of a radius\n", out,
+                p.size(), deepest);
+    // Flowing: Beverloo's law, C rho_b sqrt(g) (D0 - k d)^(5/2) with C = 0.58,
+    // k = 1.5, rho_b = 0.6 rho, gives about 320 beads a second through the
+    // 16 mm orifice, about 100 in 0.3 s less the start.
+    EXPECT_GT(out, 30u);
+    EXPECT_LT(deepest, 0.25);
 }
 
 }  // namespace

@@ -196,3 +196,30 @@ def test_recorded_contact_forces_add_up_to_the_particle_forces():
     spheres = r["id_j"] >= 0
     np.add.at(total, r["id_j"][spheres], -r["force"][spheres])
     np.testing.assert_allclose(total, sim.forces[sim.by_id], rtol=1e-9, atol=1e-12)
+
+
+def test_walls_from_a_dict_with_their_surfaces_and_loads():
+    """A [[wall]] given in a dict: the grains fall onto a smooth floor inside a
+    cylinder; walls() draws both and the floor carries the grains' weight."""
+    scenario = tomllib.loads(SCENARIO)
+    scenario["domain"] = {"lo": [-0.025, -0.025, 0.0], "hi": [0.025, 0.025, 0.05]}  # no box walls
+    scenario["wall"] = [
+        {"name": "floor", "shape": "plane", "material": "material-1", "point": [0.0, 0.0, 0.0]},
+        {"name": "tube", "shape": "cylinder", "material": "material-1", "radius": 0.025, "point": [0.0, 0.0, 0.0],
+         "length": 0.05},
+    ]
+    scenario["particles"][0].update(lo=[-0.017, -0.017, 0.005], hi=[0.017, 0.017, 0.045])
+    sim = tumble.Simulation(tumble.Scenario.from_dict(scenario))
+    sim.run(duration=0.4)  # fallen and come to rest
+    floor, tube = sim.walls()
+    assert floor["name"] == "floor" and tube["name"] == "tube"
+    assert tube["vertices"].shape == (96, 3) and tube["triangles"].shape == (96, 3)
+    np.testing.assert_allclose(np.hypot(tube["vertices"][:, 0], tube["vertices"][:, 1]), 0.025)
+    assert floor["triangles"].shape == (2, 3)
+    # At rest the floor carries the weight not held by the tube's friction.
+    weight = 40 * 1000.0 * 4.0 / 3.0 * np.pi * 0.0036**3 * 9.81
+    assert -floor["force"][2] + -tube["force"][2] == pytest.approx(weight, rel=0.02)
+    assert -floor["force"][2] > 0.5 * weight
+    with pytest.raises(tumble.Error, match=r"<dict>: wall\[1\]\.radius: must be > 0"):
+        scenario["wall"][1]["radius"] = -1.0
+        tumble.Scenario.from_dict(scenario)

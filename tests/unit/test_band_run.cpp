@@ -146,7 +146,7 @@ TEST_F(BandRun, BadBandThresholdsAreRefusedNamingTheOption) {
 TEST_F(BandRun, SoFarAnalysesAStoppedRunWithoutFinishingIt) {
     const fs::path out = dir_ / "stopped";
     const auto r = tumble_run("drum -q --grains 300 --length 0.06 --omega 8 --revolutions 1 --samples 8 --snapshots 4 "
-                              "--arrangement bands --bands 3 --ends small --no-plot --stop-at-step 16000 --out " +
+                              "--arrangement bands --bands 3 --ends small --no-plot --stop-at-step 24700 --out " +
                               out.string());
     ASSERT_EQ(r.exit_code, 4) << r.output;  // stopped with a checkpoint
     EXPECT_NE(tumble_run("analyze " + out.string()).exit_code, 0);
@@ -212,11 +212,10 @@ TEST_F(BandRun, SoFarAnalysesAStoppedRunWithoutFinishingIt) {
     // then says that everything measured from them covers the later
     // revolutions only (BANDS.md, "Files written by the analysis").
     const tumble::io::Json all = tumble::io::parse_json(read_file(out / "summary.json"))["snapshots"];
-    // N = 0, 0.25, 0.5 and 0.75 (a quarter revolution is 0.2500219 of steps
-    // x dt; the run ends just below N = 1, without a snapshot).
-    EXPECT_EQ(all["count"], 4);
+    // N = 0, 0.25, 0.5, 0.75 and 1 (the run's last step falls on N = 1).
+    EXPECT_EQ(all["count"], 5);
     EXPECT_TRUE(all["from_start"].get<bool>());
-    EXPECT_NE(read_file(out / "summary.txt").find("particle snapshots of the rotation: 4, N = 0 to 0.7501 (every "
+    EXPECT_NE(read_file(out / "summary.txt").find("particle snapshots of the rotation: 5, N = 0 to 1 (every "
                                                   "0.25 revolutions)\n"),
               std::string::npos);
     const std::vector<fs::path> files = tumble::io::list_snapshot_csv(out);
@@ -226,7 +225,7 @@ TEST_F(BandRun, SoFarAnalysesAStoppedRunWithoutFinishingIt) {
     const auto later = tumble_run("analyze " + out.string());
     ASSERT_EQ(later.exit_code, 0) << later.output;
     const tumble::io::Json part = tumble::io::parse_json(read_file(out / "summary.json"));
-    EXPECT_EQ(part["snapshots"]["count"], 2);
+    EXPECT_EQ(part["snapshots"]["count"], 3);
     EXPECT_FALSE(part["snapshots"]["from_start"].get<bool>());
     EXPECT_NEAR(part["snapshots"]["first_revolution"].get<double>(), 0.5, 1e-4);
     EXPECT_NE(later.output.find("those before N = 0.5 are missing"), std::string::npos) << later.output;

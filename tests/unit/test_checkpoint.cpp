@@ -313,8 +313,8 @@ TEST(CheckpointFormat, BothKindsOfFormat4Load) {
         EXPECT_EQ(c.state.ranks, 1) << name;
         EXPECT_TRUE(c.state.slabs.cuts.empty()) << name;
     }
-    // And what tumble writes now is format 6.
-    EXPECT_EQ(io::checkpoint_format_version, 6u);
+    // And what tumble writes now is format 7.
+    EXPECT_EQ(io::checkpoint_format_version, 7u);
 }
 
 }  // namespace

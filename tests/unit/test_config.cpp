@@ -649,3 +649,49 @@ TEST(ConfigWalls, BadWallsAreRefusedNamingTheKey) {
                      "edge = [0.0, 0.0, 1.0]\n",
                  "wall[0].edge", "must not be parallel to the normal");
 }
+
+// A random fill and a lattice over a box around a cone fill the cone only:
+// every grain clear of the wall, on its inside. A grain listed beyond the
+// wall is refused naming the wall.
+TEST(ConfigWalls, FillsStayClearOfTheWallsAndAGrainBeyondOneIsRefused) {
+    const std::string hopper = replace(replace(base, "lo = [-0.02, -0.02, -0.02]", "lo = [-0.05, -0.05, -0.05]"),
+                                       "hi = [0.02, 0.02, 0.02]", "hi = [0.05, 0.05, 0.05]") + R"(
+[[wall]]
+name = "hopper"
+shape = "cone"
+material = "material-1"
+point = [0.0, 0.0, -0.02]
+radius = 0.01
+end_radius = 0.04
+length = 0.06
+
+[[particles]]
+kind = "lattice"
+material = "material-1"
+origin = [-0.045, -0.045, 0.02]
+counts = [13, 13, 1]
+spacing = 0.0075
+
+[[particles]]
+kind = "random_fill"
+material = "material-1"
+lo = [-0.05, -0.05, -0.02]
+hi = [0.05, 0.05, 0.04]
+count = 60
+)";
+    const RunConfig c = parse(hopper);
+    const tumble::Wall& cone = c.scenario.walls.at(0);
+    const std::size_t lattice_sites = 13 * 13;
+    ASSERT_GT(c.scenario.particles.size(), 2u + 60u);
+    const std::size_t from_lattice = c.scenario.particles.size() - 62;
+    // The cone is 0.03 m in radius at the lattice's height (z = 0.02): of the
+    // 13 x 13 sites 7.5 mm apart about 40 lie clear inside it.
+    EXPECT_GT(from_lattice, 20u);
+    EXPECT_LT(from_lattice, lattice_sites / 2);
+    for (std::size_t i = 2; i < c.scenario.particles.size(); ++i) {
+        const tumble::ParticleSpec& p = c.scenario.particles[i];
+        EXPECT_GE(tumble::wall_touch(cone, p.position).distance, p.radius) << "particle " << i;
+    }
+    expect_error(replace(hopper, "{ position = [0.0041, 0.0, 0.0],", "{ position = [0.03, 0.0, 0.0],"),
+                 "particles[0].particles[1]", "overlaps wall \"hopper\"");
+}

@@ -36,8 +36,12 @@ protected:
         return tumble::test_support::run_command(std::string(TUMBLE_BINARY) + " " + arguments);
     }
     fs::path box() {
+        // With a smooth wall (a plate over the box), so that its drawings are written too.
         return write("box.toml", tumble::test_support::walled_box_scenario(
-                                     "0.02", "", "[output]\ntime_series_interval = 0.001\nsnapshot_interval = 0.01\n"));
+                                     "0.02", "",
+                                     "[[wall]]\nname = \"lid\"\nshape = \"disc\"\nmaterial = \"m\"\n"
+                                     "point = [0.0, 0.0, 0.05]\nradius = 0.01\n"
+                                     "[output]\ntime_series_interval = 0.001\nsnapshot_interval = 0.01\n"));
     }
     static std::set<std::string> entries(const fs::path& dir) {
         std::set<std::string> names;

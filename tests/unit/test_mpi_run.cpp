@@ -25,7 +25,7 @@ protected:
         ScratchTest::SetUp();
         if (run_command("mpirun --version").exit_code != 0) GTEST_SKIP() << "no mpirun";
         if (!tumble::mpi::built_with_mpi()) GTEST_SKIP() << "built without MPI (TUMBLE_MPI=OFF)";
-        // The demonstration tray of examples/demo.toml, 0.1 s (2,516 steps:
+        // The demonstration tray of examples/demo.toml, 0.1 s (3,940 steps:
         // grains pour, collide and settle), no snapshots.
         std::string text = read_file(std::string(TUMBLE_SOURCE_DIR) + "/examples/demo.toml");
         text.replace(text.find("duration = 0.5 "), 15, "duration = 0.1 ");
@@ -77,7 +77,7 @@ TEST_F(MpiRun, OneProcessRunGoesOnOnTwoRanks) {
     r = run_command(mpirun(2, "resume -q " + moved.string()));
     ASSERT_EQ(r.exit_code, 0) << r.output;
     const std::string a = read_file(whole / "time_series.csv"), b = read_file(moved / "time_series.csv");
-    const std::size_t rows_to_stop = 1 + 1000 / 126 + 1;  // header, samples every 126 steps up to step 1000
+    const std::size_t rows_to_stop = 1 + 1000 / 197 + 1;  // header, samples every 197 steps up to step 1000
     std::size_t at = 0;
     for (std::size_t k = 0; k < rows_to_stop; ++k) at = a.find('\n', at) + 1;
     EXPECT_EQ(a.substr(0, at), b.substr(0, at));

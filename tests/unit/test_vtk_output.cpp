@@ -373,3 +373,50 @@ TEST_F(VtkOutput, EmptyPvdIsValid) {
     if (::testing::Test::HasFailure()) return;
     EXPECT_EQ(r["empty entries"], std::vector<double>{0.0}) << raw;
 }
+
+// ---- The smooth walls ----------------------------------------------------
+
+// A capped cylinder turning with a motion and a fixed plane, drawn where the
+// motion has carried them: VTK reads every triangle, the wall each belongs
+// to and the walls' names, and the points are those of wall_surfaces().
+TEST_F(VtkOutput, WallsReadBackExactlyByVtk) {
+    tumble::Scenario s = small_scenario(true);
+    s.motions.push_back({{}, {0.0, 0.0, 1.0}, 3.0, {}});
+    const auto turning = static_cast<std::int32_t>(s.motions.size() - 1);
+    tumble::Wall drum{.name = "drum", .shape = tumble::WallShape::cylinder, .point = {0.0, 0.0, -0.1},
+                      .radius = 0.12, .length = 0.2, .motion = turning};
+    tumble::Wall floor{.name = "floor", .shape = tumble::WallShape::plane, .point = {0.0, 0.0, -0.1}};
+    tumble::Wall cap{.name = "cap", .shape = tumble::WallShape::disc, .point = {0.0, 0.0, -0.1}, .radius = 0.12,
+                     .motion = turning};
+    s.walls = {drum, floor, cap};
+    tumble::Simulation sim(s);
+    sim.advance(10);
+    const fs::path vtp = dir_ / "walls.vtp";
+    const tumble::io::SnapshotData snapshot = tumble::io::snapshot_of(sim);
+    tumble::io::write_vtp_walls(vtp, snapshot);
+    std::string raw;
+    Readout r = read_with_vtk(dir_, {{"w", vtp}}, raw);
+    if (::testing::Test::HasFailure()) return;
+    ASSERT_EQ(r.count("vtk_messages"), 0u) << raw;
+    const std::vector<tumble::WallSurface> drawn = tumble::io::wall_surfaces(sim);
+    ASSERT_EQ(drawn.size(), 3u);
+    // 48 quadrilaterals around the mantle, 2 triangles for the plane, a fan of 48 for the disc.
+    EXPECT_EQ(drawn[0].triangles.size(), 96u);
+    EXPECT_EQ(drawn[1].triangles.size(), 2u);
+    EXPECT_EQ(drawn[2].triangles.size(), 48u);
+    std::vector<double> points, wall;
+    for (std::size_t k = 0; k < drawn.size(); ++k) {
+        for (const tumble::Vec3& v : drawn[k].vertices) points.insert(points.end(), {v.x, v.y, v.z});
+        wall.insert(wall.end(), drawn[k].triangles.size(), static_cast<double>(k));
+    }
+    EXPECT_EQ(r["w points"], points);
+    EXPECT_EQ(r["w cell:wall"], wall);
+    EXPECT_EQ(r["w cell_types"], std::vector<double>(wall.size(), 5.0));  // VTK_TRIANGLE
+    EXPECT_EQ(r["w field:TimeValue"], std::vector<double>{sim.time()});
+    EXPECT_NE(raw.find("w strings:wall_names drum floor cap\n"), std::string::npos) << raw;
+    // The mantle's first vertex, at (0, -R, -0.1) when the motion began, has
+    // turned by 3 rad/s x t about z.
+    const double angle = 3.0 * sim.time();
+    EXPECT_NEAR(drawn[0].vertices[0].x, 0.12 * std::sin(angle), 1e-15);
+    EXPECT_NEAR(drawn[0].vertices[0].y, -0.12 * std::cos(angle), 1e-15);
+}

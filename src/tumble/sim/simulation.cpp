@@ -772,6 +772,7 @@ Observables Simulation::observe() const {
             if (scenario_.model.elastic) o.contact_energy += hertz_energy(c.E_star, a, overlap);
             if (scenario_.model.attraction) o.contact_energy += attraction_energy(c.attraction, a, overlap);
         }
+    o.wall_loads = wall_loads();  // collective when shared
     if (slabs_) {  // the sums of every rank's own spheres and pairs
         std::vector<double> sums;
         for (const MaterialEnergies& e : o.per_material)

@@ -31,6 +31,12 @@ struct MaterialEnergies {
     double kinetic_rotational = 0.0;     // J
 };
 
+// The load the grains put on a wall: force (N) and torque (N m) about where
+// the wall's point is.
+struct WallLoad {
+    Vec3 force, torque;
+};
+
 struct Observables {
     double time = 0.0;        // s
     std::int64_t step = 0;
@@ -41,17 +47,13 @@ struct Observables {
     std::size_t contacts = 0;
     double max_overlap_ratio = 0.0;      // largest h / min(R_i, R_j)
     std::int64_t neighbor_builds = 0;
+    std::vector<WallLoad> wall_loads;    // per wall of Scenario::walls (Simulation::wall_loads())
 };
 
 // The id that stands for a wall in a ContactRecord: slot = 2 axis + (0 at
 // lo, 1 at hi) for the box's flat walls, 6 + k for Scenario::walls[k].
 constexpr std::int64_t wall_id(std::size_t slot) { return -1 - static_cast<std::int64_t>(slot); }
 
-// The load the grains put on a wall: force (N) and torque (N m) about where
-// the wall's point is.
-struct WallLoad {
-    Vec3 force, torque;
-};
 
 // Where a simulation runs: on this process alone, or shared among the ranks
 // of the MPI world, a slab of the domain each (sim/slabs.hpp; with one rank
@@ -119,6 +121,9 @@ public:
     // ranks. A state of several ranks restores only on as many.
     SimulationState capture() const;
     void restore(SimulationState state);
+
+    // Where prescribed motion k has carried its spheres and walls at time().
+    MotionNow motion_now(std::size_t k) const { return motions_now(time_).at(k); }
 
     // Replace prescribed motion k from now on; its particles continue from
     // where they are.

@@ -28,7 +28,7 @@ struct MotionClock {
 struct SimulationState {
     ParticleStore particles;                 // every field, in array order
     NeighborState neighbors;
-    std::vector<ContactHistory> wall_history;  // 6 x global id + face; empty without walls
+    std::vector<ContactHistory> wall_history;  // slots x global id + slot (Simulation::wall_slots()); empty without walls
     std::vector<MotionClock> motions;
     double dt = 0.0;                         // s
     double time = 0.0;                       // s

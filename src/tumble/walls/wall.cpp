@@ -85,6 +85,7 @@ std::string wall_problem(const Wall& w) {
             return {};
         case WallShape::disc:
             if (!(w.radius > 0.0) || !std::isfinite(w.radius)) return "its radius must be positive and finite";
+            if (!(w.hole_radius >= 0.0 && w.hole_radius < w.radius)) return "its hole_radius must lie in [0, radius)";
             return {};
         case WallShape::cylinder:
             if (!(w.radius > 0.0) || !std::isfinite(w.radius)) return "its radius must be positive and finite";
@@ -126,13 +127,16 @@ WallTouch wall_touch(const Wall& w, const Vec3& x) {
             const double c = dot(d, w.normal);
             const Vec3 in_plane = d - c * w.normal;
             const double rho = norm(in_plane);
-            if (rho <= w.radius) {  // across its face, from either side
+            if (rho <= w.radius && rho >= w.hole_radius) {  // across its face, from either side
                 WallTouch t;
                 t.distance = std::abs(c);
                 t.n = c < 0.0 ? -w.normal : w.normal;
                 return t;
             }
-            return from_edge(d - (w.radius / rho) * in_plane, w.normal);  // from its rim
+            // From the nearer rim: the outer one, or the hole's.
+            const double rim = rho > w.radius ? w.radius : w.hole_radius;
+            const Vec3 out = rho > 0.0 ? (1.0 / rho) * in_plane : any_normal(w.normal);
+            return from_edge(d - rim * out, w.normal);
         }
         case WallShape::cylinder:
             return revolution_touch(w.point, w.normal, w.radius, w.radius, w.length, w.inside, x);

@@ -29,7 +29,7 @@ enum class WallShape : std::uint8_t { plane, rectangle, disc, cylinder, cone };
 inline constexpr std::array<Keyword<WallShape>, 5> wall_shapes{{
     {"plane", WallShape::plane, "an infinite plane; the grains on the side its normal points to"},
     {"rectangle", WallShape::rectangle, "a rectangle, touched from both sides and at its edges"},
-    {"disc", WallShape::disc, "a disc, touched from both sides and at its rim"},
+    {"disc", WallShape::disc, "a disc or an annulus, touched from both sides and at its rims"},
     {"cylinder", WallShape::cylinder, "a cylinder's mantle, grains inside or outside, open at its ends"},
     {"cone", WallShape::cone, "a cone's (or a truncated cone's) mantle, grains inside or outside, open at its ends"},
 }};
@@ -52,6 +52,7 @@ struct Wall {
     double half_width = 0.0;   // rectangle: half its side along edge
     double half_height = 0.0;  // rectangle: half its side along normal x edge
     double radius = 0.0;       // disc; cylinder; cone at `point`
+    double hole_radius = 0.0;  // disc: an annulus with a hole this wide about its centre (a silo's orifice)
     double end_radius = 0.0;   // cone at point + length normal
     // cylinder, cone: how far the wall reaches along the axis from `point`;
     // a cylinder may be infinite (then it has no rims).

@@ -85,16 +85,18 @@ WallSurface wall_surface(const PlacedWall& placed, const Domain& bounds, int seg
             add_quad(s, 0, 1, 2, 3);
             break;
         }
-        case WallShape::disc: {  // a fan about the centre
-            s.vertices.push_back(w.point);
-            const auto n = static_cast<std::uint32_t>(segments);
-            for (std::uint32_t k = 0; k < n; ++k) {
+        case WallShape::disc:
+            if (w.hole_radius > 0.0) {  // an annulus: a flat ring of quadrilaterals
+                add_revolution(s, w.point, w.normal, 0.0, w.hole_radius, 0.0, w.radius, segments);
+                break;
+            }
+            s.vertices.push_back(w.point);  // a fan about the centre
+            for (std::uint32_t k = 0, n = static_cast<std::uint32_t>(segments); k < n; ++k) {
                 const double phi = 2.0 * pi * k / segments;
                 s.vertices.push_back(w.point + w.radius * (std::cos(phi) * e1 + std::sin(phi) * e2));
                 s.triangles.push_back({0, 1 + k, 1 + (k + 1) % n});
             }
             break;
-        }
         case WallShape::cylinder: {
             double s0 = 0.0, s1 = w.length;
             if (std::isinf(w.length)) {  // across the box
