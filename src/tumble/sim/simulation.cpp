@@ -19,8 +19,6 @@ namespace tumble {
 
 namespace {
 
-double default_skin(const Scenario& s) { return 0.2 * s.largest_radius(); }
-
 // The axis a domain is cut along when shared among ranks: its longest (a
 // drum's rotation axis z; z, then y, on a tie).
 int decomposition_axis(const Domain& d) {
@@ -41,7 +39,7 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
     time_step_report_ = assess_time_step(scenario_);
     dt_ = time_step_report_.dt;
     particles_ = make_particle_store(scenario_);
-    const double skin = scenario_.neighbor.skin > 0.0 ? scenario_.neighbor.skin : default_skin(scenario_);
+    const double skin = neighbor_skin(scenario_);
     const auto& walls = scenario_.domain.walls;
     if (walls[0] || walls[1] || walls[2]) wall_history_.resize(6 * particles_.size());  // by global id
     if (ranks == Ranks::world && mpi::size() > 1) {
