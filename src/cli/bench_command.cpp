@@ -199,7 +199,7 @@ int long_drum_bench(const BenchOptions& options) {
     io::check_drum_settings(d, "command line");
     const int threads = resolve_threads(options.threads);
     check_memory(drum_memory(d.geometry, static_cast<double>(d.grain_count()), threads, options.skin),
-                 memory_limit_bytes(0.0), "command line");
+                 memory_limit_bytes(0.0), "command line", "--max-memory GIB");
     const double resident_before = resident_bytes();
     const fs::path cache = options.cache.empty() ? default_cache() : options.cache;
     bool made = false;

@@ -154,12 +154,13 @@ private:
 }  // namespace
 
 int run_command(const RunOptions& options) {
-    // Everything is read and checked before anything is written.
-    io::RunConfig config = io::load_run_config(options.scenario_file);
-    if (!options.output_directory.empty()) config.output.directory = options.output_directory;
+    // Everything is read and checked before anything is written, the memory
+    // the run will need before the reader makes any sphere.
     const int threads = resolve_threads(options.threads);
-    check_memory(scenario_memory(config.scenario, threads), memory_limit_bytes(options.max_memory_gib),
-                 options.scenario_file);
+    io::RunConfig config = io::load_run_config(
+        options.scenario_file,
+        scenario_memory_check(threads, memory_limit_bytes(options.max_memory_gib), "--max-memory GIB"));
+    if (!options.output_directory.empty()) config.output.directory = options.output_directory;
     const bool shared = mpi::size() > 1;
     Simulation sim(std::move(config.scenario), threads, shared ? Ranks::world : Ranks::one);
     const double dt = sim.dt();

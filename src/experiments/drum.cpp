@@ -446,7 +446,8 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
 
     const int threads = resolve_threads(options.threads);
     check_memory(drum_memory(s.geometry, static_cast<double>(s.grain_count()), threads, s.skin),
-                 memory_limit_bytes(options.max_memory_gib), "command line");  // what the machine cannot do, first
+                 memory_limit_bytes(options.max_memory_gib), "command line",  // what the machine cannot do, first
+                 "--max-memory GIB");
     check_drum_size(s.geometry, static_cast<double>(s.grain_count()), options.large_drum, "command line");
     DrumSetup setup = build_drum(s, options.allow_unsafe_dt);
     Simulation sim(std::move(setup.scenario), threads, mpi::size() > 1 ? Ranks::world : Ranks::one);

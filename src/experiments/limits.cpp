@@ -73,19 +73,24 @@ std::string thread_count_problem(double value, const std::string& text) {
                : "must be a whole number >= 0 (0: every core), got " + text;
 }
 
-MemoryNeed scenario_memory(const Scenario& s, int threads) {
-    double r_min = INFINITY, r_max = 0.0;
-    for (const ParticleSpec& p : s.particles) r_min = std::min(r_min, p.radius), r_max = std::max(r_max, p.radius);
-    const double n = static_cast<double>(s.particles.size());
+MemoryNeed scenario_memory(const io::RunConfig& settings, const io::ParticleCount& count, int threads) {
+    const Scenario& s = settings.scenario;
+    const double n = static_cast<double>(count.spheres), r_min = count.smallest_radius, r_max = count.largest_radius;
     const double skin = s.neighbor.skin > 0.0 ? s.neighbor.skin : 0.2 * r_max;
     // Pairs within reach in a dense packing (solid fraction 0.64), each stored once.
     const double pairs = std::min(0.5 * (n - 1.0), 0.5 * 0.64 * std::pow((2.0 * r_max + skin) / r_min, 3));
     const bool box_walls = s.domain.walls[0] || s.domain.walls[1] || s.domain.walls[2];
     const double wall_slots = box_walls || !s.walls.empty() ? 6.0 + static_cast<double>(s.walls.size()) : 0.0;
     MemoryNeed need{estimate(n, pairs, wall_slots, threads),
-                    fmt::format("{} spheres, {:.3g} neighbour pairs each", s.particles.size(), pairs)};
+                    fmt::format("{} spheres ({}), {:.3g} neighbour pairs each", count.spheres, count.keys, pairs)};
     if (pairs > 3.0 && s.neighbor.skin > 0.0) need.driver += " (neighbor.skin)";
     return need;
+}
+
+io::ParticleCheck scenario_memory_check(int threads, double limit_bytes, const std::string& option) {
+    return [=](const io::RunConfig& settings, const io::ParticleCount& count) {
+        check_memory(scenario_memory(settings, count, threads), limit_bytes, settings.source.string(), option);
+    };
 }
 
 double drum_wall_spheres(const DrumGeometry& g) {
@@ -186,11 +191,11 @@ double memory_limit_bytes(double gib_limit) {
     return limit;
 }
 
-void check_memory(const MemoryNeed& need, double limit_bytes, const std::string& source) {
+void check_memory(const MemoryNeed& need, double limit_bytes, const std::string& source, const std::string& option) {
     if (!(need.bytes <= limit_bytes))
         throw Error(fmt::format("{}: the run would need about {} of memory for {}, more than the limit of {} "
-                                "(--max-memory GIB; default half the machine's memory)",
-                                source, gib(need.bytes), need.driver, gib(limit_bytes)));
+                                "({}; default half the machine's memory)",
+                                source, gib(need.bytes), need.driver, gib(limit_bytes), option));
 }
 
 }  // namespace tumble::experiments

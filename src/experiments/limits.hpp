@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "io/config.hpp"
 #include "tumble/setup/drum.hpp"
 #include "tumble/sim/scenario.hpp"
 #include "tumble/sim/time_step.hpp"
@@ -42,7 +43,9 @@ struct MemoryNeed {
     double bytes = 0.0;
     std::string driver;  // the option or key that makes it large, with the count
 };
-MemoryNeed scenario_memory(const Scenario& s, int threads);
+// A scenario's from its settings and its spheres as its reader counts them
+// (io::ParticleCount), before any is made.
+MemoryNeed scenario_memory(const io::RunConfig& settings, const io::ParticleCount& count, int threads);
 // skin: the drum's neighbour skin, m (0: automatic).
 MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads, double skin);
 
@@ -81,7 +84,14 @@ void check_time_step(const TimeStepReport& t, const std::string& source);
 // process's address-space limit, ulimit -v, if lower).
 double memory_limit_bytes(double gib);
 // tumble::Error "SOURCE: ..." with the estimate, its driver and the limit if
-// need > limit; `source` is the input file or "command line".
-void check_memory(const MemoryNeed& need, double limit_bytes, const std::string& source);
+// need > limit; `source` is the input file or "command line", `option` the
+// setting of the limit ("--max-memory GIB").
+void check_memory(const MemoryNeed& need, double limit_bytes, const std::string& source, const std::string& option);
+
+// The scenario reader's check (io::ParticleCheck) of the memory a run of
+// the scenario on `threads` threads will need, against limit_bytes: a
+// scenario of more is refused before any of its spheres is made (a lattice
+// of 10^7 spheres in a second, not after building gigabytes).
+io::ParticleCheck scenario_memory_check(int threads, double limit_bytes, const std::string& option);
 
 }  // namespace tumble::experiments

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <optional>
@@ -17,6 +18,7 @@
 #include "io/names.hpp"
 #include "io/toml_reader.hpp"
 #include "io/particle_csv.hpp"
+#include "tumble/sim/health.hpp"
 #include "tumble/sim/time_step.hpp"
 #include "tumble/walls/wall.hpp"
 #include "tumble/setup/generators.hpp"
@@ -67,7 +69,8 @@ struct Block {
 
 class ScenarioReader {
 public:
-    ScenarioReader(const fs::path& name, const fs::path& base_dir) : r_(name), base_dir_(base_dir) {}
+    ScenarioReader(const fs::path& name, const fs::path& base_dir, ParticleCheck check)
+        : r_(name), base_dir_(base_dir), check_(std::move(check)) {}
 
     RunConfig read(const toml::table& root) {
         r_.only_keys(root, "", {"simulation", "time_step", "domain", "model", "neighbor", "material", "pair",
@@ -100,6 +103,15 @@ private:
                 r_.integer(*n, join(p, "seed"), 0, std::numeric_limits<std::int64_t>::max()));
         s().gravity = r_.vec3(t, p, "gravity").value_or(Vec3{});
         max_initial_overlap_ = r_.number(t, p, "max_initial_overlap", Bound::non_negative, 0.05);
+        // A start the run's own blow-up check would stop at (its overlaps
+        // relax within a few steps, between two checks: the outcome would
+        // depend on where the checks fall).
+        const double blow_up = HealthLimits{}.max_overlap_ratio;
+        if (max_initial_overlap_ > blow_up)
+            r_.fail(join(p, "max_initial_overlap"),
+                    fmt::format("must be at most {}, the overlap at which the blow-up check stops a run, got {}",
+                                show(blow_up), show(max_initial_overlap_)),
+                    t.get("max_initial_overlap"));
     }
 
     void read_materials(const toml::table& root) {
@@ -201,6 +213,10 @@ private:
             m.axis_direction = r_.vec3(t, p, "axis_direction").value_or(Vec3{0.0, 0.0, 1.0});
             if (!(norm(m.axis_direction) > 0.0))
                 r_.fail(join(p, "axis_direction"), "must not be the zero vector", t.get("axis_direction"));
+            if (!std::isfinite(norm(m.axis_direction)))
+                r_.fail(join(p, "axis_direction"),
+                        "its length overflows; it need not be normalised ([1, 1, 0] is the axis of [1e308, 1e308, 0])",
+                        t.get("axis_direction"));
             m.angular_velocity = r_.number(t, p, "angular_velocity", Bound::any, 0.0);
             m.velocity = r_.vec3(t, p, "velocity").value_or(Vec3{});
             s().motions.push_back(m);
@@ -214,11 +230,17 @@ private:
         Domain& d = s().domain;
         d.lo = r_.required_vec3(t, p, "lo");
         d.hi = r_.required_vec3(t, p, "hi");
-        for (int k = 0; k < 3; ++k)
+        for (int k = 0; k < 3; ++k) {
             if (!(d.hi[k] > d.lo[k]))
                 r_.fail(at(join(p, "hi"), k),
                         fmt::format("must exceed lo along {} ({} <= {})", "xyz"[k], show(d.hi[k]), show(d.lo[k])),
                         t.get("hi"));
+            if (!std::isfinite(d.hi[k] - d.lo[k]))
+                r_.fail(at(join(p, "hi"), k),
+                        fmt::format("the box's length along {}, hi - lo = {} - ({}), overflows", "xyz"[k],
+                                    show(d.hi[k]), show(d.lo[k])),
+                        t.get("hi"));
+        }
         if (const toml::node* n = t.get("periodic")) d.periodic = r_.bool3(*n, join(p, "periodic"));
         if (const toml::node* n = t.get("walls")) d.walls = r_.bool3(*n, join(p, "walls"));
         for (int k = 0; k < 3; ++k)
@@ -433,10 +455,24 @@ private:
         }
     }
 
-    // Spheres that the blocks still to be read may add.
-    std::int64_t room() const { return max_particles - static_cast<std::int64_t>(config_.scenario.particles.size()); }
+    // A [[particles]] block read and checked, its spheres not yet made: how
+    // many it makes and of which radii, from its keys. A list's and a CSV
+    // file's particles are read already; a generator runs in make().
+    struct PlannedBlock {
+        Block info;
+        BlockDefaults defaults;
+        std::size_t count = 0;
+        std::string count_key;  // the key that sets the count
+        double smallest_radius = 0.0, largest_radius = 0.0;
+        std::vector<ParticleSpec> particles;                   // a list's or a CSV file's
+        std::function<std::vector<ParticleSpec>()> make;       // a generator's
+    };
 
-    std::vector<ParticleSpec> read_lattice(const toml::table& t, const std::string& p, const BlockDefaults& d) const {
+    // Spheres that the blocks still to be read may add.
+    std::int64_t room() const { return max_particles - static_cast<std::int64_t>(planned_); }
+
+    void plan_lattice(const toml::table& t, const std::string& p, PlannedBlock& plan) const {
+        const BlockDefaults& d = plan.defaults;
         const std::int32_t material = required_material(t, p, d);
         const Vec3 origin = r_.required_vec3(t, p, "origin");
         const std::string ckey = join(p, "counts");
@@ -450,14 +486,20 @@ private:
                 r_.fail(ckey, fmt::format("more than {} spheres in the scenario", max_particles), t.get("counts"));
         }
         const double spacing = r_.required_number(t, p, "spacing", Bound::positive);
-        std::vector<ParticleSpec> out = lattice(origin, counts, spacing, default_radius(d, material), material, s_const().walls);
-        if (out.empty()) r_.fail(p, "every site of the lattice touches or lies beyond a [[wall]]", &t);
-        apply_defaults(out, d);
-        return out;
+        const double radius = default_radius(d, material);
+        plan.count = static_cast<std::size_t>(total);
+        plan.count_key = ckey;
+        plan.smallest_radius = plan.largest_radius = radius;
+        plan.make = [this, &t, p, origin, counts, spacing, radius, material, d] {
+            std::vector<ParticleSpec> out = lattice(origin, counts, spacing, radius, material, s_const().walls);
+            if (out.empty()) r_.fail(p, "every site of the lattice touches or lies beyond a [[wall]]", &t);
+            apply_defaults(out, d);
+            return out;
+        };
     }
 
-    std::vector<ParticleSpec> read_random_fill(const toml::table& t, const std::string& p, const BlockDefaults& d,
-                                               std::size_t block) const {
+    void plan_random_fill(const toml::table& t, const std::string& p, std::size_t block, PlannedBlock& plan) const {
+        const BlockDefaults& d = plan.defaults;
         const std::int32_t material = required_material(t, p, d);
         const Vec3 lo = r_.required_vec3(t, p, "lo");
         const Vec3 hi = r_.required_vec3(t, p, "hi");
@@ -495,18 +537,25 @@ private:
                                 "cannot exceed about 0.38 (enlarge the region or ask for fewer)",
                                 count, show(radius_min), fraction),
                     t.get("count"));
-        std::vector<ParticleSpec> out;
-        try {
-            out = random_fill(lo, hi, count, radius_min, radius_max, material,
-                              block_seed(config_.seed, block, Stream::placement), config_.scenario.particles,
-                              config_.scenario.walls);
-        } catch (const ConfigError&) {
-            throw;
-        } catch (const tumble::Error& e) {
-            r_.fail(p, e.what(), &t);
-        }
-        apply_defaults(out, d);
-        return out;
+        plan.count = count;
+        plan.count_key = join(p, "count");
+        plan.smallest_radius = radius_min;
+        plan.largest_radius = radius_max;
+        // Placed among the particles of the blocks before it, made by then, clear of the walls.
+        const std::uint64_t seed = block_seed(config_.seed, block, Stream::placement);
+        plan.make = [this, &t, p, lo, hi, count, radius_min, radius_max, material, seed, d] {
+            std::vector<ParticleSpec> out;
+            try {
+                out = random_fill(lo, hi, count, radius_min, radius_max, material, seed, config_.scenario.particles,
+                                  config_.scenario.walls);
+            } catch (const ConfigError&) {
+                throw;
+            } catch (const tumble::Error& e) {
+                r_.fail(p, e.what(), &t);
+            }
+            apply_defaults(out, d);
+            return out;
+        };
     }
 
     std::vector<ParticleSpec> read_list(const toml::table& t, const std::string& p, const BlockDefaults& d) const {
@@ -514,6 +563,8 @@ private:
         r_.required(t, p, "particles");
         const auto entries = r_.tables(t, p, "particles");
         if (entries.empty()) r_.fail(lkey, "the list is empty", t.get("particles"));
+        if (static_cast<std::int64_t>(entries.size()) > room())
+            r_.fail(lkey, fmt::format("more than {} spheres in the scenario", max_particles), t.get("particles"));
         std::vector<ParticleSpec> out;
         for (std::size_t i = 0; i < entries.size(); ++i) {
             const toml::table& e = *entries[i];
@@ -569,19 +620,27 @@ private:
         defaults.angular_velocity = d.angular_velocity;
         defaults.radius = d.radius;
         info.csv_file = file;
-        return read_particle_csv(file, config_.scenario.materials, motion_names_, defaults, &info.csv_lines);
+        std::vector<ParticleSpec> out =
+            read_particle_csv(file, config_.scenario.materials, motion_names_, defaults, &info.csv_lines);
+        if (static_cast<std::int64_t>(out.size()) > room())
+            r_.fail(fkey, fmt::format("more than {} spheres in the scenario", max_particles), &n);
+        return out;
     }
 
+    // Every block is read and checked, and its spheres counted, before the
+    // check_ (the memory a run will need) and before any sphere is made.
     void read_particles(const toml::table& root) {
         const auto entries = r_.tables(root, "", "particles");
         if (entries.empty()) r_.fail("particles", "missing: at least one [[particles]] block is required");
         static const std::vector<std::string> kinds{"lattice", "random_fill", "list", "csv"};
+        std::vector<PlannedBlock> plans;
         for (std::size_t b = 0; b < entries.size(); ++b) {
             const toml::table& t = *entries[b];
             const std::string p = at("particles", b);
-            Block info;
+            PlannedBlock plan;
+            Block& info = plan.info;
             info.path = p;
-            info.first = s().particles.size();
+            info.first = planned_;
             info.kind = r_.string(r_.required(t, p, "kind"), join(p, "kind"));
             const auto common = {"kind", "material", "motion", "tag", "speed", "velocity", "angular_velocity", "radius"};
             auto keys = [&](std::initializer_list<std::string_view> more) {
@@ -600,20 +659,60 @@ private:
                             "; known kinds: " + detail::quoted_list(kinds),
                         t.get("kind"));
             r_.only_keys(t, p, known);
-            const BlockDefaults d = read_block_defaults(t, p);
+            plan.defaults = read_block_defaults(t, p);
 
-            std::vector<ParticleSpec> block;
-            if (info.kind == "lattice") block = read_lattice(t, p, d);
-            else if (info.kind == "random_fill") block = read_random_fill(t, p, d, b);
-            else if (info.kind == "list") block = read_list(t, p, d);
-            else block = read_csv(t, p, d, info);
-
-            if (static_cast<std::int64_t>(block.size()) > room())
-                r_.fail(p, fmt::format("more than {} spheres in the scenario", max_particles));
-            if (d.speed) randomize_velocities(block, *d.speed, block_seed(config_.seed, b, Stream::velocities));
-            s().particles.insert(s().particles.end(), block.begin(), block.end());
-            blocks_.push_back(std::move(info));
+            if (info.kind == "lattice") {
+                plan_lattice(t, p, plan);
+            } else if (info.kind == "random_fill") {
+                plan_random_fill(t, p, b, plan);
+            } else {
+                plan.particles = info.kind == "list" ? read_list(t, p, plan.defaults) : read_csv(t, p, plan.defaults, info);
+                plan.count = plan.particles.size();
+                plan.count_key = join(p, info.kind == "list" ? "particles" : "file");
+                plan.smallest_radius = INFINITY;
+                for (const ParticleSpec& q : plan.particles) {
+                    plan.smallest_radius = std::min(plan.smallest_radius, q.radius);
+                    plan.largest_radius = std::max(plan.largest_radius, q.radius);
+                }
+            }
+            planned_ += plan.count;
+            plans.push_back(std::move(plan));
         }
+        if (check_) check_(config_, count_of(plans));
+
+        s().particles.reserve(planned_);
+        for (std::size_t b = 0; b < plans.size(); ++b) {
+            PlannedBlock& plan = plans[b];
+            std::vector<ParticleSpec> block = plan.make ? plan.make() : std::move(plan.particles);
+            if (plan.defaults.speed)
+                randomize_velocities(block, *plan.defaults.speed, block_seed(config_.seed, b, Stream::velocities));
+            s().particles.insert(s().particles.end(), block.begin(), block.end());
+            blocks_.push_back(std::move(plan.info));
+        }
+    }
+
+    // The spheres of all blocks, and the keys that set the most of them.
+    static ParticleCount count_of(const std::vector<PlannedBlock>& plans) {
+        ParticleCount c;
+        c.smallest_radius = INFINITY;
+        for (const PlannedBlock& plan : plans) {
+            c.spheres += plan.count;
+            c.smallest_radius = std::min(c.smallest_radius, plan.smallest_radius);
+            c.largest_radius = std::max(c.largest_radius, plan.largest_radius);
+        }
+        if (plans.size() == 1) {
+            c.keys = plans.front().count_key;
+            return c;
+        }
+        std::vector<const PlannedBlock*> largest;
+        for (const PlannedBlock& plan : plans) largest.push_back(&plan);
+        std::stable_sort(largest.begin(), largest.end(),
+                         [](const PlannedBlock* a, const PlannedBlock* b) { return a->count > b->count; });
+        constexpr std::size_t named = 3;
+        for (std::size_t k = 0; k < std::min(named, largest.size()); ++k)
+            c.keys += fmt::format("{}{} {}", k ? ", " : "", largest[k]->count_key, largest[k]->count);
+        if (largest.size() > named) c.keys += fmt::format(", and {} more blocks", largest.size() - named);
+        return c;
     }
 
     // ---- checks on the whole scenario ----
@@ -672,11 +771,23 @@ private:
             }
         }
 
+        check_periodic_lengths();
+        if (const std::string why = scenario_problem(sc); !why.empty()) r_.fail("scenario", why);
+
         OverlapReport worst;
         try {
             worst = largest_overlap(sc);
         } catch (const tumble::Error& e) {
             r_.fail("domain", e.what());
+        }
+        if (worst.ratio > max_initial_overlap_ && worst.wall >= 0) {
+            const int axis = worst.wall / 2;
+            const bool hi = worst.wall % 2;
+            r_.fail(key_of(worst.b),
+                    fmt::format("{} overlaps the flat wall at domain.{}[{}] = {} by {:.3g} of its radius, more than "
+                                "simulation.max_initial_overlap = {}",
+                                describe_under_key(worst.b), hi ? "hi" : "lo", axis,
+                                show(hi ? d.hi[axis] : d.lo[axis]), worst.ratio, show(max_initial_overlap_)));
         }
         if (worst.ratio > max_initial_overlap_)
             r_.fail(key_of(worst.b),
@@ -695,7 +806,7 @@ private:
                                                    show(max_initial_overlap_)));
             }
 
-        if (const std::string why = scenario_problem(sc); !why.empty()) r_.fail("scenario", why);
+        check_motion_speeds();
         try {
             (void)assess_time_step(sc);
         } catch (const tumble::Error& e) {
@@ -703,9 +814,69 @@ private:
         }
     }
 
+    // The neighbour search puts at least three cells of one interaction
+    // range, 2 R_max + skin, across a periodic axis (a sphere's images must
+    // not be its own neighbours).
+    void check_periodic_lengths() const {
+        const Scenario& sc = s_const();
+        const double largest = sc.largest_radius(), skin = neighbor_skin(sc), range = 2.0 * largest + skin;
+        for (int k = 0; k < 3; ++k) {
+            const double length = sc.domain.hi[k] - sc.domain.lo[k];
+            if (!sc.domain.periodic[k] || length >= 3.0 * range) continue;
+            // The skin's fault if it was given and the spheres alone fit.
+            const bool skin_given = sc.neighbor.skin > 0.0 && length >= 3.0 * 2.0 * largest;
+            r_.fail(skin_given ? "neighbor.skin" : at("domain.hi", static_cast<std::size_t>(k)),
+                    fmt::format("the periodic axis {} is {} m long (domain.hi - domain.lo), shorter than three "
+                                "interaction ranges, 3 x (2 x the largest radius {} m + the skin {} m{}) = {} m, which "
+                                "the neighbour search needs across a periodic axis; {}",
+                                "xyz"[k], show(length), show(largest), show(skin), sc.neighbor.skin > 0.0 ? "" : ", automatic",
+                                show(3.0 * range),
+                                skin_given ? "make the skin smaller or the axis longer" : "make the axis longer"));
+        }
+    }
+
+    // A prescribed motion moves its spheres' surfaces at up to |velocity| +
+    // |angular_velocity| x (the largest distance of a sphere's centre from
+    // the axis + its radius). Faster than the blow-up check lets a free
+    // sphere move (sim/health.hpp: 100 x the reference speed), any sphere it
+    // struck would stop the run; a rotation about an axis 1e6 m away, or a
+    // rate of 1e308 rad/s, is nearly always a slip.
+    void check_motion_speeds() const {
+        const Scenario& sc = s_const();
+        std::vector<double> reach(sc.motions.size(), -1.0);  // -1: no sphere follows it
+        for (const ParticleSpec& q : sc.particles) {
+            if (q.motion == free_motion) continue;
+            const RigidMotion& m = sc.motions[static_cast<std::size_t>(q.motion)];
+            const Vec3 from_point = q.position - m.axis_point, u = m.unit_axis();
+            const double from_axis = length(from_point - dot(from_point, u) * u) + q.radius;
+            double& r = reach[static_cast<std::size_t>(q.motion)];
+            r = std::isnan(from_axis) ? from_axis : std::max(r, from_axis);
+        }
+        const double limit = default_health_limits(sc).max_speed;
+        for (std::size_t k = 0; k < sc.motions.size(); ++k) {
+            if (reach[k] < 0.0) continue;
+            const RigidMotion& m = sc.motions[k];
+            const double spin = m.angular_velocity == 0.0 ? 0.0 : std::abs(m.angular_velocity) * reach[k];
+            const double speed = length(m.velocity) + spin;
+            if (speed <= limit) continue;
+            r_.fail(join(at("motion", k), length(m.velocity) > limit ? "velocity" : "angular_velocity"),
+                    fmt::format("its spheres would move at up to {:.3g} m/s (|velocity| {:.3g} m/s + |angular_velocity| "
+                                "{:.3g} rad/s x {:.3g} m, the farthest sphere surface from the axis), faster than the "
+                                "{:.3g} m/s at which the blow-up check stops a run (100 x time_step.reference_speed): "
+                                "a free sphere it struck would be flung faster. If this motion is meant, raise "
+                                "time_step.reference_speed to its speed",
+                                speed, length(m.velocity), std::abs(m.angular_velocity), reach[k], limit));
+        }
+    }
+
+    // |v| without overflow for components up to the largest double.
+    static double length(const Vec3& v) { return std::hypot(v.x, v.y, v.z); }
+
     Reader r_;
     fs::path base_dir_;
+    ParticleCheck check_;
     RunConfig config_;
+    std::size_t planned_ = 0;  // spheres of the blocks read so far
     double max_initial_overlap_ = 0.05;
     std::vector<std::string> material_names_;
     std::vector<std::string> motion_names_;
@@ -714,18 +885,20 @@ private:
 
 }  // namespace
 
-RunConfig read_run_config(const toml::table& root, const fs::path& name, const fs::path& base_dir) {
-    return ScenarioReader(name, base_dir).read(root);
+RunConfig read_run_config(const toml::table& root, const fs::path& name, const fs::path& base_dir,
+                          const ParticleCheck& check) {
+    return ScenarioReader(name, base_dir, check).read(root);
 }
 
-RunConfig parse_run_config(std::string_view toml_text, const fs::path& name, const fs::path& base_dir) {
-    return read_run_config(parse_toml(toml_text, name), name, base_dir);
+RunConfig parse_run_config(std::string_view toml_text, const fs::path& name, const fs::path& base_dir,
+                           const ParticleCheck& check) {
+    return read_run_config(parse_toml(toml_text, name), name, base_dir, check);
 }
 
-RunConfig load_run_config(const fs::path& file) {
+RunConfig load_run_config(const fs::path& file, const ParticleCheck& check) {
     fs::path base = file.parent_path();
     if (base.empty()) base = ".";
-    return parse_run_config(read_text_file(file), file, base);
+    return parse_run_config(read_text_file(file), file, base, check);
 }
 
 }  // namespace tumble::io

@@ -3,7 +3,9 @@
 //
 // Every key is checked before anything runs: unknown keys, missing keys,
 // wrong types, impossible values, unknown names, an incomplete pair table,
-// overlapping initial particles, and finally tumble::scenario_problem().
+// starting positions outside the domain, periodic axes too short for the
+// neighbour search, tumble::scenario_problem(), overlapping initial
+// particles (and flat walls), motions too fast, and the time step.
 // Any failure throws ConfigError with the message
 //
 //     FILE: KEY: REASON
@@ -23,6 +25,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -72,13 +75,31 @@ private:
     std::string reason_;
 };
 
+// The spheres a scenario's [[particles]] blocks will make, counted from
+// their keys before any is made: a lattice's counts, a random fill's count
+// and radii; a list's entries and a CSV file's rows (read by then: an input
+// file's size bounds them).
+struct ParticleCount {
+    std::size_t spheres = 0;
+    double smallest_radius = 0.0, largest_radius = 0.0;  // m
+    // The keys that set the count: "particles[0].counts"; with several
+    // blocks the three largest with their counts
+    // ("particles[0].counts 900000, particles[2].count 1000, and 2 more blocks").
+    std::string keys;
+};
+// Called by the reader once every key is read and checked and the spheres
+// are counted, before any particle is made, with the settings (`particles`
+// still empty) and the count; it refuses by throwing (the memory a run will
+// need: experiments::scenario_memory_check).
+using ParticleCheck = std::function<void(const RunConfig& settings, const ParticleCount& count)>;
+
 // Reads and checks a scenario file. CSV files it names are found relative to
 // the file's directory.
-RunConfig load_run_config(const std::filesystem::path& file);
+RunConfig load_run_config(const std::filesystem::path& file, const ParticleCheck& check = {});
 
 // The same from text: `name` is used in messages (and as RunConfig::source),
 // `base_dir` resolves relative CSV paths.
 RunConfig parse_run_config(std::string_view toml_text, const std::filesystem::path& name,
-                           const std::filesystem::path& base_dir);
+                           const std::filesystem::path& base_dir, const ParticleCheck& check = {});
 
 }  // namespace tumble::io

@@ -39,7 +39,7 @@ toml::table parse_toml(std::string_view text, const std::filesystem::path& name)
 // a table already parsed or built (the Python module builds one from a
 // dict); `name` stands for the file in messages.
 RunConfig read_run_config(const toml::table& root, const std::filesystem::path& name,
-                          const std::filesystem::path& base_dir);
+                          const std::filesystem::path& base_dir, const ParticleCheck& check = {});
 DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::path& name);
 
 // Key paths (config.hpp): "a.b", "a[3]".

@@ -37,6 +37,11 @@ void bind_analysis(py::module_& m);
 // for the file in messages (io::ConfigError).
 toml::table toml_from_dict(const py::dict& d, const std::filesystem::path& name);
 
+// A memory limit given to a Python function (max_memory_gib, GiB; 0: half
+// the machine's memory), checked as the command line checks --max-memory:
+// tumble::Error naming it otherwise.
+void need_memory_limit(double max_memory_gib);
+
 // While a protocol runs, tumble's SIGINT and SIGTERM handlers (Ctrl-C
 // writes a checkpoint and stops the run, run_control.hpp); Python's again
 // afterwards.

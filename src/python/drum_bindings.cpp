@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The drum experiment (experiments/drum.hpp) for Python: its settings, the
 // protocol with a callback at every sample, and the analysis of a run.
-#include <fmt/format.h>
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -105,11 +104,7 @@ void bind_drum(py::module_& m) {
             if (const std::string why = experiments::thread_count_problem(threads, std::to_string(threads));
                 !why.empty())
                 throw Error("threads: " + why);
-            if (max_memory_gib != 0.0)
-                if (const std::string why = experiments::finite_positive_problem(max_memory_gib,
-                                                                                 fmt::format("{}", max_memory_gib));
-                    !why.empty())
-                    throw Error("max_memory_gib: " + why + " (0: half the machine's memory)");
+            need_memory_limit(max_memory_gib);
             experiments::DrumRunOptions o;
             o.settings = settings;
             o.force = force;

@@ -5,6 +5,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include <fmt/format.h>
 #include <pybind11/stl.h>
@@ -208,22 +209,52 @@ std::int64_t run(py::object self, std::int64_t total, const py::object& until, s
     return done;
 }
 
+// The reader's check of the memory a run of the scenario will need, made
+// before any sphere is made, as tumble run makes it (on a Simulation's
+// default one thread).
+io::ParticleCheck memory_check(double max_memory_gib) {
+    need_memory_limit(max_memory_gib);
+    return experiments::scenario_memory_check(1, experiments::memory_limit_bytes(max_memory_gib), "max_memory_gib");
+}
+
 }  // namespace
+
+void need_memory_limit(double max_memory_gib) {
+    if (max_memory_gib == 0.0) return;
+    if (const std::string why = experiments::finite_positive_problem(max_memory_gib, fmt::format("{}", max_memory_gib));
+        !why.empty())
+        throw Error("max_memory_gib: " + why + " (0: half the machine's memory)");
+}
 
 void bind_scenario(py::module_& m) {
     py::class_<io::RunConfig>(m, "Scenario", "A scenario, read and checked (docs/SCENARIO.md); build with from_file, "
                                              "from_toml, from_dict or drum")
-        .def_static("from_file", &io::load_run_config, py::arg("path"), "Reads a scenario file (TOML)")
-        .def_static("from_toml", &io::parse_run_config, py::arg("text"), py::arg("name") = "<toml>",
-                    py::arg("base_dir") = fs::path("."),
-                    "Reads scenario text; `name` stands for the file in messages, `base_dir` resolves CSV files")
+        .def_static(
+            "from_file",
+            [](const fs::path& path, double max_memory_gib) {
+                return io::load_run_config(path, memory_check(max_memory_gib));
+            },
+            py::arg("path"), py::arg("max_memory_gib") = 0.0,
+            "Reads a scenario file (TOML). max_memory_gib: refuse, before any sphere is made, a scenario whose "
+            "run is estimated to need more (tumble run --max-memory; 0: half the machine's memory)")
+        .def_static(
+            "from_toml",
+            [](std::string_view text, const fs::path& name, const fs::path& base_dir, double max_memory_gib) {
+                return io::parse_run_config(text, name, base_dir, memory_check(max_memory_gib));
+            },
+            py::arg("text"), py::arg("name") = "<toml>", py::arg("base_dir") = fs::path("."),
+            py::arg("max_memory_gib") = 0.0,
+            "Reads scenario text; `name` stands for the file in messages, `base_dir` resolves CSV files; "
+            "max_memory_gib as from_file's")
         .def_static(
             "from_dict",
-            [](const py::dict& d, const fs::path& name, const fs::path& base_dir) {
-                return io::read_run_config(toml_from_dict(d, name), name, base_dir);
+            [](const py::dict& d, const fs::path& name, const fs::path& base_dir, double max_memory_gib) {
+                return io::read_run_config(toml_from_dict(d, name), name, base_dir, memory_check(max_memory_gib));
             },
             py::arg("scenario"), py::arg("name") = "<dict>", py::arg("base_dir") = fs::path("."),
-            "A scenario from a dict laid out as the file: {'simulation': {...}, 'material': [{...}], ...}")
+            py::arg("max_memory_gib") = 0.0,
+            "A scenario from a dict laid out as the file: {'simulation': {...}, 'material': [{...}], ...}; "
+            "max_memory_gib as from_file's")
         .def_static(
             "drum",
             [](const io::DrumSettings& s, bool allow_unsafe_dt) {

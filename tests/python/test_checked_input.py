@@ -7,6 +7,7 @@ import os
 import re
 import subprocess
 import sys
+import time
 import tomllib
 
 import pytest
@@ -64,6 +65,26 @@ def test_thread_counts_and_the_memory_limit_are_checked_as_on_the_command_line(t
     cli = subprocess.run([tumble_binary, "drum", "--threads", "-1", "--out", str(out)], capture_output=True, text=True)
     assert "--threads: must be a whole number >= 0 (0: every core), got -1" in cli.stderr
     assert not out.exists()
+
+
+def test_a_lattice_too_large_for_the_memory_is_refused_before_it_is_built():
+    """10^7 spheres, 18.3 GiB at 1.96 kB each, against a limit of 1 GiB: refused
+    from the lattice's counts before any sphere is made (building them took
+    gigabytes and half a minute), in tumble run's words."""
+    d = tomllib.loads(SCENARIO)
+    d["domain"] = {"lo": [0.0, 0.0, 0.0], "hi": [1.0, 1.0, 10.0]}
+    d["particles"] = [{"kind": "lattice", "material": "material-1", "origin": [0.005, 0.005, 0.005],
+                       "counts": [100, 100, 1000], "spacing": 0.008}]
+    started = time.monotonic()
+    with pytest.raises(tumble.Error, match=r"^<dict>: the run would need about 18\.3 GiB of memory for 10000000 "
+                                           r"spheres \(particles\[0\]\.counts\), 3\.41 neighbour pairs each, more "
+                                           r"than the limit of 1 GiB \(max_memory_gib; default half the machine's "
+                                           r"memory\)$"):
+        tumble.Scenario.from_dict(d, max_memory_gib=1)
+    assert time.monotonic() - started < 5, "the spheres were made before the refusal"
+    for value in ("nan", "-1"):
+        with pytest.raises(tumble.Error, match=rf"^max_memory_gib: must be a finite number > 0, got {value}"):
+            tumble.Scenario.from_dict(d, max_memory_gib=float(value))
 
 
 def test_more_steps_than_any_run_can_take_are_refused():

@@ -6,6 +6,7 @@
 
 #include "test_support.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -252,6 +253,116 @@ TEST(ConfigErrors, OverlappingExplicitParticlesAreNamed) {
     expect_error(base + "[[particles]]\nkind = \"lattice\"\nmaterial = \"material-1\"\norigin = [0.0, 0.0, 0.0]\n"
                         "counts = [1, 1, 1]\nspacing = 0.01\n",
                  "particles[1]", "sphere 0 at (0, 0, 0) overlaps particles[0].particles[");
+}
+
+TEST(ConfigErrors, AnInitialOverlapBeyondTheBlowUpLimitCannotBeAllowed) {
+    // The blow-up check stops a run at overlaps above half the radius; a
+    // start above it relaxes in a few steps, before the first check (step
+    // 100), and ran to exit 0 unless a checkpoint fell on those steps.
+    expect_error(replace(base, "duration = 0.01", "duration = 0.01\nmax_initial_overlap = 0.9"),
+                 "simulation.max_initial_overlap",
+                 "must be at most 0.5, the overlap at which the blow-up check stops a run, got 0.9 (line 4)");
+    EXPECT_EQ(parse(replace(base, "duration = 0.01", "duration = 0.01\nmax_initial_overlap = 0.5")).scenario.particles.size(),
+              2u);
+}
+
+TEST(ConfigErrors, ASphereStartingInAFlatWallIsNamed) {
+    // The wall at x = -0.0045 m, 0.4 mm from the first sphere's centre: an
+    // overlap of 3.2 mm, 0.889 of its radius (it ran to exit 0, flung out).
+    const std::string walled = replace(replace(base, "lo = [-0.02, -0.02, -0.02]", "lo = [-0.0045, -0.02, -0.02]"),
+                                       "hi = [0.02, 0.02, 0.02]",
+                                       "hi = [0.02, 0.02, 0.02]\nwalls = [true, false, false]\n"
+                                       "wall_material = \"material-1\"");
+    expect_error(walled, "particles[0].particles[0]",
+                 "the particle at (-0.0041, 0, 0) overlaps the flat wall at domain.lo[0] = -0.0045 by 0.889 of its "
+                 "radius, more than simulation.max_initial_overlap = 0.05");
+    // A sphere touching the wall (its centre one radius from it) is fine.
+    EXPECT_EQ(parse(replace(walled, "lo = [-0.0045,", "lo = [-0.0077,")).scenario.particles.size(), 2u);
+}
+
+// The second sphere of `base` follows motion "turn" (0.0041 m from the z
+// axis through the origin, its surface 0.0077 m), given `keys`.
+std::string turning(const std::string& keys) {
+    return replace(base, "{ position = [0.0041, 0.0, 0.0],", "{ position = [0.0041, 0.0, 0.0], motion = \"turn\",") +
+           "[[motion]]\nname = \"turn\"\n" + keys + "\n";
+}
+
+TEST(ConfigErrors, AMotionFasterThanTheBlowUpCheckAllowsIsRefused) {
+    // The blow-up check stops a run at free spheres faster than 100 x the
+    // reference speed (1 m/s: 100 m/s); a wall that fast flings what it hits.
+    expect_error(turning("angular_velocity = 1e6"), "motion[0].angular_velocity",
+                 "its spheres would move at up to 7.7e+03 m/s (|velocity| 0 m/s + |angular_velocity| 1e+06 rad/s x "
+                 "0.0077 m, the farthest sphere surface from the axis), faster than the 100 m/s at which the blow-up "
+                 "check stops a run (100 x time_step.reference_speed)");
+    expect_error(turning("angular_velocity = 1e308"), "motion[0].angular_velocity", "move at up to 7.7e+305 m/s");
+    // An axis a kilometre away: 1 rad/s moves the sphere at 1 km/s.
+    expect_error(turning("axis_point = [1000.0, 0.0, 0.0]\nangular_velocity = 1.0"), "motion[0].angular_velocity",
+                 "move at up to 1e+03 m/s");
+    expect_error(turning("axis_point = [1e308, 0.0, 0.0]\nangular_velocity = 1.0"), "motion[0].angular_velocity",
+                 "move at up to 1e+308 m/s");
+    expect_error(turning("velocity = [1e308, 0.0, 0.0]"), "motion[0].velocity", "move at up to 1e+308 m/s");
+    expect_error(turning("velocity = [150.0, 0.0, 0.0]"), "motion[0].velocity", "move at up to 150 m/s");
+    // Within the limit, or the limit raised with the reference speed.
+    EXPECT_NO_THROW(parse(turning("angular_velocity = 1e4")));  // 77 m/s
+    EXPECT_NO_THROW(parse(turning("velocity = [150.0, 0.0, 0.0]") + "[time_step]\nreference_speed = 2.0\n"));
+    // An axis whose length overflows would be normalised to zero: no rotation.
+    expect_error(turning("axis_direction = [1e308, 1e308, 0.0]\nangular_velocity = 1.0"), "motion[0].axis_direction",
+                 "its length overflows");
+}
+
+TEST(ConfigErrors, APeriodicAxisShorterThanThreeInteractionRangesIsNamed) {
+    // The neighbour search needs three cells of 2 R + skin across a periodic
+    // axis: 3 x (2 x 0.0036 + 0.00072) = 0.02376 m with the automatic skin.
+    const std::string periodic = replace(base, "hi = [0.02, 0.02, 0.02]", "hi = [0.02, 0.02, 0.02]\nperiodic = [true, false, false]");
+    EXPECT_NO_THROW(parse(periodic));  // 0.04 m
+    expect_error(replace(replace(periodic, "lo = [-0.02,", "lo = [-0.011,"), "hi = [0.02,", "hi = [0.011,"), "domain.hi[0]",
+                 "the periodic axis x is 0.022 m long (domain.hi - domain.lo), shorter than three interaction ranges, "
+                 "3 x (2 x the largest radius 0.0036 m + the skin 0.00072 m, automatic) = 0.02376 m, which the "
+                 "neighbour search needs across a periodic axis; make the axis longer");
+    // A skin of 0.01 m would need 0.0516 m: the skin's fault (the run
+    // refused it without the file or the key).
+    expect_error(periodic + "[neighbor]\nskin = 0.01\n", "neighbor.skin",
+                 "3 x (2 x the largest radius 0.0036 m + the skin 0.01 m) = 0.0516 m, which the neighbour search needs "
+                 "across a periodic axis; make the skin smaller or the axis longer");
+}
+
+TEST(ConfigErrors, ABoxWhoseLengthOverflowsIsNamed) {
+    expect_error(replace(replace(base, "lo = [-0.02,", "lo = [-1e308,"), "hi = [0.02,", "hi = [1e308,"), "domain.hi[0]",
+                 "the box's length along x, hi - lo = 1e+308 - (-1e+308), overflows (line 8)");
+}
+
+// The reader counts the spheres every block will make, and hands the count
+// to the check it is given, before it makes any: a lattice of 10^7 is
+// refused in well under a second instead of after gigabytes.
+TEST(ConfigErrors, TheParticleCheckSeesTheCountBeforeAnySphereIsMade) {
+    // A list of 2, a lattice of 9,990,000 and a list of 2 in a box of 1 x 1 x 10 m.
+    const std::string text =
+        replace(base, "hi = [0.02, 0.02, 0.02]", "hi = [1.0, 1.0, 10.0]") +
+        "[[particles]]\nkind = \"lattice\"\nmaterial = \"material-1\"\norigin = [0.05, 0.05, 0.05]\n"
+        "counts = [100, 100, 999]\nspacing = 0.008\nradius = 0.003\n" +
+        replace(replace(base.substr(base.find("[[particles]]")), "-0.0041", "0.9341"), "0.0041", "0.9421");
+    tumble::io::ParticleCount seen;
+    std::size_t made = 1;
+    const auto started = std::chrono::steady_clock::now();
+    expect_error(
+        [&] {
+            parse_run_config(text, "test.toml", ".", [&](const RunConfig& settings, const tumble::io::ParticleCount& c) {
+                seen = c;
+                made = settings.scenario.particles.size();
+                throw ConfigError("test.toml", "", "refused by the check");
+            });
+        },
+        "test.toml", "", "refused by the check");
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 1.0);
+    EXPECT_EQ(made, 0u);
+    EXPECT_EQ(seen.spheres, 9'990'004u);
+    EXPECT_EQ(seen.smallest_radius, 0.003);
+    EXPECT_EQ(seen.largest_radius, 0.0036);
+    EXPECT_EQ(seen.keys, "particles[1].counts 9990000, particles[0].particles 2, particles[2].particles 2");
+    // One block: its key alone.
+    parse_run_config(base, "test.toml", ".", [&](const RunConfig&, const tumble::io::ParticleCount& c) { seen = c; });
+    EXPECT_EQ(seen.spheres, 2u);
+    EXPECT_EQ(seen.keys, "particles[0].particles");
 }
 
 TEST(ConfigErrors, ParticleSetMustNotBeEmpty) {

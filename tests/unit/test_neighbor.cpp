@@ -162,6 +162,25 @@ TEST(Neighbor, CellListMatchesBruteForceInTheSmallestPeriodicBox) {
     expect_same_pairs(random_store(d, 150, r_min, r_max, 5), d, skin);
 }
 
+TEST(Neighbor, CellListMatchesBruteForceInAVastPeriodicBox) {
+    // A cloud of 1000 in 30 mm, split across the corner of a box periodic
+    // in x and y 100 m wide: cells of one cutoff would be 9 x 10^8 (it asked
+    // for gigabytes, std::bad_alloc); fewer, wider cells find the same pairs.
+    ParticleStore p = random_store(box(edge, {false, false, false}), 1000, r_min, r_max, 14);
+    Domain d;
+    d.lo = {-50.0, -50.0, 0.3 * edge};
+    d.hi = {50.0, 50.0, 1.3 * edge};
+    d.periodic = {true, true, false};
+    const double middle[2] = {0.0, 0.5 * edge};  // of the cloud, in x and y
+    for (Vec3& x : p.position)
+        for (int a = 0; a < 2; ++a) {
+            x[a] -= middle[a];
+            x[a] += x[a] < 0.0 ? 50.0 : -50.0;  // the cloud's halves at the box's two ends
+            if (x[a] >= d.hi[a]) x[a] = d.lo[a];
+        }
+    expect_same_pairs(p, d, skin);
+}
+
 // The store as the Verlet list leaves it at every build (sorted by cell,
 // the free particles first): the search then takes the particles of a row
 // of cells as one stretch of the store, which the shuffled stores above

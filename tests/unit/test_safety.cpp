@@ -431,6 +431,79 @@ TEST_F(Safety, ASoftMaterialRunsWhenConfirmed) {
     EXPECT_TRUE(fs::exists(dir_ / "soft" / "time_series.csv"));
 }
 
+// ---- 8c. absurd sizes and starts are refused before any work
+
+// A lattice of 10^7 spheres built 3.6 GB for 29 s before the memory check
+// refused it: the reader now counts the spheres from the block's keys and
+// the memory check comes before any is made. 10^7 spheres at 1.96 kB each
+// (3.41 neighbour pairs at the automatic skin) are 18.3 GiB.
+TEST_F(Safety, AnEnormousLatticeIsRefusedBeforeItIsBuilt) {
+    const fs::path scenario = write("huge.toml", R"([simulation]
+duration = 0.01
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [1.0, 1.0, 10.0]
+)" + tumble::test_support::material_m_toml + R"([[particles]]
+kind = "lattice"
+material = "m"
+origin = [0.005, 0.005, 0.005]
+counts = [100, 100, 1000]
+spacing = 0.008
+)");
+    const fs::path out = dir_ / "huge";
+    const auto started = std::chrono::steady_clock::now();
+    const auto r = tumble("run -q " + scenario.string() + " --max-memory 1 --out " + out.string());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_TRUE(contains(r.output, scenario.string() +
+                                       ": the run would need about 18.3 GiB of memory for 10000000 spheres "
+                                       "(particles[0].counts), 3.41 neighbour pairs each, more than the limit of 1 "
+                                       "GiB (--max-memory GIB; default half the machine's memory)"))
+        << r.output;
+    EXPECT_LT(seconds, 5.0) << "the spheres were made before the refusal";
+    EXPECT_FALSE(fs::exists(out));
+}
+
+// Two spheres overlapping by 0.7 of their radius, allowed by
+// simulation.max_initial_overlap = 0.9, relaxed within the first 100
+// steps and ran to exit 0, unless a checkpoint at step 1 had the blow-up
+// check see them (exit 5). The blow-up check stops a run at overlaps above
+// 0.5: a start above it is refused before any work, whatever the
+// checkpoints, and one below it runs the same either way.
+TEST_F(Safety, AHeavyInitialOverlapIsRefusedBeforeAnyWorkWhateverTheCheckpoints) {
+    // Centres at -x and x, overlapping by 2 R - 2 x.
+    const auto two = [&](const std::string& x, const std::string& simulation) {
+        return write("two.toml", "[simulation]\nduration = 0.005\n" + simulation + R"([domain]
+lo = [-0.02, -0.01, -0.01]
+hi = [0.02, 0.01, 0.01]
+)" + tumble::test_support::material_m_toml + "[[particles]]\nkind = \"list\"\nmaterial = \"m\"\nparticles = [ "
+                                              "{ position = [-" + x + ", 0.0, 0.0] }, { position = [" + x +
+                                              ", 0.0, 0.0] } ]\n");
+    };
+    for (const std::string every : {"", " --checkpoint-every-steps 1"}) {
+        const fs::path out = dir_ / "overlap";
+        auto r = tumble("run -q " + two("0.00234", "max_initial_overlap = 0.9\n").string() + every + " --out " +
+                        out.string());
+        EXPECT_EQ(r.exit_code, 2) << r.output;
+        EXPECT_TRUE(contains(r.output, "two.toml: simulation.max_initial_overlap: must be at most 0.5, the overlap at "
+                                       "which the blow-up check stops a run, got 0.9 (line 3)"))
+            << r.output;
+        EXPECT_FALSE(fs::exists(out));
+        r = tumble("run -q " + two("0.00234", "").string() + every + " --out " + out.string());
+        EXPECT_EQ(r.exit_code, 2) << r.output;
+        EXPECT_TRUE(contains(r.output, "two.toml: particles[0].particles[1]: the particle at (0.00234, 0, 0) overlaps "
+                                       "particles[0].particles[0] at (-0.00234, 0, 0) by 0.7 of the smaller radius, "
+                                       "more than simulation.max_initial_overlap = 0.05"))
+            << r.output;
+        EXPECT_FALSE(fs::exists(out));
+        // 0.45 of the radius, allowed.
+        r = tumble("run -q " + two("0.00279", "max_initial_overlap = 0.5\n").string() + every + " --out " +
+                   out.string());
+        EXPECT_EQ(r.exit_code, 0) << every << "\n" << r.output;
+        fs::remove_all(out);
+    }
+}
+
 // ---- 9. a sweep stopped by a signal (the messages are in the corpora, and
 // the particle files in test_bad_input.cpp)
 

@@ -83,11 +83,13 @@ DRUM_OPTIONS = {
 _ALTERNATIVES = (("grains", "fill"), ("omega", "rpm", "froude"))
 
 
-def scenario(source, base_dir="."):
-    """A Scenario from a file (path) or a dict laid out as the file."""
+def scenario(source, base_dir=".", max_memory_gib=0.0):
+    """A Scenario from a file (path) or a dict laid out as the file; one whose
+    run is estimated to need more than max_memory_gib GiB (0: half the
+    machine's memory) is refused before any sphere is made."""
     if isinstance(source, dict):
-        return Scenario.from_dict(source, base_dir=base_dir)
-    return Scenario.from_file(source)
+        return Scenario.from_dict(source, base_dir=base_dir, max_memory_gib=max_memory_gib)
+    return Scenario.from_file(source, max_memory_gib=max_memory_gib)
 
 
 def drum_settings(config=None, **options):

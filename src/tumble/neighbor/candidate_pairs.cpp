@@ -48,18 +48,32 @@ struct CellGrid {
             throw Error("neighbour search: a particle position is not finite: the simulation blew up (check "
                         "the time step and the input)");
         origin = lo;
-        // Periodic axes: a whole number of cells of at least one cutoff.
-        double periodic_cells = 1.0;
         for (int k = 0; k < 3; ++k) {
             if (!periodic[k]) continue;
             const double extent = hi[k] - lo[k];
-            count[k] = static_cast<int>(std::floor(extent / cutoff));
-            if (count[k] < 3)
+            if (!std::isfinite(extent))
+                throw Error("neighbour search: periodic axis " + std::string(1, "xyz"[k]) + " has no finite length");
+            if (!(std::floor(extent / cutoff) >= 3.0))
                 throw Error("neighbour search: periodic axis " + std::string(1, "xyz"[k]) +
                             " is shorter than three interaction ranges (3 x (2 R_max + skin) = " +
                             std::to_string(3.0 * cutoff) + " m)");
-            cell_size[k] = extent / count[k];
-            periodic_cells *= count[k];
+        }
+        // Periodic axes: a whole number of cells of at least one cutoff,
+        // fewer and wider where there would be more than max(2^20, 2 per
+        // particle) across them (a few spheres in a long periodic box asked
+        // for 10^10 cells); at least three per axis.
+        const double max_periodic_cells = std::max(1048576.0, 2.0 * static_cast<double>(particles));
+        double periodic_cells = 1.0;
+        for (double width = cutoff;; width *= 2.0) {
+            periodic_cells = 1.0;
+            for (int k = 0; k < 3; ++k) {
+                if (!periodic[k]) continue;
+                const double extent = hi[k] - lo[k];
+                count[k] = static_cast<int>(std::clamp(std::floor(extent / width), 3.0, max_periodic_cells));
+                cell_size[k] = extent / count[k];
+                periodic_cells *= count[k];
+            }
+            if (periodic_cells <= max_periodic_cells) break;
         }
         // Open axes: cells one cutoff wide over the particles' extent, made
         // wider if needed so that a stray particle far away cannot blow the

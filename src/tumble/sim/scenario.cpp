@@ -15,6 +15,8 @@ namespace {
 bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 }  // namespace
 
+double neighbor_skin(const Scenario& s) { return s.neighbor.skin > 0.0 ? s.neighbor.skin : 0.2 * s.largest_radius(); }
+
 std::string scenario_problem(const Scenario& s) {
     const auto n_materials = static_cast<std::int32_t>(s.materials.size());
     if (n_materials == 0) return "no materials";
@@ -94,6 +96,7 @@ std::string motion_problem(const RigidMotion& m) {
     if (!(norm(m.axis_direction) > 0.0)) return "axis direction is zero";
     if (!finite(m.axis_point) || !finite(m.axis_direction) || !finite(m.velocity) || !std::isfinite(m.angular_velocity))
         return "values must be finite";
+    if (!std::isfinite(norm(m.axis_direction))) return "the axis direction's length overflows";
     return {};
 }
 
@@ -111,6 +114,20 @@ OverlapReport largest_overlap(const Scenario& s) {
             worst.ratio = ratio;
             worst.a = static_cast<std::size_t>(std::min(store.id[i], store.id[j]));
             worst.b = static_cast<std::size_t>(std::max(store.id[i], store.id[j]));
+        }
+    }
+    // Flat walls push free particles only.
+    const Domain& box = s.domain;
+    for (std::size_t i = 0; i < s.particles.size(); ++i) {
+        const ParticleSpec& p = s.particles[i];
+        if (p.motion != free_motion) continue;
+        for (int axis = 0; axis < 3; ++axis) {
+            if (!box.walls[axis]) continue;
+            const double distance[2] = {p.position[axis] - box.lo[axis], box.hi[axis] - p.position[axis]};
+            for (int side = 0; side < 2; ++side) {
+                const double ratio = (p.radius - distance[side]) / p.radius;
+                if (ratio > worst.ratio) worst = {ratio, 0, i, 2 * axis + side};
+            }
         }
     }
     return worst;

@@ -80,20 +80,27 @@ struct Scenario {
     }
 };
 
+// The Verlet-list skin a simulation of the scenario uses, m: neighbor.skin,
+// or 0.2 x the largest radius if that is 0 (automatic).
+double neighbor_skin(const Scenario& s);
+
 // Reason why a scenario cannot be simulated, or empty if it can. Checks
 // materials, pair table completeness and symmetry, particle radii, material
 // and motion indices, and that the particles fit in periodic axes.
 std::string scenario_problem(const Scenario& s);
 // Reason why a prescribed motion cannot be followed (a zero axis, a value
-// not finite), or empty: of the scenario's motions and of a new one given
-// to Simulation::set_motion alike.
+// not finite, an axis whose length overflows), or empty: of the scenario's
+// motions and of a new one given to Simulation::set_motion alike.
 std::string motion_problem(const RigidMotion& m);
 
 // The largest overlap between two particles of the scenario, relative to the
-// smaller radius, and which two (indices into Scenario::particles).
+// smaller radius, and which two (indices into Scenario::particles); or
+// between a free particle and a flat wall (a sphere of infinite radius:
+// relative to the particle's radius), and which.
 struct OverlapReport {
     double ratio = 0.0;  // h / min(R_a, R_b); 0 if nothing touches
     std::size_t a = 0, b = 0;
+    int wall = -1;  // the flat wall b overlaps (2 x axis + 0 at lo, 1 at hi; a unused); -1: a and b
 };
 OverlapReport largest_overlap(const Scenario& s);
 

@@ -19,8 +19,6 @@ namespace tumble {
 
 namespace {
 
-double default_skin(const Scenario& s) { return 0.2 * s.largest_radius(); }
-
 // The axis a domain is cut along when shared among ranks: its longest (a
 // drum's rotation axis z; z, then y, on a tie).
 int decomposition_axis(const Domain& d) {
@@ -41,7 +39,7 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
     time_step_report_ = assess_time_step(scenario_);
     dt_ = time_step_report_.dt;
     particles_ = make_particle_store(scenario_);
-    const double skin = scenario_.neighbor.skin > 0.0 ? scenario_.neighbor.skin : default_skin(scenario_);
+    const double skin = neighbor_skin(scenario_);
     const Domain& box = scenario_.domain;
     for (int axis = 0; axis < 3; ++axis)  // the box's flat walls, facing into the box
         for (int side = 0; side < 2 && box.walls[axis]; ++side) {
