@@ -291,8 +291,8 @@ TEST(ConfigErrors, AMotionFasterThanTheBlowUpCheckAllowsIsRefused) {
     // The blow-up check stops a run at free spheres faster than 100 x the
     // reference speed (1 m/s: 100 m/s); a wall that fast flings what it hits.
     expect_error(turning("angular_velocity = 1e6"), "motion[0].angular_velocity",
-                 "its spheres would move at up to 7.7e+03 m/s (|velocity| 0 m/s + |angular_velocity| 1e+06 rad/s x "
-                 "0.0077 m, the farthest sphere surface from the axis), faster than the 100 m/s at which the blow-up "
+                 "its spheres and walls would move at up to 7.7e+03 m/s (|velocity| 0 m/s + |angular_velocity| 1e+06 rad/s x "
+                 "0.0077 m, the farthest surface from the axis), faster than the 100 m/s at which the blow-up "
                  "check stops a run (100 x time_step.reference_speed)");
     expect_error(turning("angular_velocity = 1e308"), "motion[0].angular_velocity", "move at up to 7.7e+305 m/s");
     // An axis a kilometre away: 1 rad/s moves the sphere at 1 km/s.
@@ -753,6 +753,9 @@ TEST(ConfigWalls, BadWallsAreRefusedNamingTheKey) {
                  "given, but caps is not true");
     expect_error(replace(w + drum_wall, "length = 0.02\n", ""), "wall[0].caps", "an infinite cylinder has no ends");
     expect_error(w + drum_wall + drum_wall, "wall[1].name", "duplicate wall name \"drum\"");
+    // A motion that carries only a wall is checked for speed as one that carries spheres.
+    expect_error(replace(w + drum_wall, "angular_velocity = 5.0", "angular_velocity = 1e6"), "motion[0].angular_velocity",
+                 "its spheres and walls would move at up to 1.5e+04 m/s");
     expect_error(w + "[[wall]]\nname = \"tip\"\nshape = \"cone\"\nmaterial = \"material-1\"\nradius = 0.0\n"
                      "end_radius = 0.0\nlength = 0.01\n",
                  "wall[0]", "its radii must be finite, >= 0 and not both 0");
