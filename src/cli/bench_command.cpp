@@ -161,8 +161,11 @@ Simulation drum_bed(const io::DrumSettings& d, double turned, const fs::path& ca
     // both, so a change of the automatic step or skin makes a new bed.
     // (Any checkpoint format this tumble reads will do: a new format needs no new bed.)
     const double dt = assess_time_step(setup.scenario).dt;
-    const std::string stem = fmt::format("long-drum-length{}-fill{}-seed{}-dt{:.6g}-skin{:.6g}", d.geometry.length,
-                                         d.fill_fraction, d.seed, dt, setup.scenario.neighbor.skin);
+    // The particle-walled bed keeps the name it had before smooth walls.
+    const std::string walls =
+        d.geometry.walls == DrumWalls::particles ? std::string() : "-" + std::string(keyword_of(drum_wall_kinds, d.geometry.walls));
+    const std::string stem = fmt::format("long-drum{}-length{}-fill{}-seed{}-dt{:.6g}-skin{:.6g}", walls,
+                                         d.geometry.length, d.fill_fraction, d.seed, dt, setup.scenario.neighbor.skin);
     auto settle = [&] {
         Simulation sim(std::move(setup.scenario), threads);
         const std::int64_t check_every = std::max<std::int64_t>(1, std::llround(1e-3 / sim.dt()));
@@ -196,6 +199,7 @@ int long_drum_bench(const BenchOptions& options) {
     d.geometry.length = options.length;
     d.fill_fraction = options.fill;
     d.skin = options.skin;  // checked with the rest; drum_bed() settles at the automatic skin
+    d.geometry.walls = find_keyword(drum_wall_kinds, options.walls)->value;
     io::check_drum_settings(d, "command line");
     const int threads = resolve_threads(options.threads);
     check_memory(drum_memory(d.geometry, static_cast<double>(d.grain_count()), threads, options.skin),
@@ -244,8 +248,11 @@ int long_drum_bench(const BenchOptions& options) {
     const std::size_t n = sim.scenario().particles.size(), grains = sim.scenario().free_count();
     const double omega = d.omega();
     if (!options.json && talk)
-        fmt::print("tumble bench: long drum, length {} m, fill {}: {} grains, {} wall spheres, {} rad/s, {}; {} bed {}\n",
-                   d.geometry.length, d.fill_fraction, grains, n - grains, omega,
+        fmt::print("tumble bench: long drum, length {} m, fill {}: {} grains, {}, {} rad/s, {}; {} bed {}\n",
+                   d.geometry.length, d.fill_fraction, grains,
+                   d.geometry.walls == DrumWalls::smooth ? std::string("smooth walls")
+                                                         : fmt::format("{} wall spheres", n - grains),
+                   omega,
                    peer_law ? "the peer's law (no attraction, shear = spring)" : "the drum's law", bed_name,
                    (made ? "made and stored in " : "read from ") + cache.string());
     sim.set_motion(0, drum_rotation(omega));  // (a turned bed turns on: its wall spheres stay where they are)
@@ -324,6 +331,7 @@ int long_drum_bench(const BenchOptions& options) {
                                                   {"bed", made ? "made" : "read"},
                                                   {"turned", options.turned},
                                                   {"law", options.law},
+                                                  {"walls", options.walls},
                                                   {"steps", steps},
                                                   {"warmup", warmup},
                                                   {"seconds", seconds},

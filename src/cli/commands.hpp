@@ -47,6 +47,7 @@ struct BenchOptions {
     double skin = 0.0;         // long drum: the neighbour skin of the timed steps, m (0: the bed's, automatic)
     double turned = 0.0;       // long drum: revolutions the settled bed turns before the warm-up (a bed in steady flow; kept too)
     std::string law = "drum";  // long drum: the timed steps' law, "drum" (tumble drum's) or "peer" (the LAMMPS deck's)
+    std::string walls = "particles";  // long drum: the drum's walls (keyword of drum_wall_kinds, setup/drum.hpp)
     std::filesystem::path cache;  // long drum: where the settled bed is kept; empty: bench-cache beside the executable
     std::filesystem::path export_dir;  // long drum: write the settled bed there (snapshots/000000.csv) and stop
 };

@@ -202,6 +202,11 @@ int main(int argc, char** argv) {
         "law of the LAMMPS deck bench/peers/lammps_drum.in: no attraction, the tangential spring held at the "
         "friction limit; the same bed and step)")
         ->check(CLI::IsMember({"drum", "peer"}));
+    auto* walls_opt = bench_cmd->add_option(
+        "--walls", bench.walls,
+        "Long drum: particles (default: the wall of spheres, the paper's) or smooth (a smooth cylinder and two "
+        "discs); each its own settled bed")
+        ->check(CLI::IsMember(tumble::keywords(tumble::drum_wall_kinds)));
     auto* cache_opt = bench_cmd->add_option(
         "--cache", bench.cache, "Long drum: directory of the settled beds (default: bench-cache beside the executable)");
     auto* export_opt = bench_cmd->add_option(
@@ -252,12 +257,18 @@ int main(int argc, char** argv) {
     bool periodic_axis = false;
     drum_cmd->add_flag("--periodic-axis", periodic_axis,
                        "No end caps: the axis is periodic, the drum's length its period");
+    std::optional<std::string> drum_walls;
+    drum_cmd->add_option("--walls", drum_walls,
+                         "What walls the drum: particles (default: a wall of spheres, the paper's) or smooth (a "
+                         "smooth cylinder and two discs)")
+        ->check(CLI::IsMember(tumble::keywords(tumble::drum_wall_kinds)));
     std::optional<double> cap_friction, small_volume_fraction;
     std::optional<std::string> arrangement, ends;
     std::optional<int> bands;
     std::vector<double> band_widths, boundaries;
     drum_cmd->add_option("--cap-friction", cap_friction,
-                         "Friction coefficient between the grains and the end caps (default: the wall's, 0.2)")
+                         "Friction coefficient between the grains and the end caps (default: the caps' material's, "
+                         "the wall's 0.2)")
         ->check(finite_non_negative);
     drum_cmd->add_option("--arrangement", arrangement,
                          "Axial arrangement at the start: halves (default: large left, small right), mixed, bands "
@@ -287,8 +298,8 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember(tumble::keywords(tumble::shear_models)));
     std::optional<double> surface_energy;
     drum_cmd->add_option("--surface-energy", surface_energy,
-                         "Surface energy W of every pair, J/m^2: the attraction and pull-off force (default the "
-                         "paper's 0.2; 0: cohesionless grains)");
+                         "Surface energy W of every pair, J/m^2: the attraction and pull-off force (default: each "
+                         "pair's own, the paper's 0.2; 0: cohesionless grains)");
     drum_cmd->add_option("--friction-normal", friction_normal,
                          "Normal force that limits friction: net (the paper's, default) or jkr")
         ->check(CLI::IsMember(tumble::keywords(tumble::friction_normals)));
@@ -335,6 +346,10 @@ int main(int argc, char** argv) {
     contact_cmd->add_option("--wall-radius", contact_wall_radius, "Radius of the drum's wall particles, m (with --drum)")
         ->needs(contact_drum_flag);
     contact_cmd->add_option("--dt", contact_dt, "Time step of the drum, s (with --drum; default: chosen)")
+        ->needs(contact_drum_flag);
+    std::optional<std::string> contact_walls;
+    contact_cmd->add_option("--walls", contact_walls, "The drum's walls: particles (default) or smooth (with --drum)")
+        ->check(CLI::IsMember(tumble::keywords(tumble::drum_wall_kinds)))
         ->needs(contact_drum_flag);
     contact_cmd->add_option("--surface-energy", contact_surface_energy,
                             "Surface energy W of every pair of the drum, J/m^2 (with --drum; default the paper's 0.2)")
@@ -457,7 +472,8 @@ int main(int argc, char** argv) {
         if (bench_cmd->parsed()) {
             const bool drum_case = bench.bench_case == "long-drum";
             for (CLI::Option* option :
-                 {size_opt, seed_opt, length_opt, fill_opt, turned_opt, skin_opt, law_opt, cache_opt, export_opt})
+                 {size_opt, seed_opt, length_opt, fill_opt, turned_opt, skin_opt, law_opt, walls_opt, cache_opt,
+                  export_opt})
                 if (option->count() > 0 && (option == size_opt || option == seed_opt) == drum_case)
                     throw tumble::Error("bench: " + option->get_name() + " does not apply to --case " + bench.bench_case);
             return bench_command(bench);
@@ -482,6 +498,7 @@ int main(int argc, char** argv) {
             if (contact_mode) d.mode = *contact_mode;
             if (contact_wall_radius) d.geometry.wall_radius = *contact_wall_radius;
             if (contact_dt) d.dt = *contact_dt;
+            if (contact_walls) d.geometry.walls = tumble::find_keyword(tumble::drum_wall_kinds, *contact_walls)->value;
             if (contact_surface_energy) d.surface_energy = *contact_surface_energy;
             if (contact_tangential_stiffness)
                 d.tangential_stiffness =
@@ -509,6 +526,7 @@ int main(int argc, char** argv) {
             if (diameter) d.geometry.diameter = *diameter;
             if (wall_radius) d.geometry.wall_radius = *wall_radius;
             if (periodic_axis) d.geometry.periodic_axis = true;
+            if (drum_walls) d.geometry.walls = tumble::find_keyword(tumble::drum_wall_kinds, *drum_walls)->value;
             if (cap_friction) d.fill.cap_friction = *cap_friction;
             if (arrangement) d.fill.arrangement = tumble::find_keyword(tumble::arrangements, *arrangement)->value;
             if (bands) d.fill.bands = *bands;

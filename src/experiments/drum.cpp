@@ -36,11 +36,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The two components, counted in every sphere of the drum (`p`).
-std::vector<io::DrumComponent> components_of(const ParticleStore& p, const std::string& mode) {
+// The two components, counted in every sphere of the drum (`p`): in the
+// two-component mode named by their materials (the paper's: material-1,
+// material-2), in the self mode by the half they start in.
+std::vector<io::DrumComponent> components_of(const ParticleStore& p, const std::string& mode,
+                                             const DrumMaterials& materials) {
     std::vector<io::DrumComponent> out(2);
-    out[0] = {mode == "self" ? "left" : "material-1", 0, 0.0, -1.0};
-    out[1] = {mode == "self" ? "right" : "material-2", 0, 0.0, +1.0};
+    const bool self = mode == "self";
+    out[0] = {self ? "left" : materials.materials.at(materials.large).name, 0, 0.0, -1.0};
+    out[1] = {self ? "right" : materials.materials.at(materials.small).name, 0, 0.0, +1.0};
     for (std::size_t i = 0; i < p.size(); ++i) {
         if (p.is_kinematic(i)) continue;
         io::DrumComponent& c = out.at(static_cast<std::size_t>(p.tag[i]));
@@ -461,6 +465,17 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     info.revolutions = s.revolutions;
     info.seed = s.seed;
     info.wall_particles = setup.wall.particles.size();
+    info.walls = keyword_of(drum_wall_kinds, s.geometry.walls);
+    info.materials = sim.scenario().materials;  // (setup.scenario has moved into sim)
+    info.paper_materials = s.materials.paper;
+    {
+        const DrumMaterials& m = s.materials;
+        auto name = [&](std::int32_t k) { return k >= 0 ? m.materials.at(k).name : std::string(); };
+        info.large_material = name(m.large);
+        info.small_material = name(m.small);
+        info.wall_material = name(m.wall);
+        info.cap_material = s.fill.cap_friction ? std::string(drum_cap_material_name) : name(m.cap >= 0 ? m.cap : m.wall);
+    }
     info.inner_radius = setup.wall.inner_radius;
     info.inner_length = setup.wall.inner_length;
     info.periodic_axis = s.geometry.periodic_axis;
@@ -476,12 +491,12 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     info.shear_model = keyword_of(shear_models, s.shear);
     info.friction_normal = keyword_of(friction_normals, s.friction_normal);
     info.tangential_stiffness = keyword_of(tangential_stiffnesses, s.tangential_stiffness);
-    info.surface_energy = s.surface_energy;
+    info.surface_energy = s.uniform_surface_energy().value_or(-1.0);
     info.samples_per_revolution = s.samples_per_revolution;
     info.profile_bins = s.profile_bins;
     info.band_bins = s.band_bins > 0 ? s.band_bins : analysis::default_band_bins(info.inner_length);
     const ParticleStore all = make_particle_store(sim.scenario());  // every sphere as it starts (on every rank)
-    info.components = components_of(all, s.mode);
+    info.components = components_of(all, s.mode, s.materials);
     double grain_volume = 0.0;
     for (std::size_t i = 0; i < all.size(); ++i)
         if (!all.is_kinematic(i)) grain_volume += 4.0 / 3.0 * pi * std::pow(all.radius[i], 3);
@@ -498,11 +513,18 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     std::optional<io::RunLock> lock;  // rank 0's: the other ranks write only their checkpoints
     if (mpi::rank() == 0) lock.emplace(io::prepare_output_directory(s.output, options.force));
     if (!options.quiet && mpi::rank() == 0) {
-        fmt::print("tumble drum: {} mode, {} grains ({} {}, {} {}), {} wall particles, inner radius {:.4g} m, "
+        fmt::print("tumble drum: {} mode, {} grains ({} {}, {} {}), {}, inner radius {:.4g} m, "
                    "length {:.4g} m{}; dt = {:.3g} s; instruction set {}\n",
                    s.mode, sim.scenario().free_count(), info.components[0].grains, info.components[0].name,
-                   info.components[1].grains, info.components[1].name, info.wall_particles, info.inner_radius,
-                   info.inner_length, s.geometry.periodic_axis ? " (periodic axis)" : "", sim.dt(), info.isa);
+                   info.components[1].grains, info.components[1].name,
+                   s.geometry.walls == DrumWalls::smooth ? std::string("smooth walls")
+                                                         : fmt::format("{} wall particles", info.wall_particles),
+                   info.inner_radius, info.inner_length, s.geometry.periodic_axis ? " (periodic axis)" : "", sim.dt(),
+                   info.isa);
+        if (!s.materials.paper)
+            fmt::print("materials: large grains {}{}, wall {}, caps {}\n", info.large_material,
+                       s.mode == "self" ? std::string() : ", small grains " + info.small_material, info.wall_material,
+                       s.geometry.periodic_axis ? std::string("none") : info.cap_material);
         if (sim.shared())
             fmt::print("shared among {} MPI ranks, slabs along {} (docs/PARALLEL.md)\n", mpi::size(),
                        "xyz"[sim.slabs()->axis()]);

@@ -21,13 +21,15 @@ namespace tumble::experiments {
 // no faster (docs/BENCHMARKS-LOG.md, "The drum's own skin").
 inline constexpr double drum_skin_per_radius = 0.3;
 
-// The drum of the settings: build_drum_scenario() with the settings' fill,
-// step (0: automatic), neighbour skin (0: drum_skin_per_radius x the largest
-// radius), shear model, friction normal and surface energy (every pair's W).
+// The drum of the settings: build_drum_scenario() with the settings' walls,
+// fill and materials, step (0: automatic), neighbour skin (0:
+// drum_skin_per_radius x the largest radius), shear model, friction normal
+// and surface energy (if given, every pair's W).
 inline DrumSetup build_drum(const io::DrumSettings& s, bool allow_unsafe_dt = false) {
-    DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed, s.fill);
-    for (auto& row : setup.scenario.pair_properties)
-        for (PairProperties& pair : row) pair.W = s.surface_energy;
+    DrumSetup setup = build_drum_scenario(s.geometry, s.mode, s.grain_count(), s.seed, s.fill, s.materials);
+    if (s.surface_energy)
+        for (auto& row : setup.scenario.pair_properties)
+            for (PairProperties& pair : row) pair.W = *s.surface_energy;
     if (s.dt > 0.0) setup.scenario.time_step.dt = s.dt;
     setup.scenario.neighbor.skin = s.skin > 0.0 ? s.skin : drum_skin_per_radius * setup.scenario.largest_radius();
     setup.scenario.model.shear = s.shear;

@@ -49,8 +49,8 @@ MemoryNeed scenario_memory(const io::RunConfig& settings, const io::ParticleCoun
 // skin: the drum's neighbour skin, m (0: automatic).
 MemoryNeed drum_memory(const DrumGeometry& g, double grains, int threads, double skin);
 
-// The number of wall spheres build_drum_wall lays out for g, estimated in
-// floating point (no overflow for any size).
+// The number of wall spheres build_drum_wall lays out for g (none for
+// smooth walls), estimated in floating point (no overflow for any size).
 double drum_wall_spheres(const DrumGeometry& g);
 
 // A drum whose wall needs far more spheres than the drum holds grains is

@@ -71,8 +71,12 @@ SweepPlan sweep_plan(const std::string& sweep_file, const std::string& output_di
     std::map<std::string, double> dt_of_mode;
     const io::DrumSettings defaults;
     for (const io::SweepPoint& p : plan.points) {
-        if (!dt_of_mode.count(p.mode))
-            dt_of_mode[p.mode] = assess_time_step(build_drum_scenario({}, p.mode, p.grains, p.seed).scenario).dt;
+        if (!dt_of_mode.count(p.mode)) {  // every point of a sweep has the same walls and axis
+            DrumGeometry g;
+            g.periodic_axis = p.periodic_axis;
+            g.walls = find_keyword(drum_wall_kinds, p.walls)->value;
+            dt_of_mode[p.mode] = assess_time_step(build_drum_scenario(g, p.mode, p.grains, p.seed).scenario).dt;
+        }
         try {
             check_drum_durations(p.revolutions, p.omega, p.samples_per_revolution, defaults.settle_max_time,
                                  dt_of_mode[p.mode]);

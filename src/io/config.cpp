@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "io/material_tables.hpp"
 #include "io/names.hpp"
 #include "io/toml_reader.hpp"
 #include "io/particle_csv.hpp"
@@ -79,7 +80,6 @@ public:
         config_.source = r_.file();
         read_simulation(*r_.table(root, "simulation", true));
         read_materials(root);
-        read_pairs(root);
         read_motions(root);
         read_domain(*r_.table(root, "domain", true));
         read_walls(root);
@@ -115,43 +115,15 @@ private:
                     t.get("max_initial_overlap"));
     }
 
+    // [[material]] and [[pair]] (material_tables.hpp, shared with the drum reader).
     void read_materials(const toml::table& root) {
-        const auto entries = r_.tables(root, "", "material");
-        if (entries.empty()) r_.fail("material", "missing: at least one [[material]] is required");
-        for (std::size_t i = 0; i < entries.size(); ++i) {
-            const toml::table& t = *entries[i];
-            const std::string p = at("material", i);
-            r_.only_keys(t, p, {"name", "E", "G", "nu", "xi", "eta", "rho", "radius"});
-            Material m;
-            m.name = r_.string(r_.required(t, p, "name"), join(p, "name"));
-            for (std::size_t j = 0; j < i; ++j)
-                if (s().materials[j].name == m.name)
-                    r_.fail(join(p, "name"), fmt::format("duplicate material name \"{}\" (also material[{}])", m.name, j),
-                            t.get("name"));
-            m.E = r_.required_number(t, p, "E", Bound::positive);
-            m.G = r_.required_number(t, p, "G", Bound::positive);
-            m.nu = r_.required_number(t, p, "nu", Bound::any);
-            if (!(m.nu > -1.0 && m.nu < 0.5))
-                r_.fail(join(p, "nu"), "Poisson ratio must lie in (-1, 0.5), got " + show(m.nu), t.get("nu"));
-            m.xi = r_.required_number(t, p, "xi", Bound::non_negative);
-            m.eta = r_.required_number(t, p, "eta", Bound::non_negative);
-            m.rho = r_.required_number(t, p, "rho", Bound::positive);
-            m.radius = r_.required_number(t, p, "radius", Bound::positive);
-            if (const std::string why = material_problem(m); !why.empty()) r_.fail(p, why, &t);
-            s().materials.push_back(m);
-            material_names_.push_back(m.name);
-        }
+        materials_ = read_material_tables(r_, root, true);
+        s().materials = materials_.materials;
+        s().pair_properties = materials_.pair_properties;
     }
 
     std::int32_t material_index(const toml::node& n, const std::string& key) const {
-        const std::string name = r_.string(n, key);
-        const auto found = std::find(material_names_.begin(), material_names_.end(), name);
-        if (found == material_names_.end())
-            r_.fail(key,
-                    "unknown material \"" + name + "\"" + detail::did_you_mean(name, material_names_) +
-                        "; known materials: " + detail::quoted_list(material_names_),
-                    &n);
-        return static_cast<std::int32_t>(found - material_names_.begin());
+        return materials_.index(r_, n, key);
     }
 
     std::int32_t motion_index(const toml::node& n, const std::string& key) const {
@@ -163,39 +135,6 @@ private:
                         "; known motions: " + detail::quoted_list(motion_names_),
                     &n);
         return static_cast<std::int32_t>(found - motion_names_.begin());
-    }
-
-    void read_pairs(const toml::table& root) {
-        const std::size_t n = s().materials.size();
-        s().pair_properties.assign(n, std::vector<PairProperties>(n));
-        std::vector<std::vector<int>> given(n, std::vector<int>(n, -1));  // which [[pair]] gave it
-        const auto entries = r_.tables(root, "", "pair");
-        for (std::size_t i = 0; i < entries.size(); ++i) {
-            const toml::table& t = *entries[i];
-            const std::string p = at("pair", i);
-            r_.only_keys(t, p, {"materials", "mu", "W"});
-            const std::string key = join(p, "materials");
-            const toml::node& names = r_.required(t, p, "materials");
-            const toml::array& a = r_.array(names, key, 2, "an array of 2 material names [\"a\", \"b\"]");
-            const std::int32_t m0 = material_index(*a.get(0), at(key, 0));
-            const std::int32_t m1 = material_index(*a.get(1), at(key, 1));
-            if (given[m0][m1] >= 0)
-                r_.fail(key,
-                        fmt::format("duplicate pair \"{}\" - \"{}\" (already given by pair[{}])", material_names_[m0],
-                                    material_names_[m1], given[m0][m1]),
-                        &names);
-            PairProperties props;
-            props.mu = r_.required_number(t, p, "mu", Bound::non_negative);
-            props.W = r_.required_number(t, p, "W", Bound::non_negative);
-            s().pair_properties[m0][m1] = s().pair_properties[m1][m0] = props;
-            given[m0][m1] = given[m1][m0] = static_cast<int>(i);
-        }
-        for (std::size_t a = 0; a < n; ++a)
-            for (std::size_t b = a; b < n; ++b)
-                if (given[a][b] < 0)
-                    r_.fail("pair", fmt::format("missing [[pair]] with materials = [\"{}\", \"{}\"] (every pair of "
-                                                "materials, including each with itself, needs mu and W)",
-                                                material_names_[a], material_names_[b]));
     }
 
     void read_motions(const toml::table& root) {
@@ -889,7 +828,7 @@ private:
     RunConfig config_;
     std::size_t planned_ = 0;  // spheres of the blocks read so far
     double max_initial_overlap_ = 0.05;
-    std::vector<std::string> material_names_;
+    MaterialTables materials_;
     std::vector<std::string> motion_names_;
     std::vector<Block> blocks_;
 };

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "io/material_tables.hpp"
 #include "io/toml_reader.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/setup/paper_materials.hpp"
@@ -29,12 +30,38 @@ std::size_t DrumSettings::grain_count() const {
     const double R = 0.5 * geometry.diameter;
     const double solid = packing * fill_fraction * pi * R * R * geometry.length;  // m^3 of grains
     const auto volume = [](double r) { return 4.0 / 3.0 * pi * r * r * r; };
-    const Material m1 = paper::material_1(), m2 = paper::material_2();
-    if (mode == "self") return static_cast<std::size_t>(std::llround(solid / volume(m1.radius)));
-    // Equal masses (same density) are half the volume in each material.
-    const double small = fill.small_volume_fraction.value_or(0.5);
-    return static_cast<std::size_t>(std::llround((1.0 - small) * solid / volume(m1.radius)) +
-                                    std::llround(small * solid / volume(m2.radius)));
+    const auto radius = [&](std::int32_t m) {
+        return m >= 0 && static_cast<std::size_t>(m) < materials.materials.size() ? materials.materials[m].radius : 0.0;
+    };
+    const double R1 = radius(materials.large), R2 = radius(materials.small);
+    if (!(R1 > 0.0)) return grains;  // refused by check_drum_settings
+    if (mode == "self") return static_cast<std::size_t>(std::llround(solid / volume(R1)));
+    if (!(R2 > 0.0)) return grains;
+    // Equal masses of the paper's grains (same density) are half the volume
+    // in each material; by default the grains' volume is shared as equal
+    // masses share it.
+    const Material* m1 = &materials.materials[materials.large];
+    const Material* m2 = &materials.materials[materials.small];
+    const double small =
+        fill.small_volume_fraction.value_or(m2->rho > 0.0 && m1->rho > 0.0 ? m1->rho / (m1->rho + m2->rho) : 0.5);
+    return static_cast<std::size_t>(std::llround((1.0 - small) * solid / volume(R1)) +
+                                    std::llround(small * solid / volume(R2)));
+}
+
+std::optional<double> DrumSettings::uniform_surface_energy() const {
+    if (surface_energy) return surface_energy;
+    std::vector<std::int32_t> used;
+    for (const std::int32_t m : {materials.large, materials.small, materials.wall, materials.cap})
+        if (m >= 0 && static_cast<std::size_t>(m) < materials.materials.size()) used.push_back(m);
+    std::optional<double> W;
+    for (const std::int32_t a : {materials.large, materials.small})  // the pairs that touch: a grain and anything
+        for (const std::int32_t b : used) {
+            if (a < 0 || static_cast<std::size_t>(a) >= materials.materials.size()) continue;
+            const double w = materials.pair_properties.at(a).at(b).W;
+            if (W && *W != w) return std::nullopt;
+            W = w;
+        }
+    return W;
 }
 
 void check_drum_settings(const DrumSettings& s, const std::string& source) {
@@ -67,15 +94,48 @@ void check_drum_settings(const DrumSettings& s, const std::string& source) {
     if (!(s.skin >= 0.0 && s.skin < s.geometry.diameter))
         fail("neighbor.skin", "must be >= 0 m (0: automatic, 0.3 x the largest radius) and below the drum's diameter (" +
                                   show(s.geometry.diameter) + " m), got " + show(s.skin) + " (--skin)");
-    if (!(s.surface_energy >= 0.0) || !std::isfinite(s.surface_energy))
+    if (s.surface_energy && (!(*s.surface_energy >= 0.0) || !std::isfinite(*s.surface_energy)))
         fail("model.surface_energy",
-             "must be >= 0 J/m^2 (0: no attraction), got " + show(s.surface_energy) + " (--surface-energy)");
-    if (const auto problem = drum_fill_problem(s.geometry, s.mode, s.fill)) {
+             "must be >= 0 J/m^2 (0: no attraction), got " + show(*s.surface_energy) + " (--surface-energy)");
+    if (const auto problem = drum_materials_problem(s.materials, s.mode, s.geometry.periodic_axis))
+        throw ConfigError(source, "materials." + problem->key, problem->reason);
+    if (const auto problem = drum_fill_problem(s.geometry, s.mode, s.fill, s.materials)) {
         std::string option = problem->key;
         std::replace(option.begin(), option.end(), '_', '-');
         throw ConfigError(source, problem->key, problem->reason + " (tumble drum --" + option + ")");
     }
 }
+
+namespace {
+
+// [[material]], [[pair]] and [materials]: the drum's own materials and
+// which is which (the roles of DrumMaterials); without them the paper's.
+void read_drum_materials(const Reader& r, const toml::table& root, DrumSettings& s) {
+    const MaterialTables tables = read_material_tables(r, root, false);
+    const toml::table* roles = r.table(root, "materials", false);
+    if (!roles) {
+        if (!tables.materials.empty())
+            r.fail("materials",
+                   "missing: with [[material]] tables, say which material is which: [materials] with large, small "
+                   "and wall (and cap, if the caps have their own) naming them");
+        return;
+    }
+    if (tables.materials.empty())
+        r.fail("materials", "given, but no [[material]] table defines a material (the paper's drum needs neither)",
+               roles);
+    r.only_keys(*roles, "materials", {"large", "small", "wall", "cap"});
+    DrumMaterials m;
+    m.paper = false;
+    m.materials = tables.materials;
+    m.pair_properties = tables.pair_properties;
+    m.large = tables.index(r, r.required(*roles, "materials", "large"), "materials.large");
+    m.wall = tables.index(r, r.required(*roles, "materials", "wall"), "materials.wall");
+    m.small = roles->get("small") ? tables.index(r, *roles->get("small"), "materials.small") : -1;
+    m.cap = roles->get("cap") ? tables.index(r, *roles->get("cap"), "materials.cap") : -1;
+    s.materials = std::move(m);
+}
+
+}  // namespace
 
 DrumSettings load_drum_settings(const std::filesystem::path& file) {
     return read_drum_settings(parse_toml(read_text_file(file), file), file);
@@ -84,9 +144,12 @@ DrumSettings load_drum_settings(const std::filesystem::path& file) {
 DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::path& file) {
     const Reader r(file);
     DrumSettings s;
-    r.only_keys(root, "", {"drum", "fill", "rotation", "measure", "settle", "time_step", "neighbor", "model", "output"});
+    r.only_keys(root, "", {"drum", "fill", "rotation", "measure", "settle", "time_step", "neighbor", "model", "output",
+                           "material", "pair", "materials"});
+    read_drum_materials(r, root, s);
     if (const toml::table* t = r.table(root, "drum", false)) {
-        r.only_keys(*t, "drum", {"length", "diameter", "wall_radius", "periodic_axis", "cap_friction"});
+        r.only_keys(*t, "drum", {"length", "diameter", "wall_radius", "periodic_axis", "cap_friction", "walls"});
+        if (const toml::node* n = t->get("walls")) s.geometry.walls = r.keyword(*n, "drum.walls", drum_wall_kinds)->value;
         if (auto mu = r.number(*t, "drum", "cap_friction", Bound::non_negative)) s.fill.cap_friction = *mu;
         if (const toml::node* n = t->get("periodic_axis"))
             s.geometry.periodic_axis = r.boolean(*n, "drum.periodic_axis");
@@ -162,7 +225,7 @@ DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::
             s.friction_normal = r.keyword(*n, "model.friction_normal", friction_normals)->value;
         if (const toml::node* n = t->get("tangential_stiffness"))
             s.tangential_stiffness = r.keyword(*n, "model.tangential_stiffness", tangential_stiffnesses)->value;
-        s.surface_energy = r.number(*t, "model", "surface_energy", Bound::non_negative, s.surface_energy);
+        if (auto W = r.number(*t, "model", "surface_energy", Bound::non_negative)) s.surface_energy = *W;
     }
     if (const toml::table* t = r.table(root, "output", false)) {
         r.only_keys(*t, "output", {"directory"});

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "tumble/contact/contact_law.hpp"
@@ -18,7 +19,9 @@ namespace tumble::io {
 enum class SpeedUnit { rad_per_s, rpm, froude };
 
 struct DrumSettings {
-    DrumGeometry geometry;             // inner length, inner diameter, wall-particle radius (m)
+    // inner length, inner diameter, wall-particle radius (m), periodic
+    // axis, the walls' kind ([drum] walls: particles or smooth)
+    DrumGeometry geometry;
     std::string mode = "two-component";  // or "self"
     // The axial arrangement at the start, the species' volume shares and the
     // caps' friction (setup/drum.hpp; [fill] arrangement, bands, band_widths,
@@ -59,10 +62,15 @@ struct DrumSettings {
     ShearModel shear = ShearModel::Paper;              // the reading of the friction limit (docs/MODEL.md)
     FrictionNormal friction_normal = FrictionNormal::Net;  // which normal force limits friction
     TangentialStiffness tangential_stiffness = TangentialStiffness::Paper;  // the shear and twisting springs
-    // J/m^2: the surface energy W of every pair (grains, wall, caps), which
-    // sets the attraction (eq. 7) and the pull-off force 2 pi W R*; the
-    // paper's 0.2 by default, 0 for cohesionless grains (docs/DRUM.md).
-    double surface_energy = paper::surface_energy;
+    // J/m^2: if given, the surface energy W of every pair (grains, wall,
+    // caps), which sets the attraction (eq. 7) and the pull-off force
+    // 2 pi W R*; 0 for cohesionless grains (docs/DRUM.md). None: each pair's
+    // own W, the paper's 0.2 for the paper's materials.
+    std::optional<double> surface_energy;
+    // The grains', the wall's and the caps' materials and their pairs:
+    // the paper's, or the drum file's [[material]], [[pair]] and
+    // [materials] tables (docs/DRUM.md, "Materials").
+    DrumMaterials materials = paper_drum_materials();
     std::filesystem::path output = "drum-out";
 
     // Angular velocity in rad/s: from rpm (2 pi / 60) or from the Froude
@@ -70,8 +78,13 @@ struct DrumSettings {
     double omega() const;
 
     // The number of grains to make: `grains`, or the count that gives
-    // `fill_fraction` (see above).
+    // `fill_fraction` (see above) with the grains' radii.
     std::size_t grain_count() const;
+
+    // W of every pair of the drum that can touch (a grain and a grain, the
+    // wall or a cap): surface_energy if given, else the one W all those
+    // pairs share; none if they differ.
+    std::optional<double> uniform_surface_energy() const;
 };
 
 // Reads a drum TOML file over the defaults; ConfigError names file, key, reason.

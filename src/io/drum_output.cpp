@@ -36,7 +36,17 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                                          {"start_side", c.start_side}});
     toml::array edges;
     for (double z : info.band_edges) edges.push_back(z);
-    const toml::table t{{"mode", info.mode},
+    toml::array materials;
+    for (const Material& m : info.materials)
+        materials.push_back(toml::table{{"name", m.name},
+                                        {"E", m.E},
+                                        {"G", m.G},
+                                        {"nu", m.nu},
+                                        {"xi", m.xi},
+                                        {"eta", m.eta},
+                                        {"rho", m.rho},
+                                        {"radius", m.radius}});
+    toml::table t{{"mode", info.mode},
                         {"omega", info.omega},
                         {"froude", info.froude},
                         {"revolutions", info.revolutions},
@@ -70,7 +80,14 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                         {"band_change_since", info.band_change_since},
                         {"bands_at_start", info.bands_at_start},
                         {"bands_at_end", info.bands_at_end},
+                        {"walls", info.walls},
+                        {"paper_materials", info.paper_materials},
+                        {"large_material", info.large_material},
+                        {"small_material", info.small_material},
+                        {"wall_material", info.wall_material},
+                        {"cap_material", info.cap_material},
                         {"component", components}};
+    if (!materials.empty()) t.insert("material", materials);
     std::ostringstream text;
     text << "# tumble drum run: what was run (read by `tumble analyze`)\n" << t << '\n';
     return text.str();
@@ -126,6 +143,30 @@ DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
     info.band_change_since = t["band_change_since"].value_or(-1.0);
     info.bands_at_start = t["bands_at_start"].value_or(0);
     info.bands_at_end = t["bands_at_end"].value_or(0);
+    // Absent before smooth walls and the drum's own materials: the paper's drum.
+    info.walls = t["walls"].value_or(std::string("particles"));
+    if (!find_keyword(drum_wall_kinds, info.walls))
+        r.fail("walls", "unknown walls \"" + info.walls + "\"; known: " + detail::quoted_list(keywords(drum_wall_kinds)));
+    info.paper_materials = t["paper_materials"].value_or(true);
+    info.large_material = t["large_material"].value_or(std::string("material-1"));
+    info.small_material = t["small_material"].value_or(std::string("material-2"));
+    info.wall_material = t["wall_material"].value_or(std::string("wall"));
+    info.cap_material = t["cap_material"].value_or(info.cap_friction >= 0.0 ? std::string(drum_cap_material_name) : info.wall_material);
+    const auto material_entries = r.tables(t, "", "material");
+    for (std::size_t i = 0; i < material_entries.size(); ++i) {
+        const std::string p = at("material", i);
+        const toml::table& e = *material_entries[i];
+        Material m;
+        m.name = r.string(r.required(e, p, "name"), join(p, "name"));
+        m.E = r.required_number(e, p, "E", Bound::positive);
+        m.G = r.required_number(e, p, "G", Bound::positive);
+        m.nu = r.required_number(e, p, "nu", Bound::any);
+        m.xi = r.required_number(e, p, "xi", Bound::non_negative);
+        m.eta = r.required_number(e, p, "eta", Bound::non_negative);
+        m.rho = r.required_number(e, p, "rho", Bound::positive);
+        m.radius = r.required_number(e, p, "radius", Bound::positive);
+        info.materials.push_back(m);
+    }
     const auto entries = r.tables(t, "", "component");
     for (std::size_t i = 0; i < entries.size(); ++i) {
         const std::string p = at("component", i);
@@ -236,7 +277,8 @@ std::size_t nearest_sample(const std::vector<double>& N, double target) {
 
 }  // namespace
 
-analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_start, double omega) {
+analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_start, double omega,
+                                          const std::vector<Material>& materials) {
     const CsvTable csv = read_csv_table(file);
     const std::optional<double> time = snapshot_time(csv);
     if (!time)
@@ -246,13 +288,12 @@ analysis::GrainFrame read_snapshot_grains(const fs::path& file, double rotation_
                               kinematic = csv.numbers("kinematic"), vx = csv.numbers("vx"), vy = csv.numbers("vy"),
                               vz = csv.numbers("vz"), wx = csv.numbers("wx"), wy = csv.numbers("wy"),
                               wz = csv.numbers("wz");
-    // Masses from the drum's materials (the paper's), by name.
+    // Masses from the drum's materials, by name.
     const std::size_t material_column = csv.column("material");
-    const std::vector<Material> materials = paper::materials();
     auto density = [&](const std::string& name) {
         for (const Material& m : materials)
             if (m.name == name) return m.rho;
-        throw Error(file.string() + ": unknown material \"" + name + "\" (a drum run uses the paper's materials)");
+        throw Error(file.string() + ": unknown material \"" + name + "\" (not one of the drum's materials)");
     };
     std::vector<std::size_t> order(id.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
@@ -278,7 +319,8 @@ std::vector<analysis::GrainFrame> read_rotation_frames(const fs::path& dir, cons
     std::vector<fs::path> files = list_snapshot_csv(dir);
     files.resize(files.size() - std::min(leave_newest, files.size()));
     for (const fs::path& file : files) {
-        analysis::GrainFrame frame = read_snapshot_grains(file, info.settle_time, info.omega);
+        analysis::GrainFrame frame = read_snapshot_grains(file, info.settle_time, info.omega,
+                                                          info.materials.empty() ? paper::materials() : info.materials);
         if (frame.revolutions >= -1e-9) frames.push_back(std::move(frame));  // from the start of rotation
     }
     return frames;
@@ -567,17 +609,36 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                             "N = {:.4g} on, {} at the end ({:.4g} revolutions asked)\n",
                             info.until_band_change, info.bands_at_start, info.band_change_since, info.bands_at_end,
                             info.revolutions);
-    text << fmt::format("  shear model {} ({} stiffness), friction limited by the {} normal force; surface energy W = "
-                        "{:.3g} J/m^2{}\n",
-                        info.shear_model, info.tangential_stiffness, info.friction_normal, info.surface_energy,
-                        info.surface_energy == 0.0 ? " (no attraction)" : "");
+    text << fmt::format("  shear model {} ({} stiffness), friction limited by the {} normal force; surface energy {}\n",
+                        info.shear_model, info.tangential_stiffness, info.friction_normal,
+                        info.surface_energy < 0.0 ? std::string("W per pair (the materials' [[pair]] tables)")
+                        : info.surface_energy == 0.0
+                            ? std::string("W = 0 J/m^2 (no attraction)")
+                            : fmt::format("W = {:.3g} J/m^2", info.surface_energy));
+    if (!info.paper_materials) {
+        auto radius = [&](const std::string& name) {
+            for (const Material& m : info.materials)
+                if (m.name == name) return fmt::format(" (R = {:.4g} m)", m.radius);
+            return std::string();
+        };
+        text << fmt::format("  materials: large grains {}{}{}, wall {}, caps {}\n", info.large_material,
+                            radius(info.large_material),
+                            info.mode == "self" ? std::string()
+                                                : fmt::format(", small grains {}{}", info.small_material,
+                                                              radius(info.small_material)),
+                            info.wall_material, info.periodic_axis ? std::string("none") : info.cap_material);
+    }
     const std::string edges =
         info.band_edges.size() > 2 ? fmt::format(", band edges z = {:.4g} m", fmt::join(info.band_edges, " ")) : "";
     text << fmt::format("  start {}{}; end caps: {}\n", info.arrangement, edges,
                         info.periodic_axis          ? "none (periodic axis)"
                         : info.cap_friction >= 0.0 ? fmt::format("friction {:.3g}", info.cap_friction)
                                                    : std::string("the wall's friction"));
-    text << fmt::format("  {} wall particles; inner radius {:.4g} m, bed length L = {:.4g} m\n", info.wall_particles,
+    text << fmt::format("  {}; inner radius {:.4g} m, bed length L = {:.4g} m\n",
+                        info.walls == "smooth"
+                            ? std::string(info.periodic_axis ? "smooth wall (an infinite cylinder)"
+                                                             : "smooth walls (a cylinder and two discs)")
+                            : fmt::format("{} wall particles", info.wall_particles),
                         info.inner_radius, L);
     text << fmt::format("  solid fraction {:.3f} of the drum volume; fill fraction {:.3f} (bed cross-section after "
                         "settling, {})\n",
@@ -714,6 +775,12 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                  {"surface_energy", info.surface_energy},
                  {"arrangement", info.arrangement},
                  {"cap_friction", info.cap_friction},
+                 {"walls", info.walls},
+                 {"materials", Json{{"paper", info.paper_materials},
+                                    {"large", info.large_material},
+                                    {"small", info.mode == "self" ? Json() : Json(info.small_material)},
+                                    {"wall", info.wall_material},
+                                    {"cap", info.periodic_axis ? Json() : Json(info.cap_material)}}},
                  {"omega", info.omega},
                  {"froude", info.froude},
                  {"revolutions", series.revolutions.empty() ? 0.0 : series.revolutions.back()},

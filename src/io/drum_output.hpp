@@ -57,7 +57,18 @@ struct DrumRunInfo {
     std::string shear_model = "paper";    // keyword of the shear model (contact_law.hpp)
     std::string friction_normal = "net";  // keyword of the normal force that limits friction
     std::string tangential_stiffness = "paper";  // keyword of the shear and twisting springs' stiffness
-    double surface_energy = paper::surface_energy;  // J/m^2, every pair's W (the attraction)
+    // J/m^2, every pair's W (the attraction); < 0: the pairs' W differ
+    // (the drum's own materials' [[pair]] tables)
+    double surface_energy = paper::surface_energy;
+    std::string walls = "particles";     // the walls' kind (keyword of drum_wall_kinds; setup/drum.hpp)
+    // The drum's materials as the scenario holds them (empty: the paper's,
+    // a run from before they were recorded), whether they are the paper's,
+    // and the names of those of the large and small grains, the wall and
+    // the caps.
+    std::vector<Material> materials;
+    bool paper_materials = true;
+    std::string large_material = "material-1", small_material = "material-2", wall_material = "wall",
+                cap_material = "wall";
     bool periodic_axis = false;    // no end caps: the axis is periodic with period inner_length
     double spin_up_time = 0.0;     // s: linear ramp from rest to omega (0: none)
     std::string arrangement = "halves";  // the start's axial arrangement (keyword; setup/drum.hpp)
@@ -113,7 +124,10 @@ DrumProfiles read_drum_profiles(const std::filesystem::path& file, std::size_t c
 
 // A particle snapshot (snapshots/NNNNNN.csv) of a drum run: its free grains,
 // sorted by id, at N = omega (t - rotation_start) / 2 pi revolutions.
-analysis::GrainFrame read_snapshot_grains(const std::filesystem::path& file, double rotation_start, double omega);
+// The grains' masses come from their materials' densities (by name):
+// `materials`, those of the run (DrumRunInfo::materials).
+analysis::GrainFrame read_snapshot_grains(const std::filesystem::path& file, double rotation_start, double omega,
+                                          const std::vector<Material>& materials = paper::materials());
 
 // The particle snapshots taken during the rotation (N >= 0), in time order,
 // but the `leave_newest` newest files (a run going on may be writing one).

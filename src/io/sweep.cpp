@@ -62,7 +62,7 @@ SweepSettings load_sweep_settings(const fs::path& file) {
     r.only_keys(t, "sweep",
                 {"omega", "rpm", "froude", "modes", "seeds", "revolutions", "grains_two_component", "grains_self",
                  "samples_per_revolution", "snapshots_per_revolution", "diameter", "shear", "friction_normal",
-                 "tangential_stiffness", "periodic_axis"});
+                 "tangential_stiffness", "periodic_axis", "walls"});
     int given = 0;
     for (auto [key, unit] : {std::pair{"omega", SpeedUnit::rad_per_s}, std::pair{"rpm", SpeedUnit::rpm},
                              std::pair{"froude", SpeedUnit::froude}})
@@ -116,6 +116,7 @@ SweepSettings load_sweep_settings(const fs::path& file) {
     if (const toml::node* n = t.get("tangential_stiffness"))
         s.tangential_stiffness = r.keyword(*n, "sweep.tangential_stiffness", tangential_stiffnesses)->keyword;
     s.periodic_axis = r.boolean(t, "sweep", "periodic_axis", s.periodic_axis);
+    if (const toml::node* n = t.get("walls")) s.walls = r.keyword(*n, "sweep.walls", drum_wall_kinds)->keyword;
     s.diameter = r.number(t, "sweep", "diameter", Bound::positive, s.diameter);
     if (t.get("diameter") && s.speed_unit != SpeedUnit::froude)
         r.fail("sweep.diameter", "only used to turn froude into omega; give it with froude only", t.get("diameter"));
@@ -156,6 +157,7 @@ std::vector<SweepPoint> expand_sweep(const SweepSettings& s, const fs::path& dir
                 p.friction_normal = s.friction_normal;
                 p.tangential_stiffness = s.tangential_stiffness;
                 p.periodic_axis = s.periodic_axis;
+                p.walls = s.walls;
                 p.name = sweep_point_name(mode, p.omega, seed);
                 p.directory = directory / "points" / p.name;
                 if (!names.insert(p.name).second)
@@ -195,6 +197,7 @@ std::vector<std::string> drum_arguments(const SweepPoint& p) {
             "--threads",  // the sweep runs its points side by side, one core each
             "1"};
     if (p.periodic_axis) arguments.push_back("--periodic-axis");
+    if (p.walls != "particles") arguments.insert(arguments.end(), {"--walls", p.walls});
     return arguments;
 }
 
@@ -442,7 +445,7 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
     std::size_t missing = 0;
     {
         std::ostringstream out;
-        out << "mode,shear_model,friction_normal,tangential_stiffness,ends,omega,froude,seed,revolutions,grains";
+        out << "mode,shear_model,friction_normal,tangential_stiffness,ends,walls,omega,froude,seed,revolutions,grains";
         for (const std::string& c : components)
             out << fmt::format(",D_{0},D_stderr_{0},D_one_term_{0},determined_{0},surface_share_{0},D_msd_{0},D_msd_lo_{0},"
                                "D_msd_hi_{0},D_hogg_free_{0},D_hogg_free_lo_{0},D_hogg_free_hi_{0}",
@@ -453,9 +456,9 @@ std::size_t write_sweep_tables(const fs::path& directory, const std::vector<Poin
             const SweepPoint& p = r.point;
             const bool ok = has_numbers(r);
             if (!ok) ++missing;
-            out << fmt::format("{},{},{},{},{},{},{},{},{},{}", p.mode, p.shear, p.friction_normal, p.tangential_stiffness,
-                               p.periodic_axis ? "periodic" : "caps", p.omega, p.froude, p.seed, p.revolutions,
-                               p.grains);
+            out << fmt::format("{},{},{},{},{},{},{},{},{},{},{}", p.mode, p.shear, p.friction_normal,
+                               p.tangential_stiffness, p.periodic_axis ? "periodic" : "caps", p.walls, p.omega, p.froude,
+                               p.seed, p.revolutions, p.grains);
             for (const std::string& c : components) {
                 const PointResult::Component* k = ok ? component(r, c) : nullptr;
                 if (k)

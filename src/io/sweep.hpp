@@ -40,6 +40,7 @@ struct SweepSettings {
     std::string friction_normal = "net";    // tumble drum --friction-normal
     std::string tangential_stiffness = "paper";  // tumble drum --tangential-stiffness
     bool periodic_axis = false;             // tumble drum --periodic-axis: no end caps
+    std::string walls = "particles";        // tumble drum --walls (keyword of drum_wall_kinds)
     std::filesystem::path output = "sweep-out";
 };
 
@@ -60,6 +61,7 @@ struct SweepPoint {
     int snapshots_per_revolution = 0;
     std::string shear = "paper", friction_normal = "net", tangential_stiffness = "paper";
     bool periodic_axis = false;
+    std::string walls = "particles";
     std::string name;          // e.g. "two-component_omega5.000_seed1"
     std::filesystem::path directory;  // DIR/points/NAME
 };
@@ -74,7 +76,7 @@ std::vector<SweepPoint> expand_sweep(const SweepSettings& s, const std::filesyst
 // The arguments after the program name of the child run:
 // drum -q --mode M --omega W --seed S --revolutions R --grains G --samples K
 //      --snapshots P --shear H --friction-normal F --tangential-stiffness T --out DIR --force
-//      --threads 1
+//      --threads 1 [--periodic-axis] [--walls smooth]
 std::vector<std::string> drum_arguments(const SweepPoint& p);
 // The arguments that continue an interrupted point from its checkpoint:
 // resume -q DIR

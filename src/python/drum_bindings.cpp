@@ -59,6 +59,22 @@ void bind_drum(py::module_& m) {
         .def_property_readonly("diameter", [](const io::DrumSettings& s) { return s.geometry.diameter; }, "m")
         .def_property_readonly("wall_radius", [](const io::DrumSettings& s) { return s.geometry.wall_radius; }, "m")
         .def_property_readonly("periodic_axis", [](const io::DrumSettings& s) { return s.geometry.periodic_axis; })
+        .def_property_readonly("walls",
+                               [](const io::DrumSettings& s) { return keyword_of(drum_wall_kinds, s.geometry.walls); },
+                               "particles (a wall of spheres, the paper's) or smooth (a cylinder and two discs)")
+        .def_property_readonly(
+            "materials",
+            [](const io::DrumSettings& s) {
+                const DrumMaterials& m = s.materials;
+                auto name = [&](std::int32_t k) -> py::object {
+                    return k >= 0 ? py::object(py::str(m.materials.at(k).name)) : py::object(py::none());
+                };
+                return py::dict(py::arg("paper") = m.paper, py::arg("large") = name(m.large),
+                                py::arg("small") = name(m.small), py::arg("wall") = name(m.wall),
+                                py::arg("cap") = name(m.cap >= 0 ? m.cap : m.wall));
+            },
+            "the materials of the large and small grains, the wall and the caps (names), and whether they are "
+            "the paper's")
         .def_property_readonly("cap_friction", [](const io::DrumSettings& s) { return s.fill.cap_friction; },
                                "mu between grains and end caps; None: the wall's")
         .def_property_readonly("arrangement",
@@ -85,8 +101,9 @@ void bind_drum(py::module_& m) {
         .def_property_readonly("tangential_stiffness", [](const io::DrumSettings& s) {
             return keyword_of(tangential_stiffnesses, s.tangential_stiffness);
         })
-        .def_readonly("surface_energy", &io::DrumSettings::surface_energy,
-                      "J/m^2, every pair's W (the attraction); the paper's 0.2, 0: cohesionless")
+        .def_property_readonly("surface_energy", &io::DrumSettings::uniform_surface_energy,
+                               "J/m^2, every pair's W (the attraction): the one given, else the one the materials' "
+                               "pairs share (the paper's 0.2); None if their W differ; 0: cohesionless")
         .def_readonly("output", &io::DrumSettings::output, "the run directory");
 
     m.def("load_drum_settings", &io::load_drum_settings, py::arg("path"), "A drum settings file (TOML)");

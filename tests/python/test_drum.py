@@ -136,3 +136,44 @@ def test_the_wall_spheres_forces_are_the_grains_load_on_any_thread_count():
     scale = np.abs(forces[1]).max()
     assert np.count_nonzero(np.linalg.norm(forces[1], axis=1) > 1e-3 * scale) > 30  # grains rest on the wall (49)
     np.testing.assert_allclose(forces[2], forces[1], rtol=0, atol=1e-6 * scale)
+
+
+def _glass_tables():
+    """Cohesionless glass-like beads of 3 and 2 mm and a steel wall, as the
+    drum file's [[material]] and [[pair]] tables."""
+    def material(name, radius, rho=2500.0):
+        return {"name": name, "E": 1.0e7, "G": 4.0e6, "nu": 0.22, "xi": 50.0, "eta": 50.0, "rho": rho,
+                "radius": radius}
+    names = ["glass-3mm", "glass-2mm", "steel"]
+    pairs = [{"materials": [a, b], "mu": 0.4 if "steel" in (a, b) else 0.3, "W": 0.0}
+             for i, a in enumerate(names) for b in names[i:]]
+    return [material("glass-3mm", 3.0e-3), material("glass-2mm", 2.0e-3), material("steel", 3.0e-3, 7800.0)], pairs
+
+
+def test_walls_and_materials_are_the_drum_files():
+    assert tumble.drum_settings().walls == "particles"
+    assert tumble.drum_settings(walls="smooth").walls == "smooth"  # --walls, [drum] walls
+    with pytest.raises(tumble.Error, match="drum.walls"):
+        tumble.drum_settings(walls="glass")
+    assert tumble.drum_settings().materials == {"paper": True, "large": "material-1", "small": "material-2",
+                                               "wall": "wall", "cap": "wall"}
+    materials, pairs = _glass_tables()
+    roles = {"large": "glass-3mm", "small": "glass-2mm", "wall": "steel"}
+    s = tumble.drum_settings(material=materials, pair=pairs, materials=roles, walls="smooth")
+    assert s.materials == {"paper": False, "large": "glass-3mm", "small": "glass-2mm", "wall": "steel",
+                           "cap": "steel"}
+    assert s.surface_energy == 0.0  # every pair's W
+    # A dict laid out as the file goes through the same reader.
+    d = tumble.drum_settings({"material": materials, "pair": pairs, "materials": roles, "drum": {"walls": "smooth"}})
+    assert (d.walls, d.materials["large"]) == ("smooth", "glass-3mm")
+    with pytest.raises(tumble.Error, match=r"materials\.small: unknown material \"glass-2m\""):
+        tumble.drum_settings(material=materials, pair=pairs, materials={**roles, "small": "glass-2m"})
+    with pytest.raises(tumble.Error, match=r"materials: missing"):
+        tumble.drum_settings(material=materials, pair=pairs)
+    with pytest.raises(tumble.Error, match=r"pair: missing \[\[pair\]\]"):
+        tumble.drum_settings(material=materials, pair=pairs[:-1], materials=roles)
+    # The smooth drum of them: no wall spheres, the grains of their radii.
+    sim = tumble.Simulation(tumble.drum_scenario(material=materials, pair=pairs, materials=roles, walls="smooth",
+                                                 grains=200))
+    assert np.all(sim.motions < 0) and len(sim.ids) == 200
+    assert set(np.round(sim.radii, 6)) == {0.003, 0.002}

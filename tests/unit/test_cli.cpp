@@ -20,6 +20,9 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <tuple>
+
+#include <fmt/format.h>
 
 namespace fs = std::filesystem;
 
@@ -421,6 +424,32 @@ TEST_F(Cli, BenchLongDrumTurnedBedIsKeptAndHasTurned) {
     EXPECT_GT(grain_moved, 1e-3);
 }
 
+// --walls smooth: the long drum walled by a smooth cylinder and two discs,
+// from its own settled bed (its file name says so), no wall spheres.
+TEST_F(Cli, BenchLongDrumWithSmoothWallsKeepsItsOwnBed) {
+    const std::string arguments = "bench --case long-drum --length 0.02 --fill 0.2 --steps 20 --warmup 5 --json --cache " +
+                                  (dir_ / "cache").string();
+    const Result particles = run_tumble(arguments);
+    ASSERT_EQ(particles.exit_code, 0) << particles.output;
+    const Result smooth = run_tumble(arguments + " --walls smooth");
+    ASSERT_EQ(smooth.exit_code, 0) << smooth.output;
+    const tumble::io::Json p = tumble::io::parse_json(last_line(particles.output));
+    const tumble::io::Json j = tumble::io::parse_json(last_line(smooth.output));
+    EXPECT_EQ(j.value("walls", ""), "smooth");
+    EXPECT_EQ(p.value("walls", ""), "particles");
+    EXPECT_EQ(j.value("bed", ""), "made");  // not the particle-walled drum's bed
+    EXPECT_EQ(j.at("particles").get<double>(), j.at("grains").get<double>());  // no wall spheres
+    EXPECT_EQ(j.at("grains").get<double>(), p.at("grains").get<double>());
+    std::vector<std::string> beds;
+    for (const auto& entry : fs::directory_iterator(dir_ / "cache")) beds.push_back(entry.path().filename().string());
+    std::sort(beds.begin(), beds.end());
+    ASSERT_EQ(beds.size(), 2u);
+    EXPECT_EQ(beds[0].rfind("long-drum-length", 0), 0u) << beds[0];  // the particle-walled bed's name of before
+    EXPECT_EQ(beds[1].rfind("long-drum-smooth-length", 0), 0u) << beds[1];
+    EXPECT_EQ(tumble::io::parse_json(last_line(run_tumble(arguments + " --walls smooth").output)).value("bed", ""),
+              "read");
+}
+
 TEST(CliBench, OptionsOfTheOtherCaseAreRefused) {
     const std::pair<const char*, const char*> cases[] = {{"bench --case long-drum --size 8", "--size"},
                                                          {"bench --length 0.1", "--length"},
@@ -429,6 +458,8 @@ TEST(CliBench, OptionsOfTheOtherCaseAreRefused) {
                                                          {"bench --export bed", "--export"},
                                                          {"bench --turned 1", "--turned"},
                                                          {"bench --law peer", "--law"},
+                                                         {"bench --walls smooth", "--walls"},
+                                                         {"bench --case long-drum --walls glass", "--walls"},
                                                          {"bench --case long-drum --law lammps", "--law"},
                                                          {"bench --case long-drum --turned -1", "--turned"}};
     for (const auto& [arguments, option] : cases) {
@@ -539,6 +570,83 @@ TEST_F(Cli, DrumRefusesImpossibleSettingsAndWritesNothing) {
     const Result r = run_tumble("drum --config " + config.string() + out);
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.output.find("drum.toml: rotation.spin: unknown key"), std::string::npos) << r.output;
+}
+
+// The drum of its own materials (cohesionless glass-like beads of 3 and 2
+// mm, a steel wall) with smooth walls, short: the run and its analysis go
+// through, and what was run is recorded. It checks the files, not the
+// physics (tests/physics/test_drum_walls.cpp).
+TEST_F(Cli, DrumOfItsOwnMaterialsWithSmoothWallsRecordsBoth) {
+    std::string tables;
+    for (const auto& [name, radius, rho] : {std::tuple{"glass-3mm", 3.0e-3, 2500.0}, std::tuple{"glass-2mm", 2.0e-3, 2500.0},
+                                            std::tuple{"steel", 3.0e-3, 7800.0}})
+        tables += fmt::format("[[material]]\nname = \"{}\"\nE = 1.0e7\nG = 4.0e6\nnu = 0.22\nxi = 50.0\neta = 50.0\n"
+                              "rho = {}\nradius = {}\n",
+                              name, rho, radius);
+    for (const auto& [a, b, mu] : {std::tuple{"glass-3mm", "glass-3mm", 0.3}, std::tuple{"glass-3mm", "glass-2mm", 0.3},
+                                   std::tuple{"glass-2mm", "glass-2mm", 0.3}, std::tuple{"glass-3mm", "steel", 0.4},
+                                   std::tuple{"glass-2mm", "steel", 0.4}, std::tuple{"steel", "steel", 0.4}})
+        tables += fmt::format("[[pair]]\nmaterials = [\"{}\", \"{}\"]\nmu = {}\nW = 0.0\n", a, b, mu);
+    const fs::path config = write("glass.toml", tables + "[materials]\nlarge = \"glass-3mm\"\nsmall = \"glass-2mm\"\n"
+                                                         "wall = \"steel\"\n");
+    const fs::path run = dir_ / "glass";
+    const Result r = run_tumble("drum -q --no-plot --config " + config.string() +
+                                " --walls smooth --grains 200 --omega 8 --revolutions 0.2 --samples 40 --snapshots 10 "
+                                "--out " + run.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const tumble::io::DrumRunInfo info = tumble::io::read_drum_run_info(run / "drum_run.toml");
+    EXPECT_EQ(info.walls, "smooth");
+    EXPECT_EQ(info.wall_particles, 0u);
+    EXPECT_FALSE(info.paper_materials);
+    EXPECT_EQ(info.large_material, "glass-3mm");
+    EXPECT_EQ(info.small_material, "glass-2mm");
+    EXPECT_EQ(info.wall_material, "steel");
+    EXPECT_EQ(info.cap_material, "steel");
+    ASSERT_EQ(info.materials.size(), 3u);
+    EXPECT_EQ(info.materials[2].rho, 7800.0);
+    EXPECT_EQ(info.surface_energy, 0.0);  // every pair's W
+    ASSERT_EQ(info.components.size(), 2u);
+    EXPECT_EQ(info.components[0].name, "glass-3mm");
+    EXPECT_EQ(info.components[1].name, "glass-2mm");
+    const tumble::io::Json j = tumble::io::parse_json(read_file(run / "summary.json"));
+    EXPECT_EQ(j.value("walls", ""), "smooth");
+    EXPECT_EQ(j.at("materials").value("large", ""), "glass-3mm");
+    EXPECT_EQ(j.at("materials").value("wall", ""), "steel");
+    EXPECT_FALSE(j.at("materials").value("paper", true));
+    const std::string text = read_file(run / "summary.txt");
+    EXPECT_NE(text.find("smooth walls (a cylinder and two discs)"), std::string::npos) << text;
+    EXPECT_NE(text.find("materials: large grains glass-3mm (R = 0.003 m), small grains glass-2mm (R = 0.002 m), "
+                        "wall steel, caps steel"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("W = 0 J/m^2 (no attraction)"), std::string::npos) << text;
+    EXPECT_NE(read_file(run / "drum_series.csv").find("mean_z_glass_3mm"), std::string::npos);
+    // The analysis again, from the files: the grains' masses from the recorded materials.
+    fs::remove(run / "summary.json");
+    const Result again = run_tumble("analyze " + run.string());
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    EXPECT_NE(again.output.find("glass-2mm"), std::string::npos) << again.output;
+
+    // What the run's line says; a wall kind or a material that is not there is refused.
+    const Result bad_walls = run_tumble("drum --walls glass --out " + (dir_ / "no").string());
+    EXPECT_NE(bad_walls.exit_code, 0);
+    EXPECT_NE(bad_walls.output.find("--walls"), std::string::npos) << bad_walls.output;
+    const fs::path wrong = write("wrong.toml", tables + "[materials]\nlarge = \"glass-3mm\"\nsmall = \"glass-2m\"\n"
+                                                        "wall = \"steel\"\n");
+    const Result bad_material = run_tumble("drum --config " + wrong.string() + " --out " + (dir_ / "no").string());
+    EXPECT_EQ(bad_material.exit_code, 2);
+    EXPECT_NE(bad_material.output.find("wrong.toml: materials.small: unknown material \"glass-2m\" (did you mean "
+                                       "\"glass-2mm\"?)"),
+              std::string::npos)
+        << bad_material.output;
+    // The two-component mode asked on the command line of a file made for the self mode.
+    const fs::path self = write("self.toml", tables + "[fill]\nmode = \"self\"\n[materials]\nlarge = \"glass-3mm\"\n"
+                                                      "wall = \"steel\"\n");
+    const Result no_small = run_tumble("drum --config " + self.string() + " --mode two-component --out " +
+                                       (dir_ / "no").string());
+    EXPECT_EQ(no_small.exit_code, 2);
+    EXPECT_NE(no_small.output.find("command line: materials.small: missing"), std::string::npos) << no_small.output;
+    EXPECT_FALSE(fs::exists(dir_ / "no"));
 }
 
 TEST_F(Cli, DrumRunWritesSeriesAndSummaryAndCanBeAnalysedAgain) {

@@ -435,9 +435,10 @@ TEST(DrumArrangement, DrumFileKeys) {
     const std::string wide = message("[neighbor]\nskin = 0.09\n");
     EXPECT_NE(wide.find("below the drum's diameter"), std::string::npos) << wide;
     EXPECT_NE(message("[neighbor]\nsort_every = 2\n").find("sort_every"), std::string::npos);
-    // [model] surface_energy, J/m^2 (the paper's 0.2 by default, 0: no attraction).
+    // [model] surface_energy, J/m^2 (by default each pair's own, the paper's 0.2; 0: no attraction).
     EXPECT_EQ(read("[model]\nsurface_energy = 0.0\n").surface_energy, 0.0);
-    EXPECT_EQ(plain.surface_energy, 0.2);
+    EXPECT_FALSE(plain.surface_energy);
+    EXPECT_EQ(plain.uniform_surface_energy(), 0.2);
     EXPECT_NE(message("[model]\nsurface_energy = -0.2\n").find("model.surface_energy"), std::string::npos);
     // The example file.
     const io::DrumSettings example =

@@ -97,6 +97,7 @@ grains_self = 100
 samples_per_revolution = 10
 snapshots_per_revolution = 1
 periodic_axis = true
+walls = "smooth"
 [output]
 directory = "there"
 )"));
@@ -111,9 +112,20 @@ directory = "there"
     EXPECT_EQ(s.snapshots_per_revolution, 1);
     EXPECT_TRUE(s.periodic_axis);
     EXPECT_EQ(s.output, fs::path("there"));
-    // Each point's drum runs without end caps.
+    EXPECT_EQ(s.walls, "smooth");
+    // Each point's drum runs without end caps, walled smooth.
     const std::vector<std::string> args = drum_arguments(expand_sweep(s, "d")[0]);
-    EXPECT_EQ(args.back(), "--periodic-axis");
+    ASSERT_GE(args.size(), 3u);
+    EXPECT_EQ(args[args.size() - 3], "--periodic-axis");
+    EXPECT_EQ(args[args.size() - 2], "--walls");
+    EXPECT_EQ(args.back(), "smooth");
+    // A wall kind that tumble drum does not know is refused, naming the key.
+    try {
+        load_sweep_settings(write("bad.toml", "[sweep]\nomega = [5]\nwalls = \"glass\"\n"));
+        ADD_FAILURE() << "a bad sweep.walls was read";
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(e.key(), "sweep.walls");
+    }
 }
 
 TEST_F(Sweep, DefaultsAndExamples) {
@@ -417,7 +429,7 @@ TEST_F(Sweep, AggregatesPointsIntoTables) {
     const auto rows = read_csv(dir_ / "sweep.csv");
     ASSERT_EQ(rows.size(), 13u);
     const std::string header =
-        "mode,shear_model,friction_normal,tangential_stiffness,ends,omega,froude,seed,revolutions,grains,"
+        "mode,shear_model,friction_normal,tangential_stiffness,ends,walls,omega,froude,seed,revolutions,grains,"
         "D_material_1,D_stderr_material_1,D_one_term_material_1,determined_material_1,surface_share_material_1,"
         "D_msd_material_1,D_msd_lo_material_1,D_msd_hi_material_1,D_hogg_free_material_1,D_hogg_free_lo_material_1,D_hogg_free_hi_material_1,"
         "D_material_2,D_stderr_material_2,D_one_term_material_2,determined_material_2,surface_share_material_2,"

@@ -48,6 +48,7 @@ DRUM_OPTIONS = {
     "diameter": ("drum", "diameter"),
     "wall_radius": ("drum", "wall_radius"),
     "periodic_axis": ("drum", "periodic_axis"),
+    "walls": ("drum", "walls"),
     "cap_friction": ("drum", "cap_friction"),
     "mode": ("fill", "mode"),
     "arrangement": ("fill", "arrangement"),
@@ -79,6 +80,10 @@ DRUM_OPTIONS = {
     "surface_energy": ("model", "surface_energy"),
     "out": ("output", "directory"),
 }
+# The drum's own materials: the file's top-level [[material]] and [[pair]]
+# tables (lists of dicts, as in a scenario) and its [materials] table
+# (a dict: large, small, wall, cap naming them; docs/DRUM.md, "Materials").
+DRUM_TABLES = ("material", "pair", "materials")
 # Options that replace each other, as on the command line.
 _ALTERNATIVES = (("grains", "fill"), ("omega", "rpm", "froude"))
 
@@ -96,8 +101,11 @@ def drum_settings(config=None, **options):
     """The drum's settings: tumble drum's defaults, then `config` (a drum
     settings file, or a dict laid out as one), then the options, named as
     tumble drum's (DRUM_OPTIONS: mode, grains, fill, omega, rpm, froude,
-    revolutions, length, diameter, seed, shear, out, ...). Checked as the
-    command line checks them (tumble.Error)."""
+    revolutions, length, diameter, walls, seed, shear, out, ...), and the
+    drum's own materials as the file's tables (DRUM_TABLES: material=[{...},
+    ...], pair=[{...}, ...], materials={"large": ..., "small": ...,
+    "wall": ...}), each replacing the config's. Checked as the command line
+    checks them (tumble.Error)."""
     if isinstance(config, DrumSettings):
         if options:
             raise TypeError("drum_settings: options apply to a file or a dict, not to DrumSettings")
@@ -112,8 +120,12 @@ def drum_settings(config=None, **options):
     else:
         table, name = {}, "<options>"
     for option, value in options.items():
+        if option in DRUM_TABLES:
+            table[option] = copy.deepcopy(value)
+            continue
         if option not in DRUM_OPTIONS:
-            raise TypeError(f"drum_settings: unknown setting {option!r}; known: {', '.join(DRUM_OPTIONS)}")
+            raise TypeError(f"drum_settings: unknown setting {option!r}; known: "
+                            f"{', '.join([*DRUM_OPTIONS, *DRUM_TABLES])}")
         for group in _ALTERNATIVES:
             if option in group:
                 for other in group:

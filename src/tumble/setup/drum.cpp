@@ -324,6 +324,33 @@ DrumWall build_drum_wall(const DrumGeometry& g, std::int32_t wall_material, std:
     return wall;
 }
 
+std::vector<Wall> drum_smooth_walls(const DrumGeometry& g, std::int32_t wall_material, std::int32_t cap_material,
+                                    std::int32_t motion) {
+    auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+    if (!positive(g.length)) throw Error("drum: length must be a positive number of metres");
+    if (!positive(g.diameter)) throw Error("drum: diameter must be a positive number of metres");
+    if (wall_material < 0 || cap_material < 0) throw Error("drum: the walls' materials must be material indices (>= 0)");
+    Wall mantle;
+    mantle.name = "drum";
+    mantle.shape = WallShape::cylinder;
+    mantle.normal = {0.0, 0.0, 1.0};
+    mantle.radius = 0.5 * g.diameter;
+    mantle.inside = true;
+    mantle.material = wall_material;
+    mantle.motion = motion;
+    if (g.periodic_axis) return {mantle};  // infinite (Wall's default length), through the origin
+    mantle.point = {0.0, 0.0, -0.5 * g.length};
+    mantle.length = g.length;
+    Wall cap = mantle;
+    cap.shape = WallShape::disc;
+    cap.material = cap_material;
+    cap.name = "drum.start";
+    Wall end = cap;
+    end.name = "drum.end";
+    end.point = {0.0, 0.0, 0.5 * g.length};
+    return {mantle, cap, end};
+}
+
 std::vector<ParticleSpec> fill_drum_region(const DrumGeometry& g, double z_lo, double z_hi, std::size_t count,
                                            double radius, std::int32_t material, std::int32_t tag,
                                            std::uint64_t seed, const std::vector<ParticleSpec>& existing) {
@@ -442,9 +469,85 @@ std::string numbers_text(const std::vector<double>& v) {
 // A grain's diameter with the clearance fill_drum_region() keeps from the wall.
 double fill_width(double radius) { return 2.0 * radius * (1.0 + fill_wall_clearance); }
 
+
+// The radius of a species' grains (0 where the materials do not say).
+double grain_radius(const DrumMaterials& m, Species species) {
+    const std::int32_t index = species == Species::small ? m.small : m.large;
+    return index >= 0 && static_cast<std::size_t>(index) < m.materials.size() ? m.materials[index].radius : 0.0;
+}
+
+// The materials a drum of these materials uses, each once, in the order
+// large, small, wall, cap (the scenario's order), and where each role went.
+struct UsedMaterials {
+    std::vector<std::int32_t> source;  // index into DrumMaterials::materials
+    std::int32_t large = -1, small = -1, wall = -1, cap = -1;
+};
+UsedMaterials used_indices(const DrumMaterials& m) {
+    UsedMaterials u;
+    auto take = [&](std::int32_t index) {
+        if (index < 0) return std::int32_t{-1};
+        for (std::size_t k = 0; k < u.source.size(); ++k)
+            if (u.source[k] == index) return static_cast<std::int32_t>(k);
+        u.source.push_back(index);
+        return static_cast<std::int32_t>(u.source.size() - 1);
+    };
+    u.large = take(m.large);
+    u.small = take(m.small);
+    u.wall = take(m.wall);
+    u.cap = m.cap >= 0 ? take(m.cap) : u.wall;
+    return u;
+}
+std::vector<Material> used_materials(const DrumMaterials& m) {
+    std::vector<Material> out;
+    for (const std::int32_t k : used_indices(m).source)
+        if (k >= 0 && static_cast<std::size_t>(k) < m.materials.size()) out.push_back(m.materials[k]);
+    return out;
+}
+
 }  // namespace
 
-std::optional<DrumFillProblem> drum_fill_problem(const DrumGeometry& g, const std::string& mode, const DrumFill& f) {
+DrumMaterials paper_drum_materials() {
+    DrumMaterials m;
+    m.materials = paper::materials();
+    m.pair_properties = paper::pair_properties();
+    return m;
+}
+
+std::optional<DrumFillProblem> drum_materials_problem(const DrumMaterials& m, const std::string& mode,
+                                                      bool periodic_axis) {
+    const auto n = static_cast<std::int32_t>(m.materials.size());
+    if (m.pair_properties.size() != m.materials.size())
+        return DrumFillProblem{"pair", "the pair table must have a row for every material"};
+    for (const auto& row : m.pair_properties)
+        if (row.size() != m.materials.size())
+            return DrumFillProblem{"pair", "the pair table must have a column for every material"};
+    auto defined = [&](std::int32_t i) { return i >= 0 && i < n; };
+    if (!defined(m.large)) return DrumFillProblem{"large", "missing: name the large grains' material"};
+    if (!defined(m.wall)) return DrumFillProblem{"wall", "missing: name the wall's material"};
+    if (m.small != -1 && !defined(m.small)) return DrumFillProblem{"small", "not a material of the drum"};
+    if (m.cap != -1 && !defined(m.cap)) return DrumFillProblem{"cap", "not a material of the drum"};
+    if (m.cap != -1 && periodic_axis) return DrumFillProblem{"cap", "a drum with a periodic axis has no end caps"};
+    if (mode == "two-component") {
+        if (m.small < 0)
+            return DrumFillProblem{"small", "missing: the two-component mode needs the small grains' material (or "
+                                            "take mode \"self\", grains of the large grains' material only)"};
+        if (m.small == m.large)
+            return DrumFillProblem{"small", "the same material as the large grains (\"" + m.materials[m.large].name +
+                                                "\"): the two components need two materials; for one kind of grain "
+                                                "take mode \"self\""};
+    }
+    for (const auto& [role, index] : {std::pair{"large", m.large}, std::pair{"small", m.small}}) {
+        if (index < 0) continue;
+        const double R = m.materials[index].radius;
+        if (!(R > 0.0) || !std::isfinite(R))
+            return DrumFillProblem{role, "the grains' radius is the material's radius, which must be positive, got " +
+                                             numbers_text({R}) + " (material \"" + m.materials[index].name + "\")"};
+    }
+    return std::nullopt;
+}
+
+std::optional<DrumFillProblem> drum_fill_problem(const DrumGeometry& g, const std::string& mode, const DrumFill& f,
+                                                 const DrumMaterials& materials) {
     const bool banded = f.arrangement == Arrangement::bands || f.arrangement == Arrangement::boundaries;
     const std::string arrangement(keyword_of(arrangements, f.arrangement));
     if (banded && mode != "two-component")
@@ -457,6 +560,13 @@ std::optional<DrumFillProblem> drum_fill_problem(const DrumGeometry& g, const st
                                "must lie strictly between 0 and 1, got " + numbers_text({*f.small_volume_fraction})};
     if (f.cap_friction && g.periodic_axis)
         return DrumFillProblem{"cap_friction", "a drum with a periodic axis has no end caps"};
+    if (f.cap_friction)
+        for (const Material& m : used_materials(materials))
+            if (m.name == drum_cap_material_name)
+                return DrumFillProblem{"cap_friction", "the caps' own material would be named \"" +
+                                                           std::string(drum_cap_material_name) +
+                                                           "\", the name of a material of the drum; give that "
+                                                           "material's friction in its [[pair]] tables instead"};
     if (f.cap_friction && !(*f.cap_friction >= 0.0 && std::isfinite(*f.cap_friction)))
         return DrumFillProblem{"cap_friction", "must be a finite number >= 0, got " + numbers_text({*f.cap_friction})};
     if (f.arrangement != Arrangement::bands && (f.bands != 0 || !f.band_widths.empty()))
@@ -498,8 +608,7 @@ std::optional<DrumFillProblem> drum_fill_problem(const DrumGeometry& g, const st
         const std::vector<double> edges = band_edges(g, f);
         for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
             const Species species = band_species(f, i);
-            const double need = fill_width(species == Species::small ? paper::material_2().radius
-                                                                     : paper::material_1().radius);
+            const double need = fill_width(grain_radius(materials, species));
             if (edges[i + 1] - edges[i] < need)
                 return DrumFillProblem{f.arrangement == Arrangement::boundaries ? "boundaries"
                                        : f.band_widths.empty()                  ? "bands"
@@ -589,18 +698,28 @@ std::vector<std::size_t> counts_per_band(std::size_t total, const std::vector<do
 }
 
 DrumSetup build_drum_scenario(const DrumGeometry& g, const std::string& mode, std::size_t grains, std::uint64_t seed,
-                              const DrumFill& fill) {
+                              const DrumFill& fill, const DrumMaterials& materials) {
     const bool two_component = mode == "two-component";
     if (!two_component && mode != "self")
         throw Error("drum: unknown mode '" + mode + "' (expected \"two-component\" or \"self\")");
     if (grains < 2) throw Error("drum: need at least 2 grains (one in each half)");
-    if (const auto problem = drum_fill_problem(g, mode, fill)) throw Error("drum: " + problem->key + ": " + problem->reason);
+    if (const auto problem = drum_materials_problem(materials, mode, g.periodic_axis))
+        throw Error("drum: materials." + problem->key + ": " + problem->reason);
+    if (const auto problem = drum_fill_problem(g, mode, fill, materials))
+        throw Error("drum: " + problem->key + ": " + problem->reason);
 
     DrumSetup setup;
     Scenario& s = setup.scenario;
-    s.materials = paper::materials();
-    s.pair_properties = paper::pair_properties();
-    const std::int32_t large = 0, small = two_component ? 1 : 0, wall_material = 2;
+    // The materials used, each once: large, small, wall, cap (the paper's:
+    // material-1, material-2, wall).
+    const UsedMaterials used = used_indices(materials);
+    for (const std::int32_t a : used.source) {
+        s.materials.push_back(materials.materials[a]);
+        s.pair_properties.emplace_back();
+        for (const std::int32_t b : used.source) s.pair_properties.back().push_back(materials.pair_properties[a][b]);
+    }
+    const std::int32_t large = used.large, small = two_component ? used.small : used.large, wall_material = used.wall;
+    std::int32_t cap_material = used.cap;
     auto mass = [&](std::int32_t m) {
         const double R = s.materials[m].radius;
         return 4.0 / 3.0 * pi * s.materials[m].rho * R * R * R;
@@ -614,24 +733,36 @@ DrumSetup build_drum_scenario(const DrumGeometry& g, const std::string& mode, st
     rotation.angular_velocity = 0.0;
     s.motions = {rotation};
 
-    setup.wall = build_drum_wall(g, wall_material, 0, std::min(s.materials[large].radius, s.materials[small].radius));
-    DrumWall& wall = setup.wall;
     if (fill.cap_friction) {
-        // The caps' own material: the wall's, with its own mu against the grains.
-        const auto cap_material = static_cast<std::int32_t>(s.materials.size());
-        Material cap = s.materials[wall_material];
-        cap.name = "cap";
+        // The caps' own material: the caps' (the wall's unless they have
+        // their own), with its own mu against the grains.
+        const auto own = static_cast<std::int32_t>(s.materials.size());
+        Material cap = s.materials[cap_material];
+        cap.name = drum_cap_material_name;
         s.materials.push_back(cap);
-        for (auto& row : s.pair_properties) row.push_back(row[wall_material]);
-        s.pair_properties.push_back(s.pair_properties[wall_material]);
+        for (auto& row : s.pair_properties) row.push_back(row[cap_material]);
+        s.pair_properties.push_back(s.pair_properties[cap_material]);
         for (const std::int32_t grain : {large, small})
-            s.pair_properties[grain][cap_material].mu = s.pair_properties[cap_material][grain].mu = *fill.cap_friction;
-        // The cap planes' spheres: the discs and the mantle's end rings, the
-        // next rings lying a whole axial step inside.
-        const double cap_plane = 0.5 * g.length + g.wall_radius;
-        for (ParticleSpec& p : wall.particles)
-            if (std::abs(p.position.z) > cap_plane - 0.25 * wall.axial_step) p.material = cap_material;
+            s.pair_properties[grain][own].mu = s.pair_properties[own][grain].mu = *fill.cap_friction;
+        cap_material = own;
     }
+    if (g.walls == DrumWalls::smooth) {
+        // No wall spheres: the inner surface is the smooth walls'.
+        setup.wall.inner_radius = 0.5 * g.diameter;
+        setup.wall.inner_length = g.length;
+        s.walls = drum_smooth_walls(g, wall_material, cap_material, 0);
+    } else {
+        setup.wall =
+            build_drum_wall(g, wall_material, 0, std::min(s.materials[large].radius, s.materials[small].radius));
+        if (cap_material != wall_material) {
+            // The cap planes' spheres: the discs and the mantle's end rings,
+            // the next rings lying a whole axial step inside.
+            const double cap_plane = 0.5 * g.length + g.wall_radius;
+            for (ParticleSpec& p : setup.wall.particles)
+                if (std::abs(p.position.z) > cap_plane - 0.25 * setup.wall.axial_step) p.material = cap_material;
+        }
+    }
+    DrumWall& wall = setup.wall;
 
     // Where each kind of grain goes: regions (z range, count, material, tag),
     // filled in this order, each after the ones before.
@@ -701,9 +832,14 @@ DrumSetup build_drum_scenario(const DrumGeometry& g, const std::string& mode, st
     setup.solid_fraction = grain_volume / (pi * wall.inner_radius * wall.inner_radius * wall.inner_length);
     s.particles.insert(s.particles.end(), wall.particles.begin(), wall.particles.end());
 
-    // Open space around the drum with a margin of one wall sphere (the
-    // domain only bounds where particles start).
-    const double reach_r = wall.inner_radius + 3.0 * g.wall_radius, reach_z = half + 3.0 * g.wall_radius;
+    // Open space around the drum with a margin of one wall sphere, or of the
+    // largest grain beyond smooth walls (the domain only bounds where
+    // particles start; a grain's centre outside it has passed through the
+    // wall).
+    const double margin = g.walls == DrumWalls::smooth
+                              ? 2.0 * std::max(s.materials[large].radius, s.materials[small].radius)
+                              : 3.0 * g.wall_radius;
+    const double reach_r = wall.inner_radius + margin, reach_z = half + margin;
     s.domain.lo = {-reach_r, -reach_r, -reach_z};
     s.domain.hi = {reach_r, reach_r, reach_z};
     if (g.periodic_axis) {  // no caps: the drum's length is the period

@@ -21,8 +21,18 @@
 
 namespace tumble {
 
+// What walls the drum: a wall of kinematic spheres (the paper's), or
+// smooth analytic walls (walls/wall.hpp): the mantle a cylinder of the
+// inner radius, the caps two discs in the planes z = +-length/2.
+enum class DrumWalls { particles, smooth };
+inline constexpr std::array<Keyword<DrumWalls>, 2> drum_wall_kinds{{
+    {"particles", DrumWalls::particles, "a wall of spheres turning with the drum, as the paper's (the default)"},
+    {"smooth", DrumWalls::smooth, "smooth walls: a cylinder of the inner radius and two discs, no wall spheres"},
+}};
+
 // The space the grains live in: a cylinder `length` long (inner, along z)
-// and `diameter` across (inner), walled by spheres of radius wall_radius.
+// and `diameter` across (inner), walled by spheres of radius wall_radius
+// or by smooth walls.
 struct DrumGeometry {
     double length = 0.12;         // m
     double diameter = 0.08;       // m
@@ -33,6 +43,9 @@ struct DrumGeometry {
     // z = -length/2 + (k + 1/2) x step, and build_drum_scenario makes the
     // domain periodic in z over [-length/2, length/2).
     bool periodic_axis = false;
+    // particles: the wall of spheres below (build_drum_wall); smooth: no
+    // wall spheres (wall_radius unused), the walls of drum_smooth_walls().
+    DrumWalls walls = DrumWalls::particles;
 };
 
 // The drum wall. Layout (s = 2 wall_radius, the nominal spacing):
@@ -81,6 +94,16 @@ inline constexpr double largest_gap_tolerance = 1e-7;
 DrumWall build_drum_wall(const DrumGeometry& g, std::int32_t wall_material, std::int32_t motion,
                          double smallest_grain_radius);
 
+// The smooth drum (DrumWalls::smooth), carried by `motion`: the mantle
+// "drum", the cylinder about z of radius diameter/2 from z = -length/2 to
+// +length/2, grains inside, of `wall_material`; the caps "drum.start" (z =
+// -length/2) and "drum.end" (+length/2), discs of the same radius, of
+// `cap_material`. With a periodic axis the mantle is infinite and there are
+// no caps. The inner surface is where the particle wall's innermost points
+// are (DrumWall::inner_radius, inner_length).
+std::vector<Wall> drum_smooth_walls(const DrumGeometry& g, std::int32_t wall_material, std::int32_t cap_material,
+                                    std::int32_t motion);
+
 // Clearance (as a fraction of the grain radius) that fill_drum_region()
 // keeps between a new grain and the inner surface of the wall.
 inline constexpr double fill_wall_clearance = 0.02;
@@ -89,7 +112,9 @@ inline constexpr double fill_wall_clearance = 0.02;
 // inside the drum and between z_lo and z_hi, whole spheres inside: distance
 // from the axis <= inner radius - radius (1 + fill_wall_clearance), |z| <=
 // length/2 - radius (1 + fill_wall_clearance), z_lo + radius <= z <= z_hi -
-// radius; none overlaps another or a sphere of `existing`. Velocities zero,
+// radius; none overlaps another or a sphere of `existing`, nor the smooth
+// walls of the same geometry (the clearance keeps them off the inner
+// surface, where both kinds of wall lie). Velocities zero,
 // free motion. Deterministic for a seed.
 // Method: random sequential placement (uniform random positions, each kept
 // if it overlaps nothing). It stalls near 30 % solid fraction; if it does,
@@ -137,11 +162,41 @@ inline constexpr std::array<Keyword<Arrangement>, 4> arrangements{{
     {"boundaries", Arrangement::boundaries, "alternating bands between given z (--boundaries, --ends)"},
 }};
 
-enum class Species { small, large };  // material-2, material-1
+// A problem with the drum's settings: the key (the drum file's) and the reason.
+struct DrumFillProblem {
+    std::string key;
+    std::string reason;
+};
+
+enum class Species { small, large };  // material-2, material-1 (or the drum's own materials: DrumMaterials)
 inline constexpr std::array<Keyword<Species>, 2> species_names{{
-    {"small", Species::small, "material-2, 2.4 mm"},
-    {"large", Species::large, "material-1, 3.6 mm"},
+    {"small", Species::small, "material-2, 2.4 mm (or the small grains' own material)"},
+    {"large", Species::large, "material-1, 3.6 mm (or the large grains' own material)"},
 }};
+
+// The drum's materials and which is which: the large grains (tag 0 in the
+// two-component mode; every grain in the self mode), the small grains (tag
+// 1), the wall and, if it has its own, the caps. A grain's radius is its
+// material's `radius`. The paper's (paper_drum_materials()): material-1,
+// material-2 and wall, the caps of the wall's.
+struct DrumMaterials {
+    std::vector<Material> materials;
+    std::vector<std::vector<PairProperties>> pair_properties;  // mu and W of every pair of `materials`
+    std::int32_t large = 0;
+    std::int32_t small = 1;  // -1: none (allowed in the self mode only)
+    std::int32_t wall = 2;
+    std::int32_t cap = -1;   // -1: the caps are of the wall's material
+    // Whether these are the paper's materials (tumble drum without
+    // [[material]] tables); the run records the others.
+    bool paper = true;
+};
+DrumMaterials paper_drum_materials();
+
+// What is wrong with the materials for this mode, if anything: the role
+// ("large", "small", "wall", "cap": the key of the drum file's
+// [materials]) and the reason. A drum with a periodic axis has no caps.
+std::optional<DrumFillProblem> drum_materials_problem(const DrumMaterials& m, const std::string& mode,
+                                                      bool periodic_axis = false);
 
 // How the drum is filled, beyond the grain count and the seed, and the
 // friction of its end caps. The defaults are the paper's drum.
@@ -161,21 +216,23 @@ struct DrumFill {
     // Two-component: the small grains' share of the grains' volume, in
     // (0, 1); none: equal masses (equal_mass_count()).
     std::optional<double> small_volume_fraction;
-    // Friction coefficient between the grains and the end caps' spheres;
-    // none: the wall's (then the caps are wall material). Needs end caps.
+    // Friction coefficient between the grains and the end caps (their
+    // spheres, or the smooth caps); none: that of the caps' material (the
+    // wall's unless DrumMaterials::cap). Needs end caps.
     std::optional<double> cap_friction;
 };
+
+// The name of the caps' own material that cap_friction makes.
+inline constexpr const char* drum_cap_material_name = "cap";
 
 // How far from 1 the band widths may sum (they are then scaled to 1).
 inline constexpr double band_width_tolerance = 1e-6;
 
-// What is wrong with a fill for this geometry and mode, if anything: the
-// key (as DrumFill's field, which is the TOML key) and the reason.
-struct DrumFillProblem {
-    std::string key;
-    std::string reason;
-};
-std::optional<DrumFillProblem> drum_fill_problem(const DrumGeometry& g, const std::string& mode, const DrumFill& fill);
+// What is wrong with a fill for this geometry, mode and these materials
+// (the grains' radii set the narrowest band), if anything: the key (as
+// DrumFill's field, which is the TOML key) and the reason.
+std::optional<DrumFillProblem> drum_fill_problem(const DrumGeometry& g, const std::string& mode, const DrumFill& fill,
+                                                 const DrumMaterials& materials = paper_drum_materials());
 
 // The widths of the bands of Arrangement::bands, as fractions of the
 // length: the fill's, or by default an even fill, the bed as deep in every
@@ -203,39 +260,45 @@ std::vector<std::size_t> counts_per_band(std::size_t total, const std::vector<do
 
 struct DrumSetup {
     Scenario scenario;
-    DrumWall wall;
+    DrumWall wall;  // smooth walls: no particles, the inner surface's radius and length
     std::size_t grains_left = 0;   // tag 0 (two-component: the large grains)
     std::size_t grains_right = 0;  // tag 1 (two-component: the small grains)
     double solid_fraction = 0.0;   // grain volume / inner drum volume
 };
 
 // The paper's drum experiment, ready to settle:
-//  - materials paper::materials() (0 material-1, 1 material-2, 2 wall) and
-//    paper::pair_properties(), the full contact model;
+//  - materials: the used ones of `materials` in the order large, small,
+//    wall, cap (each once; the paper's: 0 material-1, 1 material-2, 2 wall)
+//    with their pairs' mu and W, the full contact model;
 //  - gravity (0, -9.81, 0); motion 0 the drum's rotation about +z through
 //    the origin at angular velocity 0 (the bed settles at rest; start the
 //    rotation later with Simulation::set_motion(0, ...));
 //  - an open domain bounding the drum with a margin;
-//  - particles: the grains first (left half, then right half), then the wall.
-// mode "two-component": material-1 (large, tag 0) and material-2 (small,
-//   tag 1), `grains` in all: equal masses (so N2/N1 ~ 3.375, see
-//   equal_mass_count()) or the fill's small_volume_fraction; placed as the
-//   fill's arrangement says (halves: large in the left half, small in the
-//   right).
-// mode "self": `grains` of material-1 tagged 0 if they start at z < 0, 1
-//   otherwise; halves: half in each half; mixed: anywhere. (For the same
-//   fill level as a two-component drum of `grains`, pass 2 x
-//   equal_mass_count(grains, m1, m2).)
+//  - particles: the grains first (left half, then right half), then the
+//    wall's spheres; smooth walls (g.walls): none, and Scenario::walls
+//    drum_smooth_walls(), carried by motion 0.
+// mode "two-component": the large grains (tag 0) and the small ones (tag
+//   1), `grains` in all: equal masses (so N2/N1 ~ 3.375 for the paper's,
+//   see equal_mass_count()) or the fill's small_volume_fraction; placed as
+//   the fill's arrangement says (halves: large in the left half, small in
+//   the right).
+// mode "self": `grains` of the large grains' material tagged 0 if they
+//   start at z < 0, 1 otherwise; halves: half in each half; mixed:
+//   anywhere. (For the same fill level as a two-component drum of `grains`,
+//   pass 2 x equal_mass_count(grains, m1, m2).)
 // Bands: each species' grains are shared among its bands in proportion to
 // their widths (counts_per_band()); each band is filled by
 // fill_drum_region() with its own seed from `seed`, so every grain lies
-// whole inside its band. With cap_friction, a fourth material "cap" (the
-// wall's, with that mu against the grains) is given to every wall sphere in
-// the cap planes (the cap discs and the mantle's end rings).
+// whole inside its band. The caps' material (materials.cap) goes to every
+// wall sphere in the cap planes (the cap discs and the mantle's end rings)
+// or to the smooth caps. With cap_friction, one more material "cap" (the
+// caps', with that mu against the grains) takes its place there.
 // Grains start at random, at rest; they fall when the simulation begins.
 // Throws tumble::Error for an unknown mode, no grains, a fill that
-// drum_fill_problem() refuses, or a drum that cannot hold them.
+// drum_fill_problem() refuses, materials that drum_materials_problem()
+// refuses, or a drum that cannot hold them.
 DrumSetup build_drum_scenario(const DrumGeometry& g = {}, const std::string& mode = "two-component",
-                              std::size_t grains = 1000, std::uint64_t seed = 1, const DrumFill& fill = {});
+                              std::size_t grains = 1000, std::uint64_t seed = 1, const DrumFill& fill = {},
+                              const DrumMaterials& materials = paper_drum_materials());
 
 }  // namespace tumble

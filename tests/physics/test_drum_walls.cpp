@@ -1,0 +1,220 @@
+// SPDX-License-Identifier: MIT
+// The drum with smooth walls (DrumWalls::smooth: a cylinder and two discs
+// turning with the drum) and the drum with materials of its own: the bed
+// settles on the walls, which carry its weight; no grain leaves while the
+// drum turns; the wall's friction alone carries the bed up (a smooth wall
+// of the paper's mu = 0.2 lets it slide back; one of mu = 1 lifts it to a
+// dynamic angle of repose like the particle-walled drum's); glass-like
+// cohesionless beads of one's own run.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "experiments/drum_setup.hpp"
+#include "io/drum_config.hpp"
+#include "io/toml_reader.hpp"
+#include "tumble/analysis/drum_measure.hpp"
+#include "tumble/core/constants.hpp"
+#include "tumble/setup/drum.hpp"
+#include "tumble/setup/paper_materials.hpp"
+#include "tumble/sim/simulation.hpp"
+
+namespace tumble {
+namespace {
+
+DrumGeometry smooth_geometry() {
+    DrumGeometry g;
+    g.walls = DrumWalls::smooth;
+    return g;
+}
+
+// The paper's materials with another friction between the grains and the wall.
+DrumMaterials paper_with_wall_friction(double mu) {
+    DrumMaterials m = paper_drum_materials();
+    m.paper = false;
+    for (const std::int32_t grain : {m.large, m.small})
+        m.pair_properties[grain][m.wall].mu = m.pair_properties[m.wall][grain].mu = mu;
+    return m;
+}
+
+// A drum run through the engine: settle, then turn at omega, watching every
+// grain (inside the smooth walls, whole: its centre nearer the axis than the
+// inner radius and the caps than L/2) and the bed.
+struct SmoothRun {
+    DrumSetup setup;
+    Simulation sim;
+    analysis::DrumFrame frame;
+
+    explicit SmoothRun(DrumSetup s)
+        : setup(std::move(s)), sim(setup.scenario),
+          frame{setup.wall.inner_length, setup.wall.inner_radius, 2, 12, 1.0} {}
+
+    analysis::DrumState measure() const { return analysis::measure_drum(sim.particles(), frame); }
+
+    // Fails the test at the first grain outside the drum.
+    void expect_inside() const {
+        const ParticleStore& p = sim.particles();
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            ASSERT_LT(std::hypot(p.position[i].x, p.position[i].y), setup.wall.inner_radius) << "grain " << p.id[i];
+            ASSERT_LT(std::abs(p.position[i].z), 0.5 * setup.wall.inner_length) << "grain " << p.id[i];
+        }
+    }
+
+    // Turns the drum for `revolutions` at omega, checked `checks` times
+    // evenly; returns the angle of repose at each check.
+    std::vector<double> turn(double omega, double revolutions, int checks) {
+        frame.rotation = omega;
+        sim.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, omega, {0.0, 0.0, 0.0}});
+        const auto steps = std::llround(revolutions * 2.0 * pi / omega / sim.dt() / checks);
+        std::vector<double> angles;
+        for (int k = 0; k < checks; ++k) {
+            sim.advance(steps);
+            expect_inside();
+            largest_overlap = std::max(largest_overlap, sim.observe().max_overlap_ratio);
+            angles.push_back(measure().angle_of_repose);
+        }
+        return angles;
+    }
+    double largest_overlap = 0.0;
+};
+
+double rms_speed(const Simulation& sim) {
+    const ParticleStore& p = sim.particles();
+    double sum = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) sum += norm2(p.velocity[i]);
+    return std::sqrt(sum / static_cast<double>(p.size()));
+}
+
+// The paper's drum of 600 grains walled smooth: the bed settles on the
+// mantle, which then carries its weight (the discs carry none of it), and
+// while the drum turns half a revolution at 5 rad/s no grain leaves; the
+// wall carries the bed up the side it moves towards, but its friction (the
+// paper's mu = 0.2) cannot hold it there: the bed slides back and forth
+// below the angle the particle-walled drum shows (44 degrees, same grains,
+// same speed; tumble drum --grains 600 --revolutions 0.5).
+TEST(SmoothDrum, HoldsItsGrainsAndTheBedSlidesOnThePapersFriction) {
+    SmoothRun run(build_drum_scenario(smooth_geometry(), "two-component", 600, 3));
+    ASSERT_TRUE(run.setup.wall.particles.empty());
+    run.sim.advance(std::llround(0.3 / run.sim.dt()));  // settled by ~0.26 s, as the particle-walled bed
+    run.expect_inside();
+    // Settled (tumble drum's criterion: rms grain speed below 0.01 m/s).
+    EXPECT_LT(rms_speed(run.sim), 0.01);
+    const analysis::DrumState before = run.measure();
+    EXPECT_LT(std::abs(before.angle_of_repose), 5.0);  // level, as the particle-walled bed (under a degree)
+
+    // The walls carry the bed's weight: the loads on them, averaged over
+    // 0.02 s, sum to -M g. A settled bed still rings a little (at one step
+    // the sum is off by half a percent), but its centre of mass, at rest at
+    // both ends of the window to well under a mm/s, changes its momentum by
+    // less than a thousandth of M g x 0.02 s. The caps carry no vertical
+    // load beyond the friction of the grains beside them: under 2 % of the
+    // weight each.
+    double mass = 0.0;
+    const ParticleStore& p = run.sim.particles();
+    for (std::size_t i = 0; i < p.size(); ++i) mass += p.mass[i];
+    const double weight = 9.81 * mass;
+    Vec3 load[3];
+    const int samples = static_cast<int>(std::llround(0.02 / run.sim.dt()));
+    for (int k = 0; k < samples; ++k) {
+        run.sim.advance(1);
+        const std::vector<WallLoad> loads = run.sim.wall_loads();
+        ASSERT_EQ(loads.size(), 3u);
+        for (std::size_t w = 0; w < 3; ++w) load[w] += (1.0 / samples) * loads[w].force;
+    }
+    EXPECT_NEAR(load[0].y + load[1].y + load[2].y, -weight, 1e-3 * weight);
+    for (std::size_t k = 1; k < 3; ++k) EXPECT_LT(std::abs(load[k].y), 0.02 * weight) << k;
+
+    const std::vector<double> angles = run.turn(5.0, 0.5, 20);
+    // Overlaps: 20 % of a radius would be a broken contact (the step
+    // resolves impacts at 1.4 m/s; the bed moves far slower).
+    EXPECT_LT(run.largest_overlap, 0.20);
+    // Carried up: the surface inclines in the direction of rotation (12 to
+    // 22 degrees at its highest in these runs), then slides back (down to
+    // under 3 degrees); always well below the particle-walled drum's 44.
+    const double highest = *std::max_element(angles.begin(), angles.end());
+    const double lowest = *std::min_element(angles.begin() + 4, angles.end());
+    EXPECT_GT(highest, 5.0);
+    EXPECT_LT(highest, 30.0);
+    EXPECT_LT(lowest, highest - 5.0);  // it slid back
+    // Mass per component: the same grains, exactly.
+    const analysis::DrumState after = run.measure();
+    for (std::size_t c = 0; c < 2; ++c) {
+        EXPECT_EQ(after.components[c].grains, before.components[c].grains);
+        EXPECT_EQ(after.components[c].mass, before.components[c].mass);
+    }
+}
+
+// The same drum with mu = 1 between the grains and the smooth wall (the
+// paper's materials otherwise, as a drum of one's own materials): the bed
+// sticks at first and slides back in a few swings that die out within the
+// first revolution; over its second half the bed holds a dynamic angle of
+// repose between 20 and 60 degrees (measured 38 mean, from 32 to 44; the
+// particle-walled drum: 44), no grain leaving.
+TEST(SmoothDrum, ARougherWallCarriesTheBedUpToItsAngleOfRepose) {
+    SmoothRun run(build_drum_scenario(smooth_geometry(), "two-component", 600, 3, {}, paper_with_wall_friction(1.0)));
+    run.sim.advance(std::llround(0.3 / run.sim.dt()));
+    run.expect_inside();
+    const std::vector<double> angles = run.turn(5.0, 1.0, 20);
+    EXPECT_LT(run.largest_overlap, 0.20);
+    double sum = 0.0;
+    for (std::size_t k = 10; k < 20; ++k) {
+        EXPECT_GT(angles[k], 20.0) << "at N = " << (k + 1) / 20.0;
+        EXPECT_LT(angles[k], 60.0) << "at N = " << (k + 1) / 20.0;
+        sum += angles[k];
+    }
+    const double mean = sum / 10.0;
+    EXPECT_GT(mean, 25.0);
+    EXPECT_LT(mean, 50.0);
+}
+
+// Glass-like beads of one's own (3 and 2 mm, 2500 kg/m^3, cohesionless: W =
+// 0 for every pair) in a smooth steel drum, read from a drum file as a user
+// writes it: the bed settles at the automatic step, no grain leaves while
+// the drum turns, and the wall carries the bed the way it turns. The moduli
+// are softened (10 MPa) to keep the step near the paper's.
+TEST(OwnMaterials, GlassLikeCohesionlessBeadsSettleAndTurn) {
+    std::string text = "[drum]\nwalls = \"smooth\"\n[fill]\ngrains = 500\nseed = 2\n"
+                       "[materials]\nlarge = \"glass-3mm\"\nsmall = \"glass-2mm\"\nwall = \"steel\"\n";
+    for (const auto& [name, radius, rho] : {std::tuple{"glass-3mm", 3.0e-3, 2500.0},
+                                            std::tuple{"glass-2mm", 2.0e-3, 2500.0},
+                                            std::tuple{"steel", 3.0e-3, 7800.0}})
+        text += "[[material]]\nname = \"" + std::string(name) +
+                "\"\nE = 1.0e7\nG = 4.0e6\nnu = 0.22\nxi = 50.0\neta = 50.0\nrho = " + std::to_string(rho) +
+                "\nradius = " + std::to_string(radius) + "\n";
+    const char* names[] = {"glass-3mm", "glass-2mm", "steel"};
+    for (int a = 0; a < 3; ++a)
+        for (int b = a; b < 3; ++b)
+            text += "[[pair]]\nmaterials = [\"" + std::string(names[a]) + "\", \"" + names[b] +
+                    "\"]\nmu = " + (b == 2 ? "0.4" : "0.3") + "\nW = 0.0\n";
+    const io::DrumSettings s = io::read_drum_settings(io::parse_toml(text, "glass.toml"), "glass.toml");
+    DrumSetup setup = experiments::build_drum(s);
+    for (const auto& row : setup.scenario.pair_properties)
+        for (const PairProperties& pair : row) ASSERT_EQ(pair.W, 0.0);
+    SmoothRun run(std::move(setup));
+    std::size_t grains[2] = {0, 0};
+    for (const ParticleSpec& q : run.setup.scenario.particles) ++grains[q.tag];
+    EXPECT_EQ(grains[0] + grains[1], 500u);
+    // Settling as tumble drum settles: at least twice the time to fall the
+    // diameter, until the rms speed is below 0.01 m/s; these beads, less
+    // damped than the paper's, take longer (0.42 s in the command's run).
+    const std::int64_t every = std::llround(0.01 / run.sim.dt());
+    while (run.sim.time() < 0.26 || rms_speed(run.sim) >= 0.01) {
+        ASSERT_LT(run.sim.time(), 1.5) << "not settled; rms speed " << rms_speed(run.sim);
+        run.sim.advance(every);
+    }
+    run.expect_inside();
+    const std::vector<double> angles = run.turn(5.0, 0.25, 10);
+    EXPECT_LT(run.largest_overlap, 0.20);
+    // Carried the way the drum turns: the surface rises on the side the
+    // bottom moves toward (18 to 24 degrees at its highest in the command's
+    // runs of this drum; a level bed is within a degree).
+    EXPECT_GT(*std::max_element(angles.begin(), angles.end()), 10.0);
+    const analysis::DrumState after = run.measure();
+    EXPECT_EQ(after.components[0].grains, grains[0]);
+    EXPECT_EQ(after.components[1].grains, grains[1]);
+}
+
+}  // namespace
+}  // namespace tumble
