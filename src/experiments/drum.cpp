@@ -150,7 +150,7 @@ public:
 
 private:
     int protocol(const std::vector<double>& snapshot_times) {
-        if (plan_.rotating && snapshot_every_) snapshots_.emplace(dir_, snapshot_times);
+        if (plan_.rotating && snapshot_every_) snapshots_.emplace(dir_, snapshot_times, !sim_.scenario().walls.empty());
         if (!plan_.rotating) {
             if (settle() == Checkpointer::Due::and_stop) return checkpoints_.stopped(sim_.step_count());
             start_rotation();
@@ -229,7 +229,7 @@ private:
             drum_series_.emplace(dir_, info);
             if (info.band_bins > 0) band_profile_.emplace(dir_, info.band_bins);
         }
-        if (snapshot_every_) snapshots_.emplace(dir_);
+        if (snapshot_every_) snapshots_.emplace(dir_, std::vector<double>{}, !sim_.scenario().walls.empty());
         if (talk()) {
             fmt::print("rotating at {:.4g} rad/s (Froude {:.3g}) for {} revolutions: {} steps, {} samples per revolution\n",
                        info.omega, info.froude, info.revolutions, steps_, info.samples_per_revolution);
