@@ -407,6 +407,68 @@ TEST(MeshWalls, AGrainOnAMovingMeshBeltEndsAtTwoSeventhsOfItsSpeed) {
     EXPECT_LT(tumble::norm(B.particles().position[0] - A.particles().position[0]), 1e-12);
 }
 
+// A grain sliding and spinning along a V groove: two analytic planes at 45
+// degrees (two walls, a history each), or the groove made of triangles (160
+// of them, 2.5 mm along the crease: two face contacts at every step, their
+// features changing as the grain moves on). Each contact's spring must
+// follow it to its next face on the same side, not to the other side's
+// face that shares a vertex of the crease with it; then the grain takes
+// the planes' path to round-off (the faces' normals, from cross products,
+// may differ from the planes' in the last bit).
+TEST(MeshWalls, AGrainSlidingAlongATriangulatedVFollowsTheTwoPlanes) {
+    tumble::Scenario planes = thrown_grain(false, {0, 0, 1});
+    const double r = std::sqrt(0.5), z0 = -0.5;
+    planes.walls[0].point = {0.0, 0.0, z0};
+    planes.walls[0].normal = {0.0, -r, r};  // the side rising towards +y
+    Wall other = planes.walls[0];
+    other.name = "other side";
+    other.normal = {0.0, r, r};
+    planes.walls.push_back(other);
+    planes.particles.push_back(
+        sphere({0.0, 0.0, z0 + R1 / r - 1e-6}, R1, 0, {0.3, 0.02, 0.0}, {5.0, -20.0, 3.0}));
+    tumble::Scenario mesh = planes;
+    mesh.walls.pop_back();
+    tumble::TriangleMesh groove;
+    const int segments = 40;
+    const double x0 = -0.02, step = 2.5e-3, w = 0.01;
+    for (int i = 0; i <= segments; ++i) {  // per station: the crease, side A (+y), side B (-y)
+        const double x = x0 + i * step;
+        groove.vertices.push_back({x, 0.0, z0});
+        groove.vertices.push_back({x, w, z0 + w});
+        groove.vertices.push_back({x, -w, z0 + w});
+    }
+    for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(segments); ++i) {
+        const std::uint32_t c = 3 * i, a = c + 1, b = c + 2, c1 = c + 3, a1 = c + 4, b1 = c + 5;
+        groove.triangles.push_back({c, c1, a1});
+        groove.triangles.push_back({c, a1, a});
+        groove.triangles.push_back({c, b1, c1});
+        groove.triangles.push_back({c, b, b1});
+    }
+    mesh = on_mesh(mesh, groove);
+    tumble::Simulation A(planes), B(mesh);
+    A.set_contact_recording(true);
+    B.set_contact_recording(true);
+    double path = 0.0, worst = 0.0;
+    std::size_t both = 0;
+    Vec3 last = A.particles().position[0];
+    for (int k = 0; k < 4000; ++k) {
+        A.step();
+        B.step();
+        const std::size_t na = wall_normal_force(A).second, nb = wall_normal_force(B).second;
+        ASSERT_EQ(na, nb) << "step " << k;
+        both += na == 2;
+        path += tumble::norm(A.particles().position[0] - last);
+        last = A.particles().position[0];
+        worst = std::max(worst, tumble::norm(B.particles().position[0] - A.particles().position[0]));
+    }
+    std::printf("  [measured] largest distance of the mesh's path from the planes': %.3g m over a path of %.3g m\n",
+                worst, path);
+    EXPECT_GT(both, 3000u);  // in the V, touching both sides
+    EXPECT_GT(A.particles().position[0].x, 4 * step);  // over several segments
+    EXPECT_LT(A.particles().position[0].x, x0 + segments * step - 2 * R1);  // and still on the mesh
+    EXPECT_LT(worst, 1e-9 * path);
+}
+
 // A mesh plate turned by its motion is where the motion carried it: a
 // grain resting on a triangulated floor turning about the vertical axis
 // through a point off the grain feels the plate's surface velocity, as on

@@ -49,15 +49,16 @@ std::size_t feature_vertices(const MeshTopology& m, std::uint32_t code, std::arr
     return 0;
 }
 
-// Whether two features of a mesh share a vertex (a face and its edges,
-// corners and the faces around them; two faces of an edge or a vertex).
-bool adjacent_features(const MeshTopology& m, std::uint32_t a, std::uint32_t b) {
+// How many vertices two features of a mesh share: 2 for a face and its
+// edge or two faces of an edge, 1 for features about one vertex, 0 for
+// features apart.
+std::size_t shared_vertices(const MeshTopology& m, std::uint32_t a, std::uint32_t b) {
     std::array<std::uint32_t, 3> va{}, vb{};
     const std::size_t na = feature_vertices(m, a, va), nb = feature_vertices(m, b, vb);
+    std::size_t shared = 0;
     for (std::size_t i = 0; i < na; ++i)
-        for (std::size_t j = 0; j < nb; ++j)
-            if (va[i] == vb[j]) return true;
-    return false;
+        for (std::size_t j = 0; j < nb; ++j) shared += va[i] == vb[j];
+    return shared;
 }
 
 // Whether a code names a feature of the mesh.
@@ -550,8 +551,10 @@ void Simulation::add_wall_contact(std::size_t i, std::size_t k, const PlacedWall
 // "Walls"): a slot follows its contact from feature to feature. With one
 // contact before and one after, the slot carries over whatever the
 // features; otherwise a new contact takes the slot of the same feature,
-// else of a feature that shares a vertex with it, else a free slot afresh.
-// Slots no contact took are cleared.
+// else of a feature that shares vertices with it (the pairs that share the
+// most first: in a V of triangles a face's successor on its side shares an
+// edge with it, the other side's face a vertex at most), else a free slot
+// afresh. Slots no contact took are cleared.
 void Simulation::add_mesh_forces(std::size_t i, std::size_t k, const PlacedWall& wall, int c) {
     constexpr std::size_t S = mesh_wall_slots, none = S;
     ParticleStore& p = particles_;
@@ -584,10 +587,18 @@ void Simulation::add_mesh_forces(std::size_t i, std::size_t k, const PlacedWall&
         for (std::size_t j = 0; j < n; ++j)  // the same feature
             for (std::size_t s = 0; s < S && slot_of[j] == none; ++s)
                 if (!taken[s] && feature[s] == code[j]) slot_of[j] = s, taken[s] = true;
-        for (std::size_t j = 0; j < n; ++j)  // a feature that shares a vertex with it
-            for (std::size_t s = 0; s < S && slot_of[j] == none; ++s)
-                if (!taken[s] && feature[s] != 0 && adjacent_features(mesh.topology, feature[s], code[j]))
-                    slot_of[j] = s, taken[s] = true;
+        for (;;) {  // a feature that shares vertices with it, the most first
+            std::size_t best = 0, best_j = none, best_s = none;
+            for (std::size_t j = 0; j < n; ++j)
+                for (std::size_t s = 0; s < S && slot_of[j] == none; ++s)
+                    if (!taken[s] && feature[s] != 0) {
+                        const std::size_t shared = shared_vertices(mesh.topology, feature[s], code[j]);
+                        if (shared > best) best = shared, best_j = j, best_s = s;
+                    }
+            if (best_j == none) break;
+            slot_of[best_j] = best_s;
+            taken[best_s] = true;
+        }
     }
     for (std::size_t s = 0; s < S; ++s)  // the records no contact took
         if (!taken[s]) {
