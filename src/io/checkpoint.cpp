@@ -110,6 +110,12 @@ void put_scenario(ByteWriter& w, const Scenario& s) {
         w.put(wall.inside);
         w.put(wall.material);
         w.put(wall.motion);
+        w.put(wall.mesh);
+    }
+    w.put(static_cast<std::uint64_t>(s.meshes.size()));
+    for (const TriangleMesh& m : s.meshes) {
+        w.put_array(m.vertices);
+        w.put_array(m.triangles);
     }
     w.put(static_cast<std::uint64_t>(s.particles.size()));
     for (const ParticleSpec& p : s.particles) {
@@ -163,11 +169,14 @@ Scenario get_scenario(ByteReader& r, std::uint32_t version) {
     s.neighbor.sort_every = r.get<std::int32_t>("neighbour settings");
     s.motions = r.get_array<RigidMotion>("motions");
     if (version >= 7) {  // before: no walls besides the box's
-        s.walls.resize(r.count(8 + 1 + 3 * sizeof(Vec3) + 6 * sizeof(double) + 1 + 2 * sizeof(std::int32_t), "walls"));
+        const std::size_t mesh_index = version >= 8 ? sizeof(std::int32_t) : 0;
+        s.walls.resize(
+            r.count(8 + 1 + 3 * sizeof(Vec3) + 6 * sizeof(double) + 1 + 2 * sizeof(std::int32_t) + mesh_index, "walls"));
         for (Wall& wall : s.walls) {
             wall.name = r.get_string("wall name");
             const auto shape = r.get<std::uint8_t>("wall shape");
-            if (shape > static_cast<std::uint8_t>(WallShape::cone)) r.fail("wall shape: unknown shape");
+            const auto last = version >= 8 ? WallShape::mesh : WallShape::cone;  // before 8: no meshes
+            if (shape > static_cast<std::uint8_t>(last)) r.fail("wall shape: unknown shape");
             wall.shape = static_cast<WallShape>(shape);
             for (Vec3* v : {&wall.point, &wall.normal, &wall.edge}) *v = r.get<Vec3>("wall");
             for (double* v : {&wall.half_width, &wall.half_height, &wall.radius, &wall.hole_radius, &wall.end_radius,
@@ -176,6 +185,14 @@ Scenario get_scenario(ByteReader& r, std::uint32_t version) {
             wall.inside = r.get_bool("wall");
             wall.material = r.get<std::int32_t>("wall material");
             wall.motion = r.get<std::int32_t>("wall motion");
+            if (version >= 8) wall.mesh = r.get<std::int32_t>("wall mesh");
+        }
+    }
+    if (version >= 8) {  // before: no meshes
+        s.meshes.resize(r.count(2 * 8, "meshes"));
+        for (TriangleMesh& m : s.meshes) {
+            m.vertices = r.get_array<Vec3>("mesh vertices");
+            m.triangles = r.get_array<std::array<std::uint32_t, 3>>("mesh triangles");
         }
     }
     s.particles.resize(r.count(3 * sizeof(Vec3) + sizeof(double) + 3 * sizeof(std::int32_t), "particles"));
@@ -208,6 +225,7 @@ void put_state(ByteWriter& w, const SimulationState& s) {
     w.put_array(s.neighbors.position_at_build);
     w.put(s.neighbors.builds);
     w.put_array(s.wall_history);
+    w.put_array(s.wall_feature);
     w.put_array(s.motions);
     w.put(s.dt);
     w.put(s.time);
@@ -256,6 +274,10 @@ SimulationState get_state(ByteReader& r, std::uint32_t version, bool cuts) {
     s.neighbors.position_at_build = r.get_array<Vec3>("positions at the last neighbour build");
     s.neighbors.builds = r.get<std::int64_t>("neighbour builds");
     s.wall_history = get_histories(r, version, "wall contact history");
+    if (version >= 8)
+        s.wall_feature = r.get_array<std::uint32_t>("wall contact features");
+    else  // before: no meshes, no features
+        s.wall_feature.assign(s.wall_history.size(), 0);
     s.motions = r.get_array<MotionClock>("motions");
     s.dt = r.get<double>("dt");
     s.time = r.get<double>("time");

@@ -39,12 +39,14 @@ namespace tumble::io {
 // 2: slip vector history, friction normal; 3: viscous force history; 4: own
 // spheres and slab state of a rank (sim/slabs.hpp); 5: and the slab cuts;
 // 6: the model's tangential stiffness (earlier files: the paper's); 7: the
-// scenario's smooth walls (earlier files: none).
+// scenario's smooth walls (earlier files: none); 8: the mesh walls, their
+// triangles, and the mesh feature each wall history slot follows (earlier
+// files: no meshes).
 // (From 16:51 to 19:20 UTC of 2026-11-30 tumble wrote the cuts under the
 // number 4; a file of format 4 is read with the cuts, and if that does not
 // fit its bytes, without. A rank's file of format 4 without cuts resumes on
 // another number of ranks or on one process, not on as many.)
-inline constexpr std::uint32_t checkpoint_format_version = 7;
+inline constexpr std::uint32_t checkpoint_format_version = 8;
 
 // Named values; reading a missing key, or one of another kind, throws
 // tumble::Error naming the source (the checkpoint file) and the key.

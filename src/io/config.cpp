@@ -19,6 +19,8 @@
 #include "io/names.hpp"
 #include "io/toml_reader.hpp"
 #include "io/particle_csv.hpp"
+#include "io/stl.hpp"
+#include "tumble/core/constants.hpp"
 #include "tumble/sim/health.hpp"
 #include "tumble/sim/time_step.hpp"
 #include "tumble/walls/wall.hpp"
@@ -219,6 +221,7 @@ private:
                     keys.insert(keys.end(), {"axis", "radius", "length", "inside", "caps", "cap_material"});
                     break;
                 case WallShape::cone: keys.insert(keys.end(), {"axis", "radius", "end_radius", "length", "inside"}); break;
+                case WallShape::mesh: keys.insert(keys.end(), {"file", "scale", "rotation", "offset"}); break;
             }
             r_.only_keys(t, p, keys);
             w.material = material_index(r_.required(t, p, "material"), join(p, "material"));
@@ -254,6 +257,10 @@ private:
                     w.end_radius = r_.required_number(t, p, "end_radius", Bound::non_negative);
                     w.length = r_.required_number(t, p, "length", Bound::positive);
                     break;
+                case WallShape::mesh:
+                    w.mesh = static_cast<std::int32_t>(s().meshes.size());
+                    s().meshes.push_back(read_mesh(t, p));
+                    break;
             }
             if (const toml::node* n = t.get("inside")) w.inside = r_.boolean(*n, join(p, "inside"));
             if (const std::string why = wall_problem(w); !why.empty()) r_.fail(p, why, &t);
@@ -277,6 +284,36 @@ private:
                 names.push_back(m.name);
                 s().walls.push_back(m);
             }
+        }
+    }
+
+    // A mesh wall's triangles: its STL file (relative to the scenario's
+    // directory), scaled, turned (rotation's angle in degrees) and moved.
+    TriangleMesh read_mesh(const toml::table& t, const std::string& p) const {
+        const std::string fkey = join(p, "file");
+        const toml::node& n = r_.required(t, p, "file");
+        const fs::path given = r_.string(n, fkey);
+        const fs::path file = given.is_absolute() ? given : base_dir_ / given;
+        std::error_code ec;
+        if (!fs::exists(file, ec)) r_.fail(fkey, "no such file: " + file.string(), &n);
+        if (!fs::is_regular_file(file, ec))
+            r_.fail(fkey, "not a regular file (a device, a folder or a link to one): " + file.string(), &n);
+        io::StlPlacement placement;
+        placement.scale = r_.number(t, p, "scale", Bound::positive, 1.0);
+        placement.offset = r_.vec3(t, p, "offset").value_or(Vec3{});
+        if (const toml::node* rn = t.get("rotation")) {
+            const std::string rkey = join(p, "rotation");
+            const toml::table* rt = rn->as_table();
+            if (!rt) r_.fail(rkey, "expected a table { axis = [x, y, z], angle = degrees }", rn);
+            r_.only_keys(*rt, rkey, {"axis", "angle"});
+            const Vec3 axis = unit(*rt, rkey, "axis", Vec3{0.0, 0.0, 1.0});
+            const double degrees = r_.required_number(*rt, rkey, "angle", Bound::any);
+            placement.rotation = io::StlRotation{axis, degrees * pi / 180.0};
+        }
+        try {
+            return io::read_stl(file, placement);
+        } catch (const ConfigError& e) {  // the STL file, and where in it
+            r_.fail(fkey, e.what(), &n);
         }
     }
 
@@ -797,7 +834,8 @@ private:
             const RigidMotion& m = sc.motions[static_cast<std::size_t>(w.motion)];
             const Vec3 u = m.unit_axis();
             double& r = reach[static_cast<std::size_t>(w.motion)];
-            for (const Vec3& v : wall_surface(place_wall(w, nullptr), sc.domain).vertices) {
+            const TriangleMesh* mesh = w.mesh >= 0 ? &sc.meshes[static_cast<std::size_t>(w.mesh)] : nullptr;
+            for (const Vec3& v : wall_surface(place_wall(w, nullptr), sc.domain, 48, mesh).vertices) {
                 const Vec3 d = v - m.axis_point;
                 r = std::max(r, length(d - dot(d, u) * u));
             }

@@ -24,7 +24,8 @@ std::vector<WallSurface> wall_surfaces(const Simulation& sim) {
     for (const Wall& w : sim.scenario().walls) {
         std::optional<MotionNow> now;
         if (w.motion >= 0) now = sim.motion_now(static_cast<std::size_t>(w.motion));
-        drawn.push_back(wall_surface(place_wall(w, now ? &*now : nullptr), sim.scenario().domain));
+        const TriangleMesh* mesh = w.mesh >= 0 ? &sim.scenario().meshes[static_cast<std::size_t>(w.mesh)] : nullptr;
+        drawn.push_back(wall_surface(place_wall(w, now ? &*now : nullptr), sim.scenario().domain, 48, mesh));
     }
     return drawn;
 }

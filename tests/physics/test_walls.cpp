@@ -4,10 +4,17 @@
 // force, an infinite plane that is the box's flat wall to the last bit and
 // the same wall tilted, a moving wall's surface velocity (a grain set
 // rolling by a belt ends at 2/7 of its speed), a turned wall where its
-// motion has carried it, and the load the grains put on a wall.
+// motion has carried it, and the load the grains put on a wall. Mesh walls
+// (walls/mesh.hpp) in the engine: a floor of triangles is the plane it
+// tessellates, for a grain rolling and sliding over its edges and vertices,
+// for an impact, as a belt, and turning about an axis.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <utility>
 
 #include "io/config.hpp"
 #include "physics_helpers.hpp"
@@ -253,6 +260,243 @@ TEST(Walls, TheLoadOnAWallIsTheWeightItCarries) {
     EXPECT_LT(std::hypot(loads[0].force.x, loads[0].force.y), 1e-9 * weight);
     // (0.02, 0, 0) x (0, 0, -m g) = (0, 0.02 m g, 0).
     EXPECT_LT(relative_difference(loads[0].torque.y, 0.02 * weight), 1e-6);
+}
+
+
+// ---- Mesh walls ----------------------------------------------------------
+
+// A square of n x n squares of side a from `corner` in the plane z =
+// corner.z, each split in two along its diagonal: 2 n^2 triangles, their
+// normals +z.
+tumble::TriangleMesh grid_floor(Vec3 corner, double a, int n) {
+    tumble::TriangleMesh m;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) m.vertices.push_back({corner.x + i * a, corner.y + j * a, corner.z});
+    const auto at = [n](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    return m;
+}
+
+// The scenario with its plane wall 0 made a mesh: the grid in its plane.
+tumble::Scenario on_mesh(tumble::Scenario s, tumble::TriangleMesh grid) {
+    s.walls[0].shape = WallShape::mesh;
+    s.walls[0].mesh = 0;
+    s.meshes = {std::move(grid)};
+    return s;
+}
+
+// The largest normal force of the grain's wall contacts in the last step,
+// and how many there were.
+std::pair<double, std::size_t> wall_normal_force(const tumble::Simulation& sim) {
+    double largest = 0.0;
+    std::size_t count = 0;
+    for (const tumble::ContactRecord& r : sim.contact_records())
+        if (r.id_j < 0) largest = std::max(largest, r.forces.normal_force), ++count;
+    return {largest, count};
+}
+
+// A grain thrown at a slant with spin onto a floor of 200 triangles (5 mm
+// squares) from above a vertex, sliding, then rolling, across the edges
+// along x, along y and along the diagonals, and over vertices: the plane's
+// path to round-off. With the "spring" shear model the tangential spring
+// is carried from facet to facet; a spring lost at an edge would change
+// the path by far more than round-off, and a contact counted twice on an
+// edge would double the normal force there.
+TEST(MeshWalls, AGrainRollingOverTrianglesFollowsThePlane) {
+    tumble::Scenario plane = thrown_grain(false, {0, 0, 1});
+    plane.particles.push_back(sphere({0.0, 0.0, -1.0 + R1 + 2e-4}, R1, 0, {0.3, 0.1, -0.2}, {5.0, -20.0, 3.0}));
+    const double a = 5e-3;
+    const tumble::Scenario mesh = on_mesh(plane, grid_floor({-2 * a, -2 * a, -1.0}, a, 10));
+    ASSERT_EQ(mesh.meshes[0].triangles.size(), 200u);
+    tumble::Simulation A(plane), B(mesh);
+    A.set_contact_recording(true);
+    B.set_contact_recording(true);
+    ASSERT_EQ(A.dt(), B.dt());
+    double path = 0.0, largest_A = 0.0, largest_B = 0.0, worst = 0.0;
+    std::size_t touching = 0;
+    Vec3 last = A.particles().position[0];
+    for (int k = 0; k < 4000; ++k) {
+        A.step();
+        B.step();
+        const auto [fa, na] = wall_normal_force(A);
+        const auto [fb, nb] = wall_normal_force(B);
+        ASSERT_EQ(na, nb) << "step " << k << ": one contact on the plane, one on the mesh";
+        touching += na;
+        largest_A = std::max(largest_A, fa);
+        largest_B = std::max(largest_B, fb);
+        path += tumble::norm(A.particles().position[0] - last);
+        last = A.particles().position[0];
+        worst = std::max(worst, tumble::norm(B.particles().position[0] - A.particles().position[0]));
+    }
+    const Vec3 end = A.particles().position[0];
+    // It crossed the grid's lines: 1 cm or more along x over 5 mm squares.
+    EXPECT_GT(end.x, 2 * a);
+    EXPECT_LT(end.x, 8 * a);  // and stayed on the mesh
+    EXPECT_LT(std::abs(end.y), 8 * a);
+    EXPECT_GT(touching, 3000u);
+    std::printf("  [measured] largest distance of the mesh's path from the plane's: %.3g m over a path of %.3g m\n",
+                worst, path);
+    // Round-off at most (the overlap as R - |d| on the mesh against d . n
+    // on the plane; near d = R both subtractions are exact, so here the
+    // paths agree to the bit), not the facets.
+    EXPECT_LT(worst, 1e-12 * path);
+    report("largest normal force on the mesh (N) vs on the plane", largest_B, largest_A, 1e-9);
+    EXPECT_LT(relative_difference(largest_B, largest_A), 1e-9);  // no spike at an edge or vertex
+    EXPECT_LT(tumble::norm(B.particles().angular_velocity[0] - A.particles().angular_velocity[0]),
+              1e-9 * tumble::norm(A.particles().angular_velocity[0]));
+}
+
+// A grain dropped straight onto a face of the mesh, off its edges: the
+// plane's restitution and contact time (the same steps in contact, the
+// rebound speed to round-off).
+TEST(MeshWalls, AnImpactOnAFaceIsThePlanes) {
+    tumble::Scenario plane = thrown_grain(false, {0, 0, 1});
+    plane.gravity = {};
+    plane.model.attraction = false;  // so that it comes off
+    const double v = 0.5;
+    plane.particles.push_back(sphere({1.3e-3, 2.1e-3, -1.0 + R1 + 1e-4}, R1, 0, {0.0, 0.0, -v}));
+    const tumble::Scenario mesh = on_mesh(plane, grid_floor({-0.05, -0.05, -1.0}, 0.01, 10));
+    tumble::Simulation A(plane), B(mesh);
+    A.set_contact_recording(true);
+    B.set_contact_recording(true);
+    std::int64_t steps_A = 0, steps_B = 0;
+    for (int k = 0; k < 3000; ++k) {
+        A.step();
+        B.step();
+        steps_A += static_cast<std::int64_t>(wall_normal_force(A).second);
+        steps_B += static_cast<std::int64_t>(wall_normal_force(B).second);
+    }
+    ASSERT_GT(steps_A, 20);  // the contact was resolved in many steps
+    EXPECT_EQ(steps_B, steps_A);  // the contact time to the step
+    const double e_A = A.particles().velocity[0].z / v, e_B = B.particles().velocity[0].z / v;
+    std::printf("  [measured] restitution %.4f, %lld steps in contact\n", e_A, static_cast<long long>(steps_A));
+    ASSERT_GT(e_A, 0.01);  // it came off (the paper's grains are nearly plastic: 0.02 at 0.5 m/s)
+    report("restitution on the mesh vs on the plane", e_B, e_A, 1e-12);
+    EXPECT_LT(relative_difference(e_B, e_A), 1e-12);  // round-off
+    EXPECT_LT(std::hypot(B.particles().velocity[0].x, B.particles().velocity[0].y), 1e-12 * v);  // straight back up
+}
+
+// The belt of Walls.AGrainOnAMovingBeltEndsAtTwoSeventhsOfItsSpeed made of
+// triangles (2 cm squares): the mesh moves with its motion (its surface
+// velocity in the contact), and the grain ends at the plane's speed.
+TEST(MeshWalls, AGrainOnAMovingMeshBeltEndsAtTwoSeventhsOfItsSpeed) {
+    const double V = 0.1;  // m/s
+    tumble::Scenario plane = thrown_grain(false, {0, 0, 1});
+    plane.model.attraction = false;
+    plane.motions.push_back({{}, {0.0, 0.0, 1.0}, 0.0, {V, 0.0, 0.0}});
+    plane.walls[0].motion = 0;
+    const double m = sphere_mass(1000.0, R1);
+    const double h = std::pow(m * g / (4.0 / 3.0 * e_star(paper_materials()[0], paper_materials()[wall_material]) *
+                                       std::sqrt(R1)), 2.0 / 3.0);  // Hertz rest
+    plane.particles.push_back(sphere({1e-3, 3e-3, -1.0 + R1 - h}, R1, 0));
+    // The belt carries 2 cm in 0.2 s under the grain, which moves 2/7 of it.
+    const tumble::Scenario mesh = on_mesh(plane, grid_floor({-0.1, -0.1, -1.0}, 0.02, 10));
+    tumble::Simulation A(plane), B(mesh);
+    const auto steps = static_cast<std::int64_t>(std::ceil(0.1 / B.dt()));
+    A.advance(steps);
+    B.advance(steps);
+    double mean = 0.0;
+    for (std::int64_t k = 0; k < steps; ++k) {
+        B.step();
+        mean += B.particles().velocity[0].x / static_cast<double>(steps);
+    }
+    A.advance(steps);
+    const double L = R1 - 0.5 * h, expected = 1.0 / (1.0 + 2.5 * (L / R1) * (L / R1));  // as for the plane
+    report("the grain's speed / the mesh belt's vs 1 / (1 + 5/2 (L/R)^2)", mean / V, expected, 5e-4);
+    EXPECT_LT(relative_difference(mean / V, expected), 5e-4);
+    // And it is where the plane's grain is, to round-off over 0.2 s.
+    EXPECT_LT(tumble::norm(B.particles().position[0] - A.particles().position[0]), 1e-12);
+}
+
+// A grain sliding and spinning along a V groove: two analytic planes at 45
+// degrees (two walls, a history each), or the groove made of triangles (160
+// of them, 2.5 mm along the crease: two face contacts at every step, their
+// features changing as the grain moves on). Each contact's spring must
+// follow it to its next face on the same side, not to the other side's
+// face that shares a vertex of the crease with it (handed to the first
+// old slot whose feature shares any vertex, the springs swap at every
+// other station, and the grain ends 4e-5 m off); then the grain takes
+// the planes' path to round-off (the faces' normals, from cross products,
+// may differ from the planes' in the last bit).
+TEST(MeshWalls, AGrainSlidingAlongATriangulatedVFollowsTheTwoPlanes) {
+    tumble::Scenario planes = thrown_grain(false, {0, 0, 1});
+    const double r = std::sqrt(0.5), z0 = -0.5;
+    planes.walls[0].point = {0.0, 0.0, z0};
+    planes.walls[0].normal = {0.0, -r, r};  // the side rising towards +y
+    Wall other = planes.walls[0];
+    other.name = "other side";
+    other.normal = {0.0, r, r};
+    planes.walls.push_back(other);
+    planes.particles.push_back(
+        sphere({0.0, 0.0, z0 + R1 / r - 1e-6}, R1, 0, {0.3, 0.02, 0.0}, {5.0, -20.0, 3.0}));
+    tumble::Scenario mesh = planes;
+    mesh.walls.pop_back();
+    tumble::TriangleMesh groove;
+    const int segments = 40;
+    const double x0 = -0.02, step = 2.5e-3, w = 0.01;
+    for (int i = 0; i <= segments; ++i) {  // per station: the crease, side A (+y), side B (-y)
+        const double x = x0 + i * step;
+        groove.vertices.push_back({x, 0.0, z0});
+        groove.vertices.push_back({x, w, z0 + w});
+        groove.vertices.push_back({x, -w, z0 + w});
+    }
+    for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(segments); ++i) {
+        const std::uint32_t c = 3 * i, a = c + 1, b = c + 2, c1 = c + 3, a1 = c + 4, b1 = c + 5;
+        const std::array<std::uint32_t, 3> side_a[2] = {{c, c1, a1}, {c, a1, a}}, side_b[2] = {{c, b1, c1}, {c, b, b1}};
+        // Side A's faces first in even segments, side B's in odd ones: the
+        // contacts come in another order than their slots at every other
+        // station, where a new face shares a vertex of the crease with the
+        // other side's old face.
+        for (const auto* side : i % 2 == 0 ? std::array{side_a, side_b} : std::array{side_b, side_a})
+            for (int k = 0; k < 2; ++k) groove.triangles.push_back(side[k]);
+    }
+    mesh = on_mesh(mesh, groove);
+    tumble::Simulation A(planes), B(mesh);
+    A.set_contact_recording(true);
+    B.set_contact_recording(true);
+    double path = 0.0, worst = 0.0;
+    std::size_t both = 0;
+    Vec3 last = A.particles().position[0];
+    for (int k = 0; k < 4000; ++k) {
+        A.step();
+        B.step();
+        const std::size_t na = wall_normal_force(A).second, nb = wall_normal_force(B).second;
+        ASSERT_EQ(na, nb) << "step " << k;
+        both += na == 2;
+        path += tumble::norm(A.particles().position[0] - last);
+        last = A.particles().position[0];
+        worst = std::max(worst, tumble::norm(B.particles().position[0] - A.particles().position[0]));
+    }
+    std::printf("  [measured] largest distance of the mesh's path from the planes': %.3g m over a path of %.3g m\n",
+                worst, path);
+    EXPECT_GT(both, 3000u);  // in the V, touching both sides
+    EXPECT_GT(A.particles().position[0].x, 4 * step);  // over several segments
+    EXPECT_LT(A.particles().position[0].x, x0 + segments * step - 2 * R1);  // and still on the mesh
+    EXPECT_LT(worst, 1e-9 * path);
+}
+
+// A mesh plate turned by its motion is where the motion carried it: a
+// grain resting on a triangulated floor turning about the vertical axis
+// through a point off the grain feels the plate's surface velocity, as on
+// the analytic plane turning the same way (the same path to round-off).
+TEST(MeshWalls, ATurningMeshIsTheTurningPlane) {
+    tumble::Scenario plane = thrown_grain(false, {0, 0, 1});
+    plane.motions.push_back({{0.01, -0.02, 0.0}, {0.0, 0.0, 1.0}, 3.0, {}});
+    plane.walls[0].motion = 0;
+    plane.particles.push_back(sphere({0.0, 0.0, -1.0 + R1 + 1e-5}, R1, 0, {0.02, 0.0, 0.0}));
+    const tumble::Scenario mesh = on_mesh(plane, grid_floor({-0.05, -0.06, -1.0}, 0.01, 10));
+    tumble::Simulation A(plane), B(mesh);
+    A.advance(3000);
+    B.advance(3000);
+    const double moved = tumble::norm(A.particles().position[0] - Vec3{0.0, 0.0, -1.0 + R1});
+    EXPECT_GT(moved, 1e-3);  // the plate carried it along
+    std::printf("  [measured] distance of the mesh's grain from the plane's: %.3g m after %.3g m\n",
+                tumble::norm(B.particles().position[0] - A.particles().position[0]), moved);
+    EXPECT_LT(tumble::norm(B.particles().position[0] - A.particles().position[0]), 1e-10 * moved);
 }
 
 }  // namespace

@@ -809,3 +809,71 @@ count = 60
     expect_error(replace(hopper, "{ position = [0.0041, 0.0, 0.0],", "{ position = [0.03, 0.0, 0.0],"),
                  "particles[0].particles[1]", "overlaps wall \"hopper\"");
 }
+
+// ---------------------------------------------------------------- mesh walls
+
+namespace {
+// Two triangles of a 20 mm square in the plane z = 0 (mm), in ASCII STL;
+// `third` the last corner of the second triangle.
+std::string square_stl(const std::string& third = "0 20 0") {
+    return "solid plate\n"
+           "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 20 0 0\nvertex 20 20 0\nendloop\nendfacet\n"
+           "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 20 20 0\nvertex " + third +
+           "\nendloop\nendfacet\nendsolid plate\n";
+}
+
+const std::string mesh_wall = R"(
+[[wall]]
+name = "plate"
+shape = "mesh"
+material = "material-2"
+motion = "turn"
+file = "parts/plate.stl"
+scale = 1e-3
+rotation = { axis = [0.0, 0.0, 2.0], angle = 90.0 }
+offset = [0.0, 0.0, -0.01]
+point = [0.0, 0.0, -0.01]
+)";
+}  // namespace
+
+// The STL file is found beside the scenario (as a CSV file is), scaled
+// from mm, turned by 90 degrees about z, moved; the wall names its mesh.
+TEST_F(ConfigFiles, AMeshWallReadsItsStlBesideTheScenario) {
+    write("parts/plate.stl", square_stl());
+    const RunConfig c = parse(two_materials + mesh_wall, dir_);
+    ASSERT_EQ(c.scenario.walls.size(), 1u);
+    const tumble::Wall& w = c.scenario.walls[0];
+    EXPECT_EQ(w.shape, tumble::WallShape::mesh);
+    EXPECT_EQ(w.mesh, 0);
+    EXPECT_EQ(w.material, 1);
+    EXPECT_EQ(w.motion, 0);
+    EXPECT_EQ(w.point, (tumble::Vec3{0.0, 0.0, -0.01}));
+    ASSERT_EQ(c.scenario.meshes.size(), 1u);
+    const tumble::TriangleMesh& m = c.scenario.meshes[0];
+    ASSERT_EQ(m.vertices.size(), 4u);  // welded: the diagonal's corners shared
+    ASSERT_EQ(m.triangles.size(), 2u);
+    // (20 mm, 0, 0) -> 0.02 m along x, turned a quarter about z: 0.02 along y
+    // (cos 90 degrees is 6e-17, not 0: a few 1e-18 m).
+    EXPECT_NEAR(m.vertices[1].x, 0.0, 1e-17);
+    EXPECT_NEAR(m.vertices[1].y, 0.02, 1e-17);
+    EXPECT_EQ(m.vertices[1].z, -0.01);
+}
+
+// A missing file, a bad triangle (named with its file and its place in
+// it), keys of other shapes and a rotation without its angle are refused
+// at the key.
+TEST_F(ConfigFiles, BadMeshWallsAreRefusedNamingTheKeyAndTheTriangle) {
+    const std::string text = two_materials + mesh_wall;
+    expect_error([&] { parse(text, dir_); }, "test.toml", "wall[0].file", "no such file");
+    const fs::path stl = write("parts/plate.stl", square_stl("40 40 0"));  // on the diagonal's line: no area
+    expect_error([&] { parse(text, dir_); }, "test.toml", "wall[0].file", stl.string() + ": triangle 2 (line 9): degenerate");
+    write("parts/plate.stl", square_stl());
+    expect_error([&] { parse(text + "radius = 0.01\n", dir_); }, "test.toml", "wall[0].radius", "unknown key");
+    expect_error([&] { parse(text + "normal = [0.0, 0.0, 1.0]\n", dir_); }, "test.toml", "wall[0].normal", "unknown key");
+    expect_error([&] { parse(replace(text, "shape = \"mesh\"", "shape = \"plane\""), dir_); }, "test.toml", "wall[0].file",
+                 "unknown key");
+    expect_error([&] { parse(replace(text, ", angle = 90.0", ""), dir_); }, "test.toml", "wall[0].rotation.angle",
+                 "missing required key");
+    expect_error([&] { parse(replace(text, "scale = 1e-3", "scale = 0.0"), dir_); }, "test.toml", "wall[0].scale",
+                 "must be > 0");
+}

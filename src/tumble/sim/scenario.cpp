@@ -59,6 +59,18 @@ std::string scenario_problem(const Scenario& s) {
         if (auto why = wall_problem(w); !why.empty()) return who + why;
         if (w.material < 0 || w.material >= n_materials) return who + "unknown material";
         if (w.motion < -1 || w.motion >= static_cast<std::int32_t>(s.motions.size())) return who + "unknown motion";
+        if (w.shape == WallShape::mesh && w.mesh >= static_cast<std::int32_t>(s.meshes.size())) return who + "unknown mesh";
+        if (w.shape != WallShape::mesh && w.mesh != -1) return who + "names a mesh, but is not one";
+    }
+    for (std::size_t k = 0; k < s.meshes.size(); ++k) {
+        const std::string who = "mesh " + std::to_string(k) + ": ";
+        try {
+            check_mesh(s.meshes[k]);
+        } catch (const Error& e) {
+            return who + e.what();
+        }
+        // The features' ids must fit mesh_feature_code (an edge per corner at most).
+        if (3 * s.meshes[k].triangles.size() >= (std::size_t{1} << 30) - 1) return who + "too many triangles";
     }
     if (s.particles.empty()) return "no particles";
     if (s.particles.size() >= (std::size_t{1} << 31)) return "too many particles (at most 2^31 - 1)";

@@ -14,6 +14,7 @@
 #include "tumble/core/vec3.hpp"
 #include "tumble/materials/material.hpp"
 #include "tumble/particles/particle_store.hpp"
+#include "tumble/walls/mesh.hpp"
 #include "tumble/walls/wall.hpp"
 
 namespace tumble {
@@ -64,6 +65,9 @@ struct Scenario {
     NeighborSettings neighbor;
     std::vector<RigidMotion> motions;
     std::vector<Wall> walls;  // smooth walls besides the box's flat ones (walls/wall.hpp)
+    // The triangles of the mesh walls (Wall::mesh indexes them), placed in
+    // the lab frame at the start of their wall's motion; m.
+    std::vector<TriangleMesh> meshes;
     std::vector<ParticleSpec> particles;
 
     // The free particles (of every rank, when the run is shared among ranks).

@@ -19,6 +19,54 @@ namespace tumble {
 
 namespace {
 
+// The cell of a mesh's facet grid: `cell`, or larger where the mesh's box
+// grown by `reach` would need more than a quarter of FacetGrid::max_cells.
+double facet_cell(const TriangleMesh& m, double cell, double reach) {
+    Vec3 lo = m.vertices.front(), hi = lo;
+    for (const Vec3& v : m.vertices)
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], v[a]);
+            hi[a] = std::max(hi[a], v[a]);
+        }
+    for (;;) {
+        double cells = 1.0;
+        for (int a = 0; a < 3; ++a) cells *= std::floor((hi[a] - lo[a] + 2.0 * reach) / cell) + 2.0;
+        if (cells <= static_cast<double>(FacetGrid::max_cells / 4)) return cell;
+        cell *= 1.5;
+    }
+}
+
+// The vertices of a mesh feature (mesh_feature_code), 1 to 3 of them.
+std::size_t feature_vertices(const MeshTopology& m, std::uint32_t code, std::array<std::uint32_t, 3>& v) {
+    const std::uint32_t id = (code - 1) & ((1u << 30) - 1);
+    switch (static_cast<MeshFeature>((code - 1) >> 30)) {
+        case MeshFeature::face: v = m.triangles()[id]; return 3;
+        case MeshFeature::edge: v = {m.edges()[id][0], m.edges()[id][1], 0}; return 2;
+        case MeshFeature::vertex: v = {id, 0, 0}; return 1;
+    }
+    return 0;
+}
+
+// How many vertices two features of a mesh share: 2 for a face and its
+// edge or two faces of an edge, 1 for features about one vertex, 0 for
+// features apart.
+std::size_t shared_vertices(const MeshTopology& m, std::uint32_t a, std::uint32_t b) {
+    std::array<std::uint32_t, 3> va{}, vb{};
+    const std::size_t na = feature_vertices(m, a, va), nb = feature_vertices(m, b, vb);
+    std::size_t shared = 0;
+    for (std::size_t i = 0; i < na; ++i)
+        for (std::size_t j = 0; j < nb; ++j) shared += va[i] == vb[j];
+    return shared;
+}
+
+// Whether a code names a feature of the mesh.
+bool valid_feature(const MeshTopology& m, std::uint32_t code) {
+    if (code == 0) return false;
+    const std::uint32_t kind = (code - 1) >> 30, id = (code - 1) & ((1u << 30) - 1);
+    return (kind == 0 && id < m.face_count()) || (kind == 1 && id < m.edge_count()) ||
+           (kind == 2 && id < m.vertex_count());
+}
+
 // The axis a domain is cut along when shared among ranks: its longest (a
 // drum's rotation axis z; z, then y, on a tie).
 int decomposition_axis(const Domain& d) {
@@ -51,12 +99,31 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
             face.material = box.wall_material;
             walls_.push_back(face);
             wall_slot_.push_back(static_cast<std::size_t>(2 * axis + side));
+            wall_number_.push_back(static_cast<std::size_t>(2 * axis + side));
+            mesh_wall_.push_back(0);
         }
+    const double reach = scenario_.largest_radius();
     for (std::size_t k = 0; k < scenario_.walls.size(); ++k) {
-        walls_.push_back(scenario_.walls[k]);
-        wall_slot_.push_back(6 + k);
+        const Wall& w = scenario_.walls[k];
+        walls_.push_back(w);
+        wall_slot_.push_back(wall_slots_);
+        wall_number_.push_back(6 + k);
+        mesh_wall_.push_back(mesh_walls_.size());
+        if (w.shape != WallShape::mesh) {
+            ++wall_slots_;
+            continue;
+        }
+        const TriangleMesh& mesh = scenario_.meshes[static_cast<std::size_t>(w.mesh)];
+        MeshTopology topology(mesh);
+        FacetGrid grid(facet_cell(mesh, std::max(2.0 * reach + skin, 1e-6), reach), reach);
+        grid.rebuild(topology);
+        mesh_walls_.push_back({std::move(topology), std::move(grid)});
+        wall_slots_ += mesh_wall_slots;
     }
-    if (!walls_.empty()) wall_history_.resize(wall_slots() * particles_.size());  // by global id
+    if (!walls_.empty()) {  // by global id
+        wall_history_.resize(wall_slots() * particles_.size());
+        wall_feature_.resize(wall_history_.size());
+    }
     if (ranks == Ranks::world && mpi::size() > 1) {
         const int axis = decomposition_axis(scenario_.domain);
         slabs_ = std::make_unique<Slabs>(scenario_.domain, axis, particles_, 2.0 * scenario_.largest_radius() + skin);
@@ -101,7 +168,7 @@ void Simulation::rebuild(Team& team, bool keep_histories) {
         particles_.resize(owned_);
         if (slabs_ && neighbors_.builds() % Slabs::rebalance_every == 0 && neighbors_.builds() > 0)
             slabs_->rebalance(particles_, owned_, neighbors_.pairs());  // the cuts where the work now is, before the spheres migrate
-        if (slabs_) slabs_->migrate(particles_, histories_, wall_history_, wall_slots());
+        if (slabs_) slabs_->migrate(particles_, histories_, wall_history_, wall_feature_, wall_slots());
         owned_ = particles_.size();
     });
     neighbors_.arrange(particles_, team);
@@ -310,6 +377,7 @@ void Simulation::prepare_chunks() {
     moved_.resize(count);
     drifted_far_.assign(count, 0);
     chunk_wall_load_.resize(count * scenario_.walls.size());
+    mesh_contacts_.resize(count);
     chunk_kinds_.resize(count);
     chunk_first_wall_.resize(count);
     if (wall_from_.size() != count + 1) {  // a new chunk count: equal shares of the wall until the next rebuild
@@ -429,38 +497,123 @@ void Simulation::clear_chunk_sums(IndexRange r) {
 
 // The walls (walls/wall.hpp; the box's flat walls are infinite planes):
 // every free sphere of range r nearer to a wall than its radius is in
-// contact with it. Each particle only touches its own forces and wall
-// histories, and chunk c its own sums of the loads on the walls.
+// contact with it; a mesh wall gives its contacts by itself. Each particle
+// only touches its own forces and wall histories, and chunk c its own sums
+// of the loads on the walls.
 void Simulation::add_wall_forces(IndexRange r, const std::vector<PlacedWall>& walls, int c) {
     ParticleStore& p = particles_;
     const std::size_t slots = wall_slots();
-    WallLoad* loads = chunk_wall_load_.data() + static_cast<std::size_t>(c) * scenario_.walls.size();
     for (std::size_t i = r.begin; i < r.end; ++i) {
         if (p.is_kinematic(i)) continue;
         for (std::size_t k = 0; k < walls.size(); ++k) {
-            const std::size_t slot = wall_slot_[k];
-            ContactHistory& history = wall_history_[slots * static_cast<std::size_t>(p.id[i]) + slot];
+            if (walls[k].wall->shape == WallShape::mesh) {
+                add_mesh_forces(i, k, walls[k], c);
+                continue;
+            }
+            ContactHistory& history = wall_history_[slots * static_cast<std::size_t>(p.id[i]) + wall_slot_[k]];
             const WallContact wall = wall_contact(walls[k], p.position[i]);
             const WallTouch& t = wall.touch;
             if (t.distance >= p.radius[i]) {
                 if (!history.is_zero()) history = ContactHistory{};
                 continue;
             }
-            ContactGeometry g = make_wall_geometry(t.n, t.distance, p.radius[i], wall_contact_radius(p.radius[i], t.curvature),
-                                                   p.velocity[i], p.half_kick[i], p.angular_velocity[i], wall.velocity,
-                                                   wall.angular_velocity);
-            const PairCoefficients& coefficients = pair_table_(p.material[i], walls[k].wall->material);
-            treat_dashpot(g, coefficients, p.inv_mass[i], dt_, history);
-            const ContactForces f = contact_law(coefficients, g, scenario_.model, dt_, history);
-            p.force[i] += f.force_i;
-            p.torque[i] += f.torque_i;
-            if (slot >= 6) {  // the wall feels -F at the contact, and the couples' reaction
-                WallLoad& load = loads[slot - 6];
-                load.force -= f.force_i;
-                load.torque -= f.torque_i + cross(p.position[i] - walls[k].origin, f.force_i);
-            }
-            if (recording_) records_.push_back({p.id[i], wall_id(slot), g, f, history});
+            add_wall_contact(i, k, walls[k], t.n, t.distance, wall_contact_radius(p.radius[i], t.curvature),
+                             wall.velocity, wall.angular_velocity, history, c);
         }
+    }
+}
+
+void Simulation::add_wall_contact(std::size_t i, std::size_t k, const PlacedWall& wall, const Vec3& n, double distance,
+                                  double contact_radius, const Vec3& wall_velocity, const Vec3& wall_angular_velocity,
+                                  ContactHistory& history, int c) {
+    ParticleStore& p = particles_;
+    ContactGeometry g = make_wall_geometry(n, distance, p.radius[i], contact_radius, p.velocity[i], p.half_kick[i],
+                                           p.angular_velocity[i], wall_velocity, wall_angular_velocity);
+    const PairCoefficients& coefficients = pair_table_(p.material[i], wall.wall->material);
+    treat_dashpot(g, coefficients, p.inv_mass[i], dt_, history);
+    const ContactForces f = contact_law(coefficients, g, scenario_.model, dt_, history);
+    p.force[i] += f.force_i;
+    p.torque[i] += f.torque_i;
+    const std::size_t number = wall_number_[k];
+    if (number >= 6) {  // the wall feels -F at the contact, and the couples' reaction
+        WallLoad& load = chunk_wall_load_[static_cast<std::size_t>(c) * scenario_.walls.size() + (number - 6)];
+        load.force -= f.force_i;
+        load.torque -= f.torque_i + cross(p.position[i] - wall.origin, f.force_i);
+    }
+    if (recording_) records_.push_back({p.id[i], wall_id(number), g, f, history});
+}
+
+// A mesh wall (walls/mesh.hpp): the centre carried into the mesh's frame at
+// the start of its motion, where its grid was built; the contacts there,
+// the S deepest of them, each in a history slot of its own (docs/MODEL.md,
+// "Walls"): a slot follows its contact from feature to feature. With one
+// contact before and one after, the slot carries over whatever the
+// features; otherwise a new contact takes the slot of the same feature,
+// else of a feature that shares vertices with it (the pairs that share the
+// most first: in a V of triangles a face's successor on its side shares an
+// edge with it, the other side's face a vertex at most), else a free slot
+// afresh. Slots no contact took are cleared.
+void Simulation::add_mesh_forces(std::size_t i, std::size_t k, const PlacedWall& wall, int c) {
+    constexpr std::size_t S = mesh_wall_slots, none = S;
+    ParticleStore& p = particles_;
+    const MeshWall& mesh = mesh_walls_[mesh_wall_[k]];
+    const std::size_t first = wall_slots() * static_cast<std::size_t>(p.id[i]) + wall_slot_[k];
+    ContactHistory* history = wall_history_.data() + first;
+    std::uint32_t* feature = wall_feature_.data() + first;
+    std::vector<MeshContact>& found = mesh_contacts_[static_cast<std::size_t>(c)];
+    const double R = p.radius[i];
+    const Vec3 x = to_start_frame(wall.now, p.position[i]);
+    mesh_contacts(mesh.topology, x, R, mesh.grid.candidates(x), found);
+    if (found.size() > S) {  // the S deepest, otherwise in their order
+        std::stable_sort(found.begin(), found.end(),
+                         [](const MeshContact& a, const MeshContact& b) { return a.overlap > b.overlap; });
+        found.resize(S);
+    }
+    const std::size_t n = found.size();
+    std::array<std::uint32_t, S> code{};
+    for (std::size_t j = 0; j < n; ++j) code[j] = mesh_feature_code(found[j].feature, found[j].id);
+    std::array<std::size_t, S> slot_of;
+    slot_of.fill(none);
+    std::array<bool, S> taken{};
+    std::size_t active = 0, last = none;
+    for (std::size_t s = 0; s < S; ++s)
+        if (feature[s] != 0) ++active, last = s;
+    if (n == 1 && active == 1) {
+        slot_of[0] = last;
+        taken[last] = true;
+    } else if (active > 0) {
+        for (std::size_t j = 0; j < n; ++j)  // the same feature
+            for (std::size_t s = 0; s < S && slot_of[j] == none; ++s)
+                if (!taken[s] && feature[s] == code[j]) slot_of[j] = s, taken[s] = true;
+        for (;;) {  // a feature that shares vertices with it, the most first
+            std::size_t best = 0, best_j = none, best_s = none;
+            for (std::size_t j = 0; j < n; ++j)
+                for (std::size_t s = 0; s < S && slot_of[j] == none; ++s)
+                    if (!taken[s] && feature[s] != 0) {
+                        const std::size_t shared = shared_vertices(mesh.topology, feature[s], code[j]);
+                        if (shared > best) best = shared, best_j = j, best_s = s;
+                    }
+            if (best_j == none) break;
+            slot_of[best_j] = best_s;
+            taken[best_s] = true;
+        }
+    }
+    for (std::size_t s = 0; s < S; ++s)  // the records no contact took
+        if (!taken[s]) {
+            if (!history[s].is_zero()) history[s] = ContactHistory{};
+            feature[s] = 0;
+        }
+    for (std::size_t j = 0; j < n; ++j) {
+        for (std::size_t s = 0; s < S && slot_of[j] == none; ++s)  // a new contact: a free slot
+            if (!taken[s]) slot_of[j] = s, taken[s] = true;
+        feature[slot_of[j]] = code[j];
+        const Vec3 normal = to_lab_direction(wall.now, found[j].n);
+        const double distance = R - found[j].overlap;
+        Vec3 velocity, angular_velocity;
+        surface_motion(wall.now, p.position[i] - distance * normal, velocity, angular_velocity);
+        // A face is flat, and an edge or a vertex touched by a sphere is
+        // taken as flat too: R* = R.
+        add_wall_contact(i, k, wall, normal, distance, R, velocity, angular_velocity, history[slot_of[j]], c);
     }
 }
 
@@ -542,7 +695,7 @@ void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
 }
 
 SimulationState Simulation::capture() const {
-    return {particles_, neighbors_.state(), wall_history_, motions_, dt_, time_, step_, owned_,
+    return {particles_, neighbors_.state(), wall_history_, wall_feature_, motions_, dt_, time_, step_, owned_,
             slabs_ ? slabs_->state() : SlabState{}, slabs_ ? mpi::size() : 1};
 }
 
@@ -627,8 +780,18 @@ void Simulation::restore(SimulationState state) {
         text << "its time step " << state.dt << " s differs from the scenario's " << dt_ << " s";
         why = text.str();
     }
-    if (why.empty() && state.wall_history.size() != wall_history_.size())
+    if (why.empty() && (state.wall_history.size() != wall_history_.size() ||
+                        state.wall_feature.size() != wall_feature_.size()))
         why = "its wall-contact history does not match the domain's walls and the scenario's";
+    for (std::size_t f = 0; why.empty() && f < state.wall_feature.size(); ++f) {
+        const std::size_t slot = f % wall_slots();
+        const std::uint32_t code = state.wall_feature[f];
+        if (code == 0) continue;
+        const auto after = static_cast<std::size_t>(std::upper_bound(wall_slot_.begin(), wall_slot_.end(), slot) - wall_slot_.begin());
+        const std::size_t k = after - 1;  // the wall the slot belongs to (none when after is 0)
+        if (after == 0 || walls_[k].shape != WallShape::mesh || !valid_feature(mesh_walls_[mesh_wall_[k]].topology, code))
+            why = "its wall-contact history names a mesh feature that the scenario's walls do not have";
+    }
     if (why.empty() && state.motions.size() != motions_.size()) why = "its number of prescribed motions differs";
     if (!why.empty()) throw Error("restoring a simulation state: " + why);
     particles_ = std::move(state.particles);
@@ -636,6 +799,7 @@ void Simulation::restore(SimulationState state) {
     chunk_force_.clear();  // the chunks' sums anew for this store (prepare_chunks())
     chunk_torque_.clear();
     wall_history_ = std::move(state.wall_history);
+    wall_feature_ = std::move(state.wall_feature);
     motions_ = std::move(state.motions);
     for (std::size_t k = 0; k < motions_.size(); ++k) scenario_.motions[k] = motions_[k].motion;
     time_ = state.time;
@@ -671,12 +835,14 @@ SimulationState whole_state(const std::vector<SimulationState>& ranks) {
     whole.motions = first.motions;
     whole.neighbors.builds = first.neighbors.builds;
     whole.wall_history.assign(first.wall_history.size(), ContactHistory{});
+    whole.wall_feature.assign(first.wall_history.size(), 0);
     whole.list_from_histories = true;
     // Every rank's own spheres, by global id.
     std::vector<std::pair<std::int64_t, std::pair<std::size_t, std::size_t>>> own;  // id, (rank, index)
     for (std::size_t r = 0; r < ranks.size(); ++r) {
         const SimulationState& s = ranks[r];
         if (s.step != first.step || s.dt != first.dt || s.wall_history.size() != first.wall_history.size() ||
+            s.wall_feature.size() != s.wall_history.size() ||
             s.owned > s.particles.size())
             throw Error("whole_state: the ranks' states are not of one run at one step");
         for (std::size_t i = 0; i < s.owned; ++i) own.push_back({s.particles.id[i], {r, i}});
@@ -693,8 +859,10 @@ SimulationState whole_state(const std::vector<SimulationState>& ranks) {
         index_of_id[static_cast<std::size_t>(id)] = whole.particles.size();
         whole.particles.append(ranks[r].particles, i);
         if (!whole.wall_history.empty())
-            for (std::size_t f = slots * static_cast<std::size_t>(id); f < slots * static_cast<std::size_t>(id + 1); ++f)
+            for (std::size_t f = slots * static_cast<std::size_t>(id); f < slots * static_cast<std::size_t>(id + 1); ++f) {
                 whole.wall_history[f] = ranks[r].wall_history[f];
+                whole.wall_feature[f] = ranks[r].wall_feature[f];
+            }
     }
     whole.owned = whole.particles.size();
     whole.neighbors.position_at_build = whole.particles.position;

@@ -21,6 +21,8 @@
 #include "tumble/sim/simulation_state.hpp"
 #include "tumble/sim/slabs.hpp"
 #include "tumble/sim/step_clock.hpp"
+#include "tumble/walls/facet_grid.hpp"
+#include "tumble/walls/mesh.hpp"
 
 namespace tumble {
 
@@ -50,9 +52,19 @@ struct Observables {
     std::vector<WallLoad> wall_loads;    // per wall of Scenario::walls (Simulation::wall_loads())
 };
 
-// The id that stands for a wall in a ContactRecord: slot = 2 axis + (0 at
-// lo, 1 at hi) for the box's flat walls, 6 + k for Scenario::walls[k].
-constexpr std::int64_t wall_id(std::size_t slot) { return -1 - static_cast<std::int64_t>(slot); }
+// The id that stands for a wall in a ContactRecord: number = 2 axis + (0
+// at lo, 1 at hi) for the box's flat walls, 6 + k for Scenario::walls[k].
+constexpr std::int64_t wall_id(std::size_t number) { return -1 - static_cast<std::int64_t>(number); }
+
+// The contact history slots per sphere a mesh wall has: its S deepest
+// contacts (docs/MODEL.md, "Walls").
+inline constexpr std::size_t mesh_wall_slots = 4;
+
+// The feature of a mesh a history slot follows, as one number (0: none):
+// 1 + id + 2^30 kind, ids below 2^30 - 1 (scenario_problem checks the meshes).
+constexpr std::uint32_t mesh_feature_code(MeshFeature kind, std::uint32_t id) {
+    return 1u + id + (static_cast<std::uint32_t>(kind) << 30);
+}
 
 
 // Where a simulation runs: on this process alone, or shared among the ranks
@@ -158,9 +170,18 @@ private:
     void compute_forces(Team& team, Sums sums, const std::vector<MotionNow>& now, Then&& then);
     void clear_chunk_sums(IndexRange r);
     void add_wall_forces(IndexRange r, const std::vector<PlacedWall>& walls, int c);
-    // The history slots per sphere: the box's six faces, then one per wall
-    // of the scenario (wall_history_ at slots x id + slot).
-    std::size_t wall_slots() const { return 6 + scenario_.walls.size(); }
+    // The contacts of sphere i with mesh wall k (an index into walls_).
+    void add_mesh_forces(std::size_t i, std::size_t k, const PlacedWall& wall, int c);
+    // One contact of sphere i with wall k: its geometry from the normal n
+    // (lab frame, from the wall to the centre), the distance of the centre
+    // from the wall, the Hertz radius and the wall's surface motion there.
+    void add_wall_contact(std::size_t i, std::size_t k, const PlacedWall& wall, const Vec3& n, double distance,
+                          double contact_radius, const Vec3& wall_velocity, const Vec3& wall_angular_velocity,
+                          ContactHistory& history, int c);
+    // The history slots per sphere: the box's six faces, then per wall of
+    // the scenario one, or mesh_wall_slots for a mesh (wall_history_ at
+    // slots x id + slot).
+    std::size_t wall_slots() const { return wall_slots_; }
     // Where each prescribed motion is at a time (for move_kinematic()).
     std::vector<MotionNow> motions_now(double time) const;
     // What follows a step in its team: another step, or the end of the
@@ -235,9 +256,24 @@ private:
     // them at wall_slots() id + slot (ids are dense, 0 .. N-1); empty when
     // there are no walls. Per chunk the loads on the scenario's walls
     // (chunks x walls).
+    // wall_slot_: each wall's first history slot; wall_number_: its number
+    // (wall_id()); mesh_wall_: for a mesh, its index into mesh_walls_.
+    // wall_feature_: per slot the mesh feature it follows (SimulationState).
     std::vector<Wall> walls_;
-    std::vector<std::size_t> wall_slot_;
+    std::vector<std::size_t> wall_slot_, wall_number_, mesh_wall_;
+    std::size_t wall_slots_ = 6;
     std::vector<ContactHistory> wall_history_;
+    std::vector<std::uint32_t> wall_feature_;
+    // The meshes of the mesh walls in their frame at the start of their
+    // motion, with their facet grids (built once: a mesh moves rigidly, and
+    // a centre is carried into that frame), and per chunk the contacts of
+    // the sphere at hand.
+    struct MeshWall {
+        MeshTopology topology;
+        FacetGrid grid;
+    };
+    std::vector<MeshWall> mesh_walls_;
+    std::vector<std::vector<MeshContact>> mesh_contacts_;
     std::vector<WallLoad> chunk_wall_load_;
     // Shared among ranks: the slabs, the spheres this rank owns (the first
     // owned_ of the store; all of them on one rank), the keyed histories of

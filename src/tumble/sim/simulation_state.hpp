@@ -29,6 +29,9 @@ struct SimulationState {
     ParticleStore particles;                 // every field, in array order
     NeighborState neighbors;
     std::vector<ContactHistory> wall_history;  // slots x global id + slot (Simulation::wall_slots()); empty without walls
+    // Per slot of wall_history: the feature of a mesh wall whose contact the
+    // slot follows (mesh_feature_code()), 0 for none and for the other walls.
+    std::vector<std::uint32_t> wall_feature;
     std::vector<MotionClock> motions;
     double dt = 0.0;                         // s
     double time = 0.0;                       // s

@@ -150,7 +150,7 @@ void Slabs::keep_own(ParticleStore& p) const {
 }
 
 void Slabs::migrate(ParticleStore& p, std::vector<KeyedHistory>& histories, std::vector<ContactHistory>& wall_history,
-                    std::size_t wall_slots) {
+                    std::vector<std::uint32_t>& wall_feature, std::size_t wall_slots) {
     ++traffic_.rebuilds;
     std::array<std::vector<std::uint32_t>, 2> leaving;
     std::vector<std::uint32_t> staying;
@@ -171,8 +171,10 @@ void Slabs::migrate(ParticleStore& p, std::vector<KeyedHistory>& histories, std:
             put_particle(b, p, i);
             ids.push_back(p.id[i]);
             if (!wall_history.empty())
-                for (std::size_t slot = 0; slot < wall_slots; ++slot)
+                for (std::size_t slot = 0; slot < wall_slots; ++slot) {
                     put(b, wall_history[wall_slots * static_cast<std::size_t>(p.id[i]) + slot]);
+                    put(b, wall_feature[wall_slots * static_cast<std::size_t>(p.id[i]) + slot]);
+                }
         }
         std::sort(ids.begin(), ids.end());
         std::vector<KeyedHistory> theirs;
@@ -195,8 +197,10 @@ void Slabs::migrate(ParticleStore& p, std::vector<KeyedHistory>& histories, std:
         for (std::size_t k = 0; k < count; ++k) {
             get_particle(r, p);
             if (!wall_history.empty())
-                for (std::size_t slot = 0; slot < wall_slots; ++slot)
+                for (std::size_t slot = 0; slot < wall_slots; ++slot) {
                     wall_history[wall_slots * static_cast<std::size_t>(p.id.back()) + slot] = r.get<ContactHistory>();
+                    wall_feature[wall_slots * static_cast<std::size_t>(p.id.back()) + slot] = r.get<std::uint32_t>();
+                }
         }
         const auto arrived = r.get<std::size_t>();
         for (std::size_t k = 0; k < arrived; ++k) histories.push_back(r.get<KeyedHistory>());

@@ -78,9 +78,10 @@ public:
     // slab go to the neighbour with their histories (of pairs and of the
     // walls, wall_slots per sphere at wall_slots id + slot); those that arrive are appended, their
     // histories to `histories` (after the rank's own: a pair it computed
-    // itself keeps its record, HistoryTable) and into `wall_history`.
+    // itself keeps its record, HistoryTable) and into `wall_history` and
+    // `wall_feature` (the mesh feature each wall slot follows).
     void migrate(ParticleStore& p, std::vector<KeyedHistory>& histories, std::vector<ContactHistory>& wall_history,
-                 std::size_t wall_slots);
+                 std::vector<std::uint32_t>& wall_feature, std::size_t wall_slots);
     // After the sort: copies of the own spheres within reach of each cut go
     // to the neighbours; theirs are appended as ghosts.
     void make_ghosts(ParticleStore& p);

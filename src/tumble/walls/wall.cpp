@@ -97,6 +97,9 @@ std::string wall_problem(const Wall& w) {
                 return "its radii must be finite, >= 0 and not both 0";
             if (!(w.length > 0.0) || !std::isfinite(w.length)) return "its length must be positive and finite";
             return {};
+        case WallShape::mesh:
+            if (w.mesh < 0) return "it names no mesh";
+            return {};
     }
     return "unknown shape";
 }
@@ -142,6 +145,7 @@ WallTouch wall_touch(const Wall& w, const Vec3& x) {
             return revolution_touch(w.point, w.normal, w.radius, w.radius, w.length, w.inside, x);
         case WallShape::cone:
             return revolution_touch(w.point, w.normal, w.radius, w.end_radius, w.length, w.inside, x);
+        case WallShape::mesh: return {};
     }
     return {};
 }
@@ -161,6 +165,24 @@ PlacedWall place_wall(const Wall& w, const MotionNow* now) {
     return p;
 }
 
+Vec3 to_start_frame(const MotionNow* now, const Vec3& x) {
+    if (!now) return x;
+    Rotation back = now->turn;  // the rotation since the motion began, undone
+    back.s = -back.s;
+    return now->start_axis_point + rotate(x - now->axis_point, back);
+}
+
+Vec3 to_lab_direction(const MotionNow* now, const Vec3& v) { return now ? rotate(v, now->turn) : v; }
+
+void surface_motion(const MotionNow* now, const Vec3& point, Vec3& velocity, Vec3& angular_velocity) {
+    if (!now) {
+        velocity = angular_velocity = Vec3{};
+        return;
+    }
+    angular_velocity = now->angular_velocity * now->turn.u;
+    velocity = now->velocity + cross(angular_velocity, point - now->axis_point);
+}
+
 WallContact wall_contact(const PlacedWall& w, const Vec3& x) {
     WallContact c;
     const MotionNow* now = w.now;
@@ -168,13 +190,9 @@ WallContact wall_contact(const PlacedWall& w, const Vec3& x) {
         c.touch = wall_touch(*w.wall, x);
         return c;
     }
-    Rotation back = now->turn;  // the rotation since the motion began, undone
-    back.s = -back.s;
-    c.touch = wall_touch(*w.wall, now->start_axis_point + rotate(x - now->axis_point, back));
-    c.touch.n = rotate(c.touch.n, now->turn);
-    const Vec3 point = x - c.touch.distance * c.touch.n;
-    c.angular_velocity = now->angular_velocity * now->turn.u;
-    c.velocity = now->velocity + cross(c.angular_velocity, point - now->axis_point);
+    c.touch = wall_touch(*w.wall, to_start_frame(now, x));
+    c.touch.n = to_lab_direction(now, c.touch.n);
+    surface_motion(now, x - c.touch.distance * c.touch.n, c.velocity, c.angular_velocity);
     return c;
 }
 

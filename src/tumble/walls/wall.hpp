@@ -25,13 +25,14 @@
 
 namespace tumble {
 
-enum class WallShape : std::uint8_t { plane, rectangle, disc, cylinder, cone };
-inline constexpr std::array<Keyword<WallShape>, 5> wall_shapes{{
+enum class WallShape : std::uint8_t { plane, rectangle, disc, cylinder, cone, mesh };
+inline constexpr std::array<Keyword<WallShape>, 6> wall_shapes{{
     {"plane", WallShape::plane, "an infinite plane; the grains on the side its normal points to"},
     {"rectangle", WallShape::rectangle, "a rectangle, touched from both sides and at its edges"},
     {"disc", WallShape::disc, "a disc or an annulus, touched from both sides and at its rims"},
     {"cylinder", WallShape::cylinder, "a cylinder's mantle, grains inside or outside, open at its ends"},
     {"cone", WallShape::cone, "a cone's (or a truncated cone's) mantle, grains inside or outside, open at its ends"},
+    {"mesh", WallShape::mesh, "triangles from an STL file, touched from both sides of each face"},
 }};
 
 // What the user describes (plain data, in Scenario::walls). Lengths in m.
@@ -39,7 +40,9 @@ struct Wall {
     std::string name;
     WallShape shape = WallShape::plane;
     // plane: a point on it; rectangle and disc: the centre; cylinder and
-    // cone: the point on the axis where the wall begins.
+    // cone: the point on the axis where the wall begins; mesh: the point
+    // the torque of its load is taken about (its triangles are placed by
+    // themselves, in Scenario::meshes).
     Vec3 point;
     // plane, rectangle, disc: the normal (an infinite plane's grains lie on
     // the side it points to; rectangles and discs are touched from both
@@ -60,6 +63,7 @@ struct Wall {
     bool inside = true;        // cylinder, cone: the grains move inside it (else outside)
     std::int32_t material = 0;
     std::int32_t motion = -1;  // index into Scenario::motions, or -1: at rest
+    std::int32_t mesh = -1;    // mesh: index into Scenario::meshes (walls/mesh.hpp), else -1
 };
 
 // Reason why a wall cannot be simulated (a zero normal, a value not finite,
@@ -79,6 +83,8 @@ struct WallTouch {
     Vec3 n;
     double curvature = 0.0;
 };
+// A mesh has no single touch (walls/mesh.hpp: mesh_contacts); for it
+// wall_touch() gives an infinite distance.
 WallTouch wall_touch(const Wall& w, const Vec3& x);
 
 // The largest curvature (1/m, as in WallTouch) the wall's surface turns
@@ -108,6 +114,14 @@ struct WallContact {
     Vec3 velocity, angular_velocity;
 };
 WallContact wall_contact(const PlacedWall& w, const Vec3& x);
+
+// The pieces of wall_contact() for a wall that gives its contacts by
+// itself (a mesh): a lab point x carried into the wall's frame at the start
+// of its motion, a direction of that frame turned into the lab frame, and
+// the surface velocity and spin at a lab point of the wall (zero at rest).
+Vec3 to_start_frame(const MotionNow* now, const Vec3& x);
+Vec3 to_lab_direction(const MotionNow* now, const Vec3& v);
+void surface_motion(const MotionNow* now, const Vec3& point, Vec3& velocity, Vec3& angular_velocity);
 
 // The Hertz radius R* (m) of a sphere of radius R against a surface that
 // curves by `curvature` (1/m, as in WallTouch) in one direction and not in

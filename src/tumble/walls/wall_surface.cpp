@@ -55,7 +55,7 @@ void add_revolution(WallSurface& s, const Vec3& p, const Vec3& u, double s0, dou
 
 }  // namespace
 
-WallSurface wall_surface(const PlacedWall& placed, const Domain& bounds, int segments) {
+WallSurface wall_surface(const PlacedWall& placed, const Domain& bounds, int segments, const TriangleMesh* mesh) {
     const Wall& w = *placed.wall;
     WallSurface s;
     // The box's reach about a point along a direction u, and across it.
@@ -109,6 +109,12 @@ WallSurface wall_surface(const PlacedWall& placed, const Domain& bounds, int seg
         }
         case WallShape::cone:
             add_revolution(s, w.point, w.normal, 0.0, w.radius, w.length, w.end_radius, segments);
+            break;
+        case WallShape::mesh:  // its triangles, placed at the start of its motion
+            if (mesh) {
+                s.vertices = mesh->vertices;
+                s.triangles = mesh->triangles;
+            }
             break;
     }
     if (const MotionNow* now = placed.now)  // where the motion has carried it

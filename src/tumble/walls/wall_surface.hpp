@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tumble/core/domain.hpp"
+#include "tumble/walls/mesh.hpp"
 #include "tumble/walls/wall.hpp"
 
 namespace tumble {
@@ -18,6 +19,9 @@ struct WallSurface {
     std::vector<std::array<std::uint32_t, 3>> triangles;  // vertex indices, counter-clockwise seen from n (planes)
 };
 
-WallSurface wall_surface(const PlacedWall& placed, const Domain& bounds, int segments = 48);
+// A mesh wall's surface is its triangles (`mesh`: Scenario::meshes[wall.mesh];
+// none when it is not given).
+WallSurface wall_surface(const PlacedWall& placed, const Domain& bounds, int segments = 48,
+                         const TriangleMesh* mesh = nullptr);
 
 }  // namespace tumble
