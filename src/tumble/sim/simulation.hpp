@@ -21,6 +21,7 @@
 #include "tumble/sim/simulation_state.hpp"
 #include "tumble/sim/slabs.hpp"
 #include "tumble/sim/step_clock.hpp"
+#include "tumble/sim/wall_loop.hpp"
 
 namespace tumble {
 
@@ -46,12 +47,6 @@ struct Observables {
 // The id that stands for a wall in a ContactRecord: slot = 2 axis + (0 at
 // lo, 1 at hi) for the box's flat walls, 6 + k for Scenario::walls[k].
 constexpr std::int64_t wall_id(std::size_t slot) { return -1 - static_cast<std::int64_t>(slot); }
-
-// The load the grains put on a wall: force (N) and torque (N m) about where
-// the wall's point is.
-struct WallLoad {
-    Vec3 force, torque;
-};
 
 // Where a simulation runs: on this process alone, or shared among the ranks
 // of the MPI world, a slab of the domain each (sim/slabs.hpp; with one rank
@@ -233,6 +228,16 @@ private:
     std::vector<Wall> walls_;
     std::vector<std::size_t> wall_slot_;
     std::vector<ContactHistory> wall_history_;
+    // Per record of wall_history_: 0 where the record is zero (1: it may
+    // not be). Derived, not state: restore() and migrations set every byte.
+    std::vector<std::uint8_t> wall_history_set_;
+    // While every wall stays put, the pairs of a sphere and a wall that may
+    // touch before the next rebuild, with their histories (sim/wall_loop.hpp;
+    // its histories go back into wall_history_ at a rebuild, when a wall
+    // would move, and for the contacts' records).
+    WallList wall_list_;
+    void build_wall_list(const std::vector<PlacedWall>& walls);
+    void flush_wall_list();
     std::vector<WallLoad> chunk_wall_load_;
     // Shared among ranks: the slabs, the spheres this rank owns (the first
     // owned_ of the store; all of them on one rank), the keyed histories of
