@@ -123,6 +123,7 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
     if (!walls_.empty()) {  // by global id
         wall_history_.resize(wall_slots() * particles_.size());
         wall_feature_.resize(wall_history_.size());
+        wall_history_set_.assign(wall_history_.size(), 0);
     }
     if (ranks == Ranks::world && mpi::size() > 1) {
         const int axis = decomposition_axis(scenario_.domain);
@@ -152,8 +153,10 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
 void Simulation::rebuild(Team& team, bool keep_histories) {
     // The chunks' sums on kinematic particles are never added up
     // (compute_forces()); cleared before the store is sorted anew, so that
-    // no particle that takes such a slot finds them.
+    // no particle that takes such a slot finds them. The wall list's
+    // histories go back (by chunk 0): its places are about to change.
     team.each([&](int c) {
+        if (c == 0 && wall_list_.valid) flush_wall_list();
         const IndexRange r = team.range(c, chunk_force_.size());
         const auto from = static_cast<std::ptrdiff_t>(r.begin), to = static_cast<std::ptrdiff_t>(r.end);
         std::fill(chunk_force_.begin() + from, chunk_force_.begin() + to, Vec3{});
@@ -168,7 +171,10 @@ void Simulation::rebuild(Team& team, bool keep_histories) {
         particles_.resize(owned_);
         if (slabs_ && neighbors_.builds() % Slabs::rebalance_every == 0 && neighbors_.builds() > 0)
             slabs_->rebalance(particles_, owned_, neighbors_.pairs());  // the cuts where the work now is, before the spheres migrate
-        if (slabs_) slabs_->migrate(particles_, histories_, wall_history_, wall_feature_, wall_slots());
+        if (slabs_) {
+            slabs_->migrate(particles_, histories_, wall_history_, wall_feature_, wall_slots());
+            std::fill(wall_history_set_.begin(), wall_history_set_.end(), 1);  // the records that came: any
+        }
         owned_ = particles_.size();
     });
     neighbors_.arrange(particles_, team);
@@ -439,6 +445,15 @@ void Simulation::compute_forces(Team& team, Sums sums, const std::vector<MotionN
     const std::size_t n = p.size();
     if (recording_) records_.clear();
     team.each([&](int c) {
+        // The wall list while every wall stays put and the contacts are not
+        // recorded, made or given up by chunk 0 (no chunk reads it, nor the
+        // wall histories, before the walls' phase below).
+        if (c == 0 && !walls.empty()) {
+            bool put = !recording_;
+            for (const PlacedWall& w : walls) put = put && (w.wall->shape == WallShape::mesh || stays_put(*w.wall, w.now));
+            if (put && !wall_list_.valid) build_wall_list(walls);
+            if (!put && wall_list_.valid) flush_wall_list();
+        }
         const IndexRange range = team.range(c, pairs.size());
         const auto part = static_cast<std::size_t>(c);
         Vec3* force = c == 0 ? p.force.data() : chunk_force_.data() + (part - 1) * n;
@@ -499,27 +514,46 @@ void Simulation::clear_chunk_sums(IndexRange r) {
 // every free sphere of range r nearer to a wall than its radius is in
 // contact with it; a mesh wall gives its contacts by itself. Each particle
 // only touches its own forces and wall histories, and chunk c its own sums
-// of the loads on the walls.
+// of the loads on the walls. The analytic walls' contacts go through the
+// law in blocks (sim/wall_loop.hpp), then the meshes' one at a time; when
+// the contacts are recorded, every one one at a time, in the same order
+// for each sphere (its analytic walls, then its meshes), so with the same
+// sums.
 void Simulation::add_wall_forces(IndexRange r, const std::vector<PlacedWall>& walls, int c) {
     ParticleStore& p = particles_;
     const std::size_t slots = wall_slots();
+    const auto each_mesh = [&](std::size_t i) {
+        for (std::size_t k = 0; k < walls.size(); ++k)
+            if (walls[k].wall->shape == WallShape::mesh) add_mesh_forces(i, k, walls[k], c);
+    };
+    if (!recording_) {
+        WallLoad* loads = chunk_wall_load_.data() + static_cast<std::size_t>(c) * scenario_.walls.size();
+        const WallLoop loop{p, walls, wall_slot_, wall_number_, slots, wall_history_, wall_history_set_, pair_table_, dt_, loads};
+        WallList* list = wall_list_.valid ? &wall_list_ : nullptr;
+        run_for_isa([&] { add_wall_contacts(loop, list, r, scenario_.model); });
+        if (!mesh_walls_.empty())
+            for (std::size_t i = r.begin; i < r.end; ++i)
+                if (!p.is_kinematic(i)) each_mesh(i);
+        return;
+    }
     for (std::size_t i = r.begin; i < r.end; ++i) {
         if (p.is_kinematic(i)) continue;
         for (std::size_t k = 0; k < walls.size(); ++k) {
-            if (walls[k].wall->shape == WallShape::mesh) {
-                add_mesh_forces(i, k, walls[k], c);
-                continue;
-            }
-            ContactHistory& history = wall_history_[slots * static_cast<std::size_t>(p.id[i]) + wall_slot_[k]];
+            if (walls[k].wall->shape == WallShape::mesh) continue;
+            const std::size_t record = slots * static_cast<std::size_t>(p.id[i]) + wall_slot_[k];
+            ContactHistory& history = wall_history_[record];
             const WallContact wall = wall_contact(walls[k], p.position[i]);
             const WallTouch& t = wall.touch;
             if (t.distance >= p.radius[i]) {
-                if (!history.is_zero()) history = ContactHistory{};
+                history = ContactHistory{};
+                wall_history_set_[record] = 0;
                 continue;
             }
+            wall_history_set_[record] = 1;
             add_wall_contact(i, k, walls[k], t.n, t.distance, wall_contact_radius(p.radius[i], t.curvature),
                              wall.velocity, wall.angular_velocity, history, c);
         }
+        each_mesh(i);
     }
 }
 
@@ -617,6 +651,52 @@ void Simulation::add_mesh_forces(std::size_t i, std::size_t k, const PlacedWall&
     }
 }
 
+// The wall list (sim/wall_loop.hpp) of the own spheres where they are now:
+// every pair of a free sphere and a wall that is not surely farther apart
+// than the sphere's radius plus the skin, with its history; the records of
+// the others set to zero (they would be at this step: no such pair
+// touches).
+void Simulation::build_wall_list(const std::vector<PlacedWall>& walls) {
+    const ParticleStore& p = particles_;
+    const std::size_t slots = wall_slots();
+    const double skin = neighbors_.skin();
+    WallList& list = wall_list_;
+    list.particle.clear();
+    list.wall.clear();
+    list.record.clear();
+    list.history.clear();
+    for (std::size_t i = 0; i < owned_; ++i) {
+        if (p.is_kinematic(i)) continue;
+        for (std::size_t k = 0; k < walls.size(); ++k) {
+            if (walls[k].wall->shape == WallShape::mesh) continue;  // it finds its own contacts
+            const std::size_t record = slots * static_cast<std::size_t>(p.id[i]) + wall_slot_[k];
+            if (surely_beyond(walls[k], p.position[i], p.radius[i] + skin)) {
+                if (wall_history_set_[record]) {
+                    wall_history_[record] = ContactHistory{};
+                    wall_history_set_[record] = 0;
+                }
+                continue;
+            }
+            list.particle.push_back(static_cast<std::uint32_t>(i));
+            list.wall.push_back(static_cast<std::uint32_t>(k));
+            list.record.push_back(record);
+            list.history.push_back(wall_history_[record]);
+        }
+    }
+    list.valid = true;
+}
+
+// The wall list's histories back to the records by global id; the list no
+// longer valid.
+void Simulation::flush_wall_list() {
+    WallList& list = wall_list_;
+    for (std::size_t e = 0; e < list.record.size(); ++e) {
+        wall_history_[list.record[e]] = list.history[e];
+        wall_history_set_[list.record[e]] = 1;
+    }
+    list = WallList{};
+}
+
 std::vector<WallLoad> Simulation::wall_loads() const {
     const std::size_t n_walls = scenario_.walls.size();
     std::vector<WallLoad> sum(n_walls);
@@ -695,7 +775,10 @@ void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
 }
 
 SimulationState Simulation::capture() const {
-    return {particles_, neighbors_.state(), wall_history_, wall_feature_, motions_, dt_, time_, step_, owned_,
+    std::vector<ContactHistory> wall_history = wall_history_;
+    for (std::size_t e = 0; e < wall_list_.record.size(); ++e)  // the wall list's, where it is valid
+        wall_history[wall_list_.record[e]] = wall_list_.history[e];
+    return {particles_, neighbors_.state(), std::move(wall_history), wall_feature_, motions_, dt_, time_, step_, owned_,
             slabs_ ? slabs_->state() : SlabState{}, slabs_ ? mpi::size() : 1};
 }
 
@@ -800,6 +883,8 @@ void Simulation::restore(SimulationState state) {
     chunk_torque_.clear();
     wall_history_ = std::move(state.wall_history);
     wall_feature_ = std::move(state.wall_feature);
+    wall_history_set_.assign(wall_history_.size(), 1);  // any record may be set
+    wall_list_ = WallList{};  // found anew at the next step
     motions_ = std::move(state.motions);
     for (std::size_t k = 0; k < motions_.size(); ++k) scenario_.motions[k] = motions_[k].motion;
     time_ = state.time;

@@ -21,6 +21,7 @@
 #include "tumble/sim/simulation_state.hpp"
 #include "tumble/sim/slabs.hpp"
 #include "tumble/sim/step_clock.hpp"
+#include "tumble/sim/wall_loop.hpp"
 #include "tumble/walls/facet_grid.hpp"
 #include "tumble/walls/mesh.hpp"
 
@@ -274,6 +275,16 @@ private:
     };
     std::vector<MeshWall> mesh_walls_;
     std::vector<std::vector<MeshContact>> mesh_contacts_;
+    // Per record of wall_history_: 0 where the record is zero (1: it may
+    // not be). Derived, not state: restore() and migrations set every byte.
+    std::vector<std::uint8_t> wall_history_set_;
+    // While every wall stays put, the pairs of a sphere and a wall that may
+    // touch before the next rebuild, with their histories (sim/wall_loop.hpp;
+    // its histories go back into wall_history_ at a rebuild, when a wall
+    // would move, and for the contacts' records).
+    WallList wall_list_;
+    void build_wall_list(const std::vector<PlacedWall>& walls);
+    void flush_wall_list();
     std::vector<WallLoad> chunk_wall_load_;
     // Shared among ranks: the slabs, the spheres this rank owns (the first
     // owned_ of the store; all of them on one rank), the keyed histories of

@@ -35,6 +35,12 @@ inline constexpr std::array<Keyword<WallShape>, 6> wall_shapes{{
     {"mesh", WallShape::mesh, "triangles from an STL file, touched from both sides of each face"},
 }};
 
+// The load the grains put on a wall: force (N) and torque (N m) about where
+// the wall's point is (Simulation::wall_loads()).
+struct WallLoad {
+    Vec3 force, torque;
+};
+
 // What the user describes (plain data, in Scenario::walls). Lengths in m.
 struct Wall {
     std::string name;
@@ -83,9 +89,156 @@ struct WallTouch {
     Vec3 n;
     double curvature = 0.0;
 };
-// A mesh has no single touch (walls/mesh.hpp: mesh_contacts); for it
-// wall_touch() gives an infinite distance.
-WallTouch wall_touch(const Wall& w, const Vec3& x);
+
+// The touch (inline: the walls' loop of the time step inlines it; the
+// shapes' helpers in wall_detail).
+namespace wall_detail {
+
+// A unit vector normal to the unit vector u (for a centre on an axis, where
+// any radial direction will do).
+inline Vec3 any_normal(const Vec3& u) {
+    const Vec3 other = std::abs(u.x) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
+    const Vec3 v = cross(u, other);
+    return (1.0 / norm(v)) * v;
+}
+
+// The touch of a point from a point q of the wall's edge or rim (a line, a
+// corner): along x - q, with no curvature.
+inline WallTouch from_edge(const Vec3& v, const Vec3& fallback_normal) {
+    WallTouch t;
+    t.distance = norm(v);
+    t.n = t.distance > 0.0 ? (1.0 / t.distance) * v : fallback_normal;
+    return t;
+}
+
+// A surface of revolution about the unit axis u through `point`, whose
+// meridian is the segment from (s, rho) = (0, r0) to (length, r1) (s along
+// the axis, rho from it): a cylinder where r0 = r1, a cone otherwise.
+// Within the segment's reach the centre is touched across the mantle along
+// the meridian's normal, towards the axis for grains inside; beyond it
+// from the rim circle at its nearer end (none where the cylinder is
+// infinite).
+inline WallTouch revolution_touch(const Vec3& point, const Vec3& u, double r0, double r1, double length,
+                                  bool inside, const Vec3& x) {
+    const Vec3 d = x - point;
+    const double s = dot(d, u);
+    const Vec3 radial = d - s * u;
+    const double rho = norm(radial);
+    const Vec3 out = rho > 0.0 ? (1.0 / rho) * radial : any_normal(u);  // unit, from the axis
+    if (std::isinf(length)) {  // an infinite cylinder: the mantle everywhere
+        WallTouch t;
+        t.distance = inside ? r0 - rho : rho - r0;
+        t.n = inside ? -out : out;
+        t.curvature = (inside ? 1.0 : -1.0) / r0;
+        return t;
+    }
+    // The meridian's unit tangent T = (length, r1 - r0) / l and its normal
+    // towards the axis N = (r1 - r0, -length) / l, as (along u, along out).
+    // (A cylinder's are (1, 0) and (0, -1), exactly as the divisions give
+    // them, which are slow to make for every sphere.)
+    const bool cylinder = r1 == r0;
+    const double l = cylinder ? length : std::hypot(length, r1 - r0);
+    const double T_s = cylinder ? 1.0 : length / l, T_rho = cylinder ? 0.0 : (r1 - r0) / l;
+    const double N_s = T_rho, N_rho = -T_s;
+    const double q_s = s, q_rho = rho - r0;  // from the meridian's start
+    const double along = q_s * T_s + q_rho * T_rho;
+    if (along >= 0.0 && along <= l) {
+        WallTouch t;
+        const double towards_axis = q_s * N_s + q_rho * N_rho;  // > 0 on the axis's side
+        t.distance = inside ? towards_axis : -towards_axis;
+        const Vec3 n_in = N_s * u + N_rho * out;
+        t.n = inside ? n_in : -n_in;
+        // Across the mantle a surface of revolution curves by |N_rho| / rho
+        // (Meusnier), rho the radius at the contact; along the meridian not.
+        const double rho_contact = cylinder ? r0 : r0 + along * T_rho;  // (r0 + along 0 is r0)
+        t.curvature = (inside ? 1.0 : -1.0) * T_s / rho_contact;
+        return t;
+    }
+    const bool at_start = along < 0.0;
+    const double rim_s = at_start ? 0.0 : length, rim_rho = at_start ? r0 : r1;
+    return from_edge((s - rim_s) * u + (rho - rim_rho) * out, inside ? -out : out);
+}
+
+}  // namespace wall_detail
+
+inline WallTouch wall_touch(const Wall& w, const Vec3& x) {
+    const Vec3 d = x - w.point;
+    switch (w.shape) {
+        case WallShape::plane: {  // one-sided: the grains are on the side n points to
+            WallTouch t;
+            t.distance = dot(d, w.normal);
+            t.n = w.normal;
+            return t;
+        }
+        case WallShape::rectangle: {
+            const Vec3 e2 = cross(w.normal, w.edge);
+            const double a = dot(d, w.edge), b = dot(d, e2), c = dot(d, w.normal);
+            if (std::abs(a) <= w.half_width && std::abs(b) <= w.half_height) {  // across its face, from either side
+                WallTouch t;
+                t.distance = std::abs(c);
+                t.n = c < 0.0 ? -w.normal : w.normal;
+                return t;
+            }
+            const double a_edge = std::clamp(a, -w.half_width, w.half_width);
+            const double b_edge = std::clamp(b, -w.half_height, w.half_height);
+            return wall_detail::from_edge((a - a_edge) * w.edge + (b - b_edge) * e2 + c * w.normal, w.normal);
+        }
+        case WallShape::disc: {
+            const double c = dot(d, w.normal);
+            const Vec3 in_plane = d - c * w.normal;
+            const double rho = norm(in_plane);
+            if (rho <= w.radius && rho >= w.hole_radius) {  // across its face, from either side
+                WallTouch t;
+                t.distance = std::abs(c);
+                t.n = c < 0.0 ? -w.normal : w.normal;
+                return t;
+            }
+            // From the nearer rim: the outer one, or the hole's.
+            const double rim = rho > w.radius ? w.radius : w.hole_radius;
+            const Vec3 out = rho > 0.0 ? (1.0 / rho) * in_plane : wall_detail::any_normal(w.normal);
+            return wall_detail::from_edge(d - rim * out, w.normal);
+        }
+        case WallShape::cylinder:
+            return wall_detail::revolution_touch(w.point, w.normal, w.radius, w.radius, w.length, w.inside, x);
+        case WallShape::cone:
+            return wall_detail::revolution_touch(w.point, w.normal, w.radius, w.end_radius, w.length, w.inside, x);
+        case WallShape::mesh: return {};  // no single touch (walls/mesh.hpp: mesh_contacts): an infinite distance
+    }
+    return {};
+}
+
+// Whether the centre x lies for sure at least `reach`
+// (> 0) from the wall, wall_touch(w, x).distance >= reach, found without a
+// square root or a division: the cheap test for the many spheres far from
+// a wall. False where it cannot tell (near the wall, beyond the ends of a
+// cylinder, for a cone). It keeps a relative margin far beyond round-off,
+// so where it says true, wall_touch() would have found the sphere clear of
+// the wall too, to the bit.
+// `point` and `normal` are the wall's where x is (its own, or where its
+// motion has carried them: PlacedWall).
+inline bool surely_beyond(const Wall& w, const Vec3& point, const Vec3& normal, const Vec3& x, double reach) {
+    constexpr double margin = 1e-9;  // relative, on squared distances too: far beyond the round-off of turning
+    const Vec3 d = x - point;
+    switch (w.shape) {
+        case WallShape::plane: return dot(d, normal) >= reach * (1.0 + margin);
+        case WallShape::rectangle:
+        case WallShape::disc: return std::abs(dot(d, normal)) >= reach * (1.0 + margin);  // a face or an edge
+        case WallShape::cylinder: {
+            const double s = dot(d, normal);
+            if (!std::isinf(w.length) && !(s >= 0.0 && s <= w.length)) return false;  // by a rim
+            const double rho2 = norm2(d - s * normal);  // across the mantle, w.radius - rho inside
+            if (w.inside) {
+                const double clear = w.radius - reach;
+                return clear > 0.0 && rho2 <= clear * clear * (1.0 - margin);
+            }
+            const double clear = w.radius + reach;
+            return rho2 >= clear * clear * (1.0 + margin);
+        }
+        case WallShape::cone:
+        case WallShape::mesh: return false;
+    }
+    return false;
+}
 
 // The largest curvature (1/m, as in WallTouch) the wall's surface turns
 // towards a grain anywhere: 1/R_c inside a cylinder, cos(alpha)/r at the
@@ -100,8 +253,15 @@ struct PlacedWall {
     const Wall* wall = nullptr;
     const MotionNow* now = nullptr;
     Vec3 origin;
+    Vec3 normal;  // the wall's normal (or axis) turned as its motion has turned it
 };
 PlacedWall place_wall(const Wall& w, const MotionNow* now);
+
+// surely_beyond() of a centre x in the lab frame (to the round-off of the
+// wall's turning, which the test's margin covers).
+inline bool surely_beyond(const PlacedWall& w, const Vec3& x, double reach) {
+    return surely_beyond(*w.wall, w.origin, w.normal, x, reach);
+}
 
 // The touch of a sphere's centre x (lab frame) with a placed wall, its
 // normal in the lab frame, and the wall's surface velocity at the nearest
@@ -113,15 +273,51 @@ struct WallContact {
     WallTouch touch;
     Vec3 velocity, angular_velocity;
 };
-WallContact wall_contact(const PlacedWall& w, const Vec3& x);
 
-// The pieces of wall_contact() for a wall that gives its contacts by
+// The pieces of wall_contact(), also for a wall that gives its contacts by
 // itself (a mesh): a lab point x carried into the wall's frame at the start
-// of its motion, a direction of that frame turned into the lab frame, and
+// of its motion (turned back by the rotation since and carried back by the
+// translation), a direction of that frame turned into the lab frame, and
 // the surface velocity and spin at a lab point of the wall (zero at rest).
-Vec3 to_start_frame(const MotionNow* now, const Vec3& x);
-Vec3 to_lab_direction(const MotionNow* now, const Vec3& v);
-void surface_motion(const MotionNow* now, const Vec3& point, Vec3& velocity, Vec3& angular_velocity);
+inline Vec3 to_start_frame(const MotionNow* now, const Vec3& x) {
+    if (!now) return x;
+    Rotation back = now->turn;  // the rotation since the motion began, undone
+    back.s = -back.s;
+    return now->start_axis_point + rotate(x - now->axis_point, back);
+}
+
+inline Vec3 to_lab_direction(const MotionNow* now, const Vec3& v) { return now ? rotate(v, now->turn) : v; }
+
+inline void surface_motion(const MotionNow* now, const Vec3& point, Vec3& velocity, Vec3& angular_velocity) {
+    if (!now) {
+        velocity = angular_velocity = Vec3{};
+        return;
+    }
+    angular_velocity = now->angular_velocity * now->turn.u;
+    velocity = now->velocity + cross(angular_velocity, point - now->axis_point);
+}
+
+// wall_contact() in two parts, for a loop over many spheres and walls:
+// the centre x in the frame of the wall's motion (x itself for a wall at
+// rest; the same for every wall of one motion), whose wall_touch() with the
+// wall is the touch in that frame; and, where it is a contact, the touch
+// turned into the lab frame with the wall's surface velocity and spin.
+// wall_contact(w, x) is wall_contact_of(w, x, wall_touch(*w.wall,
+// wall_frame_point(w, x))), to the bit.
+inline Vec3 wall_frame_point(const PlacedWall& w, const Vec3& x) { return to_start_frame(w.now, x); }
+
+inline WallContact wall_contact_of(const PlacedWall& w, const Vec3& x, const WallTouch& in_wall_frame) {
+    WallContact c;
+    c.touch = in_wall_frame;
+    if (!w.now) return c;
+    c.touch.n = to_lab_direction(w.now, c.touch.n);
+    surface_motion(w.now, x - c.touch.distance * c.touch.n, c.velocity, c.angular_velocity);
+    return c;
+}
+
+inline WallContact wall_contact(const PlacedWall& w, const Vec3& x) {
+    return wall_contact_of(w, x, wall_touch(*w.wall, wall_frame_point(w, x)));
+}
 
 // The Hertz radius R* (m) of a sphere of radius R against a surface that
 // curves by `curvature` (1/m, as in WallTouch) in one direction and not in
