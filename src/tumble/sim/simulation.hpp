@@ -34,12 +34,6 @@ struct MaterialEnergies {
     double kinetic_rotational = 0.0;     // J
 };
 
-// The load the grains put on a wall: force (N) and torque (N m) about where
-// the wall's point is.
-struct WallLoad {
-    Vec3 force, torque;
-};
-
 struct Observables {
     double time = 0.0;        // s
     std::int64_t step = 0;
