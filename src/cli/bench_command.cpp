@@ -250,8 +250,10 @@ int long_drum_bench(const BenchOptions& options) {
     if (!options.json && talk)
         fmt::print("tumble bench: long drum, length {} m, fill {}: {} grains, {}, {} rad/s, {}; {} bed {}\n",
                    d.geometry.length, d.fill_fraction, grains,
-                   d.geometry.walls == DrumWalls::smooth ? std::string("smooth walls")
-                                                         : fmt::format("{} wall spheres", n - grains),
+                   d.geometry.walls == DrumWalls::particles
+                       ? fmt::format("{} wall spheres", n - grains)
+                       : std::string(d.geometry.walls == DrumWalls::smooth ? "smooth walls"
+                                                                           : "a mantle of triangles and smooth caps"),
                    omega,
                    peer_law ? "the peer's law (no attraction, shear = spring)" : "the drum's law", bed_name,
                    (made ? "made and stored in " : "read from ") + cache.string());

@@ -259,9 +259,17 @@ int main(int argc, char** argv) {
                        "No end caps: the axis is periodic, the drum's length its period");
     std::optional<std::string> drum_walls;
     drum_cmd->add_option("--walls", drum_walls,
-                         "What walls the drum: particles (default: a wall of spheres, the paper's) or smooth (a "
-                         "smooth cylinder and two discs)")
+                         "What walls the drum: particles (default: a wall of spheres, the paper's), smooth (a "
+                         "smooth cylinder and two discs) or mesh (the mantle in triangles: --mesh FILE, or the "
+                         "smooth cylinder's)")
         ->check(CLI::IsMember(tumble::keywords(tumble::drum_wall_kinds)));
+    std::optional<std::string> drum_mesh;
+    std::optional<double> drum_mesh_scale;
+    drum_cmd->add_option("--mesh", drum_mesh,
+                         "The drum's mantle from this STL file (binary or ASCII), lifters and baffles with it, in the "
+                         "drum's frame: the axis z through the origin, the caps at z = +-length/2 (implies --walls mesh)");
+    drum_cmd->add_option("--mesh-scale", drum_mesh_scale, "The --mesh file's unit in m (default 1; 1e-3: mm)")
+        ->check(finite_positive);
     std::optional<double> cap_friction, small_volume_fraction;
     std::optional<std::string> arrangement, ends;
     std::optional<int> bands;
@@ -527,6 +535,12 @@ int main(int argc, char** argv) {
             if (wall_radius) d.geometry.wall_radius = *wall_radius;
             if (periodic_axis) d.geometry.periodic_axis = true;
             if (drum_walls) d.geometry.walls = tumble::find_keyword(tumble::drum_wall_kinds, *drum_walls)->value;
+            if (drum_mesh) d.mesh = std::filesystem::absolute(*drum_mesh);
+            if (drum_mesh_scale) d.mesh_scale = *drum_mesh_scale;
+            if (drum_walls && *drum_walls != "mesh" && !d.mesh.empty())
+                throw tumble::io::ConfigError("command line", "--walls",
+                                              *drum_walls + " walls, but the mantle is the mesh " + d.mesh.string());
+            if (drum_mesh || drum_mesh_scale || drum_walls) tumble::io::load_drum_mantle(d, "command line", "--mesh");
             if (cap_friction) d.fill.cap_friction = *cap_friction;
             if (arrangement) d.fill.arrangement = tumble::find_keyword(tumble::arrangements, *arrangement)->value;
             if (bands) d.fill.bands = *bands;

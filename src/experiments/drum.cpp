@@ -466,6 +466,8 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     info.seed = s.seed;
     info.wall_particles = setup.wall.particles.size();
     info.walls = keyword_of(drum_wall_kinds, s.geometry.walls);
+    info.mesh = s.mesh.string();
+    info.mesh_scale = s.mesh_scale;
     info.materials = sim.scenario().materials;  // (setup.scenario has moved into sim)
     info.paper_materials = s.materials.paper;
     {
@@ -517,8 +519,10 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
                    "length {:.4g} m{}; dt = {:.3g} s; instruction set {}\n",
                    s.mode, sim.scenario().free_count(), info.components[0].grains, info.components[0].name,
                    info.components[1].grains, info.components[1].name,
-                   s.geometry.walls == DrumWalls::smooth ? std::string("smooth walls")
-                                                         : fmt::format("{} wall particles", info.wall_particles),
+                   s.geometry.walls == DrumWalls::particles
+                       ? fmt::format("{} wall particles", info.wall_particles)
+                       : std::string(s.geometry.walls == DrumWalls::smooth ? "smooth walls"
+                                                                           : "a mantle of triangles and smooth caps"),
                    info.inner_radius, info.inner_length, s.geometry.periodic_axis ? " (periodic axis)" : "", sim.dt(),
                    info.isa);
         if (!s.materials.paper)

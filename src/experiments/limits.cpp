@@ -94,7 +94,7 @@ io::ParticleCheck scenario_memory_check(int threads, double limit_bytes, const s
 }
 
 double drum_wall_spheres(const DrumGeometry& g) {
-    if (g.walls == DrumWalls::smooth) return 0.0;  // smooth walls: no spheres
+    if (g.walls != DrumWalls::particles) return 0.0;  // smooth or mesh walls: no spheres
     // As build_drum_wall lays them out: rings of touching spheres along the
     // mantle, the caps filled at a little above the square packing.
     const double s = 2.0 * g.wall_radius, Rc = 0.5 * g.diameter + g.wall_radius;

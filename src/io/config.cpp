@@ -23,6 +23,7 @@
 #include "tumble/core/constants.hpp"
 #include "tumble/sim/health.hpp"
 #include "tumble/sim/time_step.hpp"
+#include "tumble/walls/clearance.hpp"
 #include "tumble/walls/wall.hpp"
 #include "tumble/walls/wall_surface.hpp"
 #include "tumble/setup/generators.hpp"
@@ -448,6 +449,13 @@ private:
     // Spheres that the blocks still to be read may add.
     std::int64_t room() const { return max_particles - static_cast<std::int64_t>(planned_); }
 
+    // The scenario's walls, meshes included, for placing spheres of radius
+    // up to `reach` clear of them (none without walls).
+    std::optional<WallDistances> wall_distances(double reach) const {
+        if (s_const().walls.empty()) return std::nullopt;
+        return std::optional<WallDistances>(std::in_place, s_const().walls, s_const().meshes, reach);
+    }
+
     void plan_lattice(const toml::table& t, const std::string& p, PlannedBlock& plan) const {
         const BlockDefaults& d = plan.defaults;
         const std::int32_t material = required_material(t, p, d);
@@ -468,7 +476,8 @@ private:
         plan.count_key = ckey;
         plan.smallest_radius = plan.largest_radius = radius;
         plan.make = [this, &t, p, origin, counts, spacing, radius, material, d] {
-            std::vector<ParticleSpec> out = lattice(origin, counts, spacing, radius, material, s_const().walls);
+            const std::optional<WallDistances> walls = wall_distances(radius);
+            std::vector<ParticleSpec> out = lattice(origin, counts, spacing, radius, material, walls ? &*walls : nullptr);
             if (out.empty()) r_.fail(p, "every site of the lattice touches or lies beyond a [[wall]]", &t);
             apply_defaults(out, d);
             return out;
@@ -523,8 +532,9 @@ private:
         plan.make = [this, &t, p, lo, hi, count, radius_min, radius_max, material, seed, d] {
             std::vector<ParticleSpec> out;
             try {
+                const std::optional<WallDistances> walls = wall_distances(radius_max);
                 out = random_fill(lo, hi, count, radius_min, radius_max, material, seed, config_.scenario.particles,
-                                  config_.scenario.walls);
+                                  walls ? &*walls : nullptr);
             } catch (const ConfigError&) {
                 throw;
             } catch (const tumble::Error& e) {
@@ -771,10 +781,11 @@ private:
                     fmt::format("{} overlaps {} by {:.3g} of the smaller radius, more than "
                                 "simulation.max_initial_overlap = {}",
                                 describe_under_key(worst.b), describe(worst.a), worst.ratio, show(max_initial_overlap_)));
-        for (std::size_t i = 0; i < sc.particles.size(); ++i)  // a grain that starts in or beyond a wall
+        const std::optional<WallDistances> walls = wall_distances(sc.largest_radius());
+        for (std::size_t i = 0; walls && i < sc.particles.size(); ++i)  // a grain that starts in or beyond a wall
             for (std::size_t k = 0; k < sc.walls.size(); ++k) {
                 const ParticleSpec& q = sc.particles[i];
-                const double ratio = 1.0 - wall_touch(sc.walls[k], q.position).distance / q.radius;
+                const double ratio = 1.0 - walls->distance(k, q.position) / q.radius;
                 if (q.motion == free_motion && ratio > max_initial_overlap_)
                     r_.fail(key_of(i), fmt::format("{} overlaps wall \"{}\" by {:.3g} of its radius{}, more than "
                                                    "simulation.max_initial_overlap = {}",

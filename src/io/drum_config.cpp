@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "io/material_tables.hpp"
+#include "io/stl.hpp"
 #include "io/toml_reader.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/setup/paper_materials.hpp"
@@ -91,6 +92,8 @@ void check_drum_settings(const DrumSettings& s, const std::string& source) {
     for (auto [key, value] : {std::pair{"length", s.geometry.length}, std::pair{"diameter", s.geometry.diameter},
                               std::pair{"wall_radius", s.geometry.wall_radius}})
         if (!(value > 0.0) || !std::isfinite(value)) fail(key, "must be > 0, got " + show(value));
+    if (s.geometry.walls == DrumWalls::mesh && s.geometry.periodic_axis)
+        fail("periodic_axis", "a mesh mantle has ends: it needs the drum's caps, not a periodic axis (--periodic-axis)");
     if (!(s.skin >= 0.0 && s.skin < s.geometry.diameter))
         fail("neighbor.skin", "must be >= 0 m (0: automatic, 0.3 x the largest radius) and below the drum's diameter (" +
                                   show(s.geometry.diameter) + " m), got " + show(s.skin) + " (--skin)");
@@ -103,6 +106,27 @@ void check_drum_settings(const DrumSettings& s, const std::string& source) {
         std::string option = problem->key;
         std::replace(option.begin(), option.end(), '_', '-');
         throw ConfigError(source, problem->key, problem->reason + " (tumble drum --" + option + ")");
+    }
+}
+
+void load_drum_mantle(DrumSettings& s, const std::string& source, const std::string& key) {
+    s.geometry.mantle.reset();
+    if (s.mesh.empty()) return;
+    if (s.geometry.walls == DrumWalls::particles) s.geometry.walls = DrumWalls::mesh;
+    if (s.geometry.walls != DrumWalls::mesh)
+        throw ConfigError(source, key, "a mantle mesh needs walls = \"mesh\", not \"" +
+                                           std::string(keyword_of(drum_wall_kinds, s.geometry.walls)) + "\"");
+    if (s.geometry.periodic_axis)
+        throw ConfigError(source, key, "a mantle mesh has ends: it needs the drum's caps, not a periodic axis");
+    if (!(s.mesh_scale > 0.0) || !std::isfinite(s.mesh_scale))
+        throw ConfigError(source, key == "--mesh" ? "--mesh-scale" : "drum.mesh_scale",
+                          "must be > 0 (the file's unit in m), got " + show(s.mesh_scale));
+    StlPlacement placement;
+    placement.scale = s.mesh_scale;
+    try {
+        s.geometry.mantle = std::make_shared<const TriangleMesh>(read_stl(s.mesh, placement));
+    } catch (const Error& e) {
+        throw ConfigError(source, key, e.what());
     }
 }
 
@@ -148,7 +172,8 @@ DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::
                            "material", "pair", "materials"});
     read_drum_materials(r, root, s);
     if (const toml::table* t = r.table(root, "drum", false)) {
-        r.only_keys(*t, "drum", {"length", "diameter", "wall_radius", "periodic_axis", "cap_friction", "walls"});
+        r.only_keys(*t, "drum",
+                    {"length", "diameter", "wall_radius", "periodic_axis", "cap_friction", "walls", "mesh", "mesh_scale"});
         if (const toml::node* n = t->get("walls")) s.geometry.walls = r.keyword(*n, "drum.walls", drum_wall_kinds)->value;
         if (auto mu = r.number(*t, "drum", "cap_friction", Bound::non_negative)) s.fill.cap_friction = *mu;
         if (const toml::node* n = t->get("periodic_axis"))
@@ -156,6 +181,12 @@ DrumSettings read_drum_settings(const toml::table& root, const std::filesystem::
         s.geometry.length = r.number(*t, "drum", "length", Bound::positive, s.geometry.length);
         s.geometry.diameter = r.number(*t, "drum", "diameter", Bound::positive, s.geometry.diameter);
         s.geometry.wall_radius = r.number(*t, "drum", "wall_radius", Bound::positive, s.geometry.wall_radius);
+        s.mesh_scale = r.number(*t, "drum", "mesh_scale", Bound::positive, s.mesh_scale);
+        if (const toml::node* n = t->get("mesh")) {  // beside the drum file, as a scenario's STL files
+            const std::filesystem::path given = r.string(*n, "drum.mesh");
+            s.mesh = given.is_absolute() ? given : std::filesystem::absolute(file).parent_path() / given;
+            load_drum_mantle(s, file.string(), "drum.mesh");
+        }
     }
     if (const toml::table* t = r.table(root, "fill", false)) {
         r.only_keys(*t, "fill", {"mode", "grains", "fill_fraction", "seed", "arrangement", "bands", "band_widths",

@@ -20,8 +20,14 @@ enum class SpeedUnit { rad_per_s, rpm, froude };
 
 struct DrumSettings {
     // inner length, inner diameter, wall-particle radius (m), periodic
-    // axis, the walls' kind ([drum] walls: particles or smooth)
+    // axis, the walls' kind ([drum] walls: particles, smooth or mesh), and
+    // a mesh mantle's triangles (read from `mesh` by load_drum_mantle())
     DrumGeometry geometry;
+    // [drum] mesh, --mesh: the STL file of the mantle of a mesh drum (its
+    // lifters and baffles with it), in the drum's frame; empty: the smooth
+    // mantle in triangles. mesh_scale: the file's unit in m (1e-3: mm).
+    std::filesystem::path mesh;
+    double mesh_scale = 1.0;
     std::string mode = "two-component";  // or "self"
     // The axial arrangement at the start, the species' volume shares and the
     // caps' friction (setup/drum.hpp; [fill] arrangement, bands, band_widths,
@@ -89,6 +95,14 @@ struct DrumSettings {
 
 // Reads a drum TOML file over the defaults; ConfigError names file, key, reason.
 DrumSettings load_drum_settings(const std::filesystem::path& file);
+
+// Reads the mantle's STL file (`mesh`, its coordinates times mesh_scale)
+// into geometry.mantle; none where `mesh` is empty. A file given makes the
+// walls "mesh" where they are still the default (particles); with smooth
+// walls, or a periodic axis, it is refused. ConfigError with `source` as
+// the file and the key `key` (drum.mesh, or --mesh on the command line),
+// naming the STL file and, for a bad triangle, its place in it.
+void load_drum_mantle(DrumSettings& s, const std::string& source, const std::string& key);
 
 // Checks values that the command line may have set; ConfigError with
 // `source` (e.g. "command line") as the file, the key and, in the reason,

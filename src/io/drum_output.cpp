@@ -81,6 +81,8 @@ std::string drum_run_info_text(const DrumRunInfo& info) {
                         {"bands_at_start", info.bands_at_start},
                         {"bands_at_end", info.bands_at_end},
                         {"walls", info.walls},
+                        {"mesh", info.mesh},
+                        {"mesh_scale", info.mesh_scale},
                         {"paper_materials", info.paper_materials},
                         {"large_material", info.large_material},
                         {"small_material", info.small_material},
@@ -147,6 +149,8 @@ DrumRunInfo parse_drum_run_info(std::string_view text, const fs::path& file) {
     info.walls = t["walls"].value_or(std::string("particles"));
     if (!find_keyword(drum_wall_kinds, info.walls))
         r.fail("walls", "unknown walls \"" + info.walls + "\"; known: " + detail::quoted_list(keywords(drum_wall_kinds)));
+    info.mesh = t["mesh"].value_or(std::string());
+    info.mesh_scale = t["mesh_scale"].value_or(1.0);
     info.paper_materials = t["paper_materials"].value_or(true);
     info.large_material = t["large_material"].value_or(std::string("material-1"));
     info.small_material = t["small_material"].value_or(std::string("material-2"));
@@ -635,10 +639,12 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                         : info.cap_friction >= 0.0 ? fmt::format("friction {:.3g}", info.cap_friction)
                                                    : std::string("the wall's friction"));
     text << fmt::format("  {}; inner radius {:.4g} m, bed length L = {:.4g} m\n",
-                        info.walls == "smooth"
-                            ? std::string(info.periodic_axis ? "smooth wall (an infinite cylinder)"
-                                                             : "smooth walls (a cylinder and two discs)")
-                            : fmt::format("{} wall particles", info.wall_particles),
+                        info.walls == "smooth"   ? std::string(info.periodic_axis ? "smooth wall (an infinite cylinder)"
+                                                                                  : "smooth walls (a cylinder and two discs)")
+                        : info.walls == "mesh"
+                            ? (info.mesh.empty() ? std::string("a mantle of triangles and two smooth discs")
+                                                 : "the mantle of " + info.mesh + " and two smooth discs")
+                                               : fmt::format("{} wall particles", info.wall_particles),
                         info.inner_radius, L);
     text << fmt::format("  solid fraction {:.3f} of the drum volume; fill fraction {:.3f} (bed cross-section after "
                         "settling, {})\n",
@@ -776,6 +782,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                  {"arrangement", info.arrangement},
                  {"cap_friction", info.cap_friction},
                  {"walls", info.walls},
+                 {"mesh", info.mesh.empty() ? Json() : Json(info.mesh)},
                  {"materials", Json{{"paper", info.paper_materials},
                                     {"large", info.large_material},
                                     {"small", info.mode == "self" ? Json() : Json(info.small_material)},

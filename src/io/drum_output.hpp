@@ -61,6 +61,8 @@ struct DrumRunInfo {
     // (the drum's own materials' [[pair]] tables)
     double surface_energy = paper::surface_energy;
     std::string walls = "particles";     // the walls' kind (keyword of drum_wall_kinds; setup/drum.hpp)
+    std::string mesh;                    // a mesh mantle's STL file and its unit in m (none: the smooth
+    double mesh_scale = 1.0;             // cylinder in triangles)
     // The drum's materials as the scenario holds them (empty: the paper's,
     // a run from before they were recorded), whether they are the paper's,
     // and the names of those of the large and small grains, the wall and

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "experiments/drum_setup.hpp"
@@ -217,6 +218,96 @@ TEST(OwnMaterials, GlassLikeCohesionlessBeadsSettleAndTurn) {
     const analysis::DrumState after = run.measure();
     EXPECT_EQ(after.components[0].grains, grains[0]);
     EXPECT_EQ(after.components[1].grains, grains[1]);
+}
+
+// The mesh drum's mantle: the smooth cylinder in facets, its vertices on
+// the circle, its faces within 1 % of the smallest grain radius inside it
+// (the fill's clearance is 2 %), closed around and open at the caps.
+TEST(MeshDrum, TheMantleIsTheCylinderInFacets) {
+    DrumGeometry g = smooth_geometry();
+    g.walls = DrumWalls::mesh;
+    const double r = 1.6e-3, R = 0.5 * g.diameter;  // the paper's small grain
+    const TriangleMesh m = drum_mantle_mesh(g, r);
+    ASSERT_FALSE(m.triangles.empty());
+    double z_lo = 0.0, z_hi = 0.0;
+    for (const Vec3& v : m.vertices) {
+        EXPECT_NEAR(std::hypot(v.x, v.y), R, 1e-15);
+        z_lo = std::min(z_lo, v.z), z_hi = std::max(z_hi, v.z);
+    }
+    EXPECT_EQ(z_lo, -0.5 * g.length);
+    EXPECT_EQ(z_hi, 0.5 * g.length);
+    const MeshTopology topology(m);
+    double nearest = R;  // the faces' distance from the axis, at their centres
+    for (std::size_t f = 0; f < m.triangles.size(); ++f) {
+        const auto& t = m.triangles[f];
+        const Vec3 c = (1.0 / 3.0) * (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]);
+        nearest = std::min(nearest, std::abs(dot(c, topology.face(static_cast<std::uint32_t>(f)).normal)));
+    }
+    EXPECT_GT(nearest, R - 0.01 * r);
+    std::size_t open = 0;
+    for (std::uint32_t e = 0; e < topology.edge_count(); ++e) open += topology.edge_sides(e).size() == 1;
+    EXPECT_GT(open, 0u);  // the rims at the caps
+    g.periodic_axis = true;
+    EXPECT_THROW(drum_mantle_mesh(g, r), Error);
+}
+
+// A mantle of triangles holds the bed as the smooth cylinder does: the
+// same grains settle on it and slide on the paper's wall friction (the
+// smooth drum's bed rises 12 to 22 degrees and slides back), none leaving.
+// Its faces are flat, so its contacts have R* = R where the cylinder's
+// have R / sqrt(1 - R / R_drum), 3 % more: the beds differ by that and by
+// chaos, not in kind.
+TEST(MeshDrum, TheMantleInTrianglesHoldsTheBedAsTheCylinderDoes) {
+    DrumGeometry g = smooth_geometry();
+    g.walls = DrumWalls::mesh;
+    SmoothRun run(build_drum_scenario(g, "two-component", 600, 3));
+    ASSERT_EQ(run.sim.scenario().meshes.size(), 1u);
+    run.sim.advance(std::llround(0.3 / run.sim.dt()));
+    run.expect_inside();
+    const std::vector<double> angles = run.turn(5.0, 0.5, 20);
+    EXPECT_LT(run.largest_overlap, 0.20);
+    const double highest = *std::max_element(angles.begin(), angles.end());
+    EXPECT_GT(highest, 5.0);
+    EXPECT_LT(highest, 30.0);
+}
+
+// Lifters: the smooth mantle in facets with six radial plates 8 mm high
+// along the whole drum, as a user's STL of a drum with lifters would be
+// (each plate a sheet of two triangles through the mantle). On the paper's
+// wall friction the smooth mantle lets the bed slide back (above); the
+// lifters carry it up: over the second half revolution its surface stands
+// steeper than the smooth drum's highest, and no grain passes a plate or
+// the mantle.
+TEST(MeshDrum, LiftersCarryTheBedUp) {
+    DrumGeometry g = smooth_geometry();
+    g.walls = DrumWalls::mesh;
+    TriangleMesh m = drum_mantle_mesh(g, 1.6e-3);
+    const double R = 0.5 * g.diameter, h = 8e-3, half = 0.5 * g.length;
+    for (int k = 0; k < 6; ++k) {
+        const double phi = pi / 3.0 * k;
+        const Vec3 u{std::cos(phi), std::sin(phi), 0.0};
+        const auto first = static_cast<std::uint32_t>(m.vertices.size());
+        for (const Vec3& v : {R * u + Vec3{0.0, 0.0, -half}, R * u + Vec3{0.0, 0.0, half},
+                              (R - h) * u + Vec3{0.0, 0.0, half}, (R - h) * u + Vec3{0.0, 0.0, -half}})
+            m.vertices.push_back(v);
+        m.triangles.push_back({first, first + 1, first + 2});
+        m.triangles.push_back({first, first + 2, first + 3});
+    }
+    g.mantle = std::make_shared<const TriangleMesh>(std::move(m));
+    SmoothRun run(build_drum_scenario(g, "two-component", 600, 3));
+    for (const ParticleSpec& p : run.sim.scenario().particles)  // the fill keeps clear of the plates
+        for (int k = 0; k < 6; ++k) {
+            const double phi = pi / 3.0 * k;
+            const Vec3 u{std::cos(phi), std::sin(phi), 0.0}, across{-u.y, u.x, 0.0};
+            const double along = dot(p.position, u);
+            if (along > R - h) EXPECT_GE(std::abs(dot(p.position, across)), p.radius) << k;
+        }
+    run.sim.advance(std::llround(0.3 / run.sim.dt()));
+    const std::vector<double> angles = run.turn(5.0, 1.0, 20);
+    EXPECT_LT(run.largest_overlap, 0.20);
+    double mean = 0.0;
+    for (std::size_t k = 10; k < angles.size(); ++k) mean += angles[k] / 10.0;
+    EXPECT_GT(mean, 30.0);
 }
 
 // The walls' contacts go through the law in blocks, over the wall list

@@ -859,6 +859,47 @@ TEST_F(ConfigFiles, AMeshWallReadsItsStlBesideTheScenario) {
     EXPECT_EQ(m.vertices[1].z, -0.01);
 }
 
+// Fills keep clear of a mesh wall as of an analytic one, and a grain that
+// starts in a mesh is refused naming the wall: a plate of two triangles
+// 40 mm square across the box at z = -0.01 m, 60 grains at random in the
+// box's lower half (the plate cuts it: without the mesh in the fill some
+// of them would lie across it).
+TEST_F(ConfigFiles, FillsStayClearOfAMeshAndAGrainInOneIsRefused) {
+    write("plate.stl", "solid plate\n"
+                       "facet normal 0 0 1\nouter loop\nvertex -20 -20 0\nvertex 20 -20 0\nvertex 20 20 0\n"
+                       "endloop\nendfacet\n"
+                       "facet normal 0 0 1\nouter loop\nvertex -20 -20 0\nvertex 20 20 0\nvertex -20 20 0\n"
+                       "endloop\nendfacet\nendsolid plate\n");
+    const std::string text = two_materials + R"(
+[[wall]]
+name = "plate"
+shape = "mesh"
+material = "material-2"
+file = "plate.stl"
+scale = 1e-3
+offset = [0.0, 0.0, -0.01]
+
+[[particles]]
+kind = "random_fill"
+material = "material-1"
+lo = [-0.02, -0.02, -0.02]
+hi = [0.02, 0.02, -0.001]
+count = 30
+)";
+    const RunConfig c = parse(text, dir_);
+    ASSERT_EQ(c.scenario.particles.size(), 32u);
+    std::size_t below = 0;
+    for (std::size_t i = 2; i < c.scenario.particles.size(); ++i) {
+        const tumble::ParticleSpec& p = c.scenario.particles[i];
+        EXPECT_GE(std::abs(p.position.z + 0.01), p.radius) << "particle " << i;
+        below += p.position.z < -0.01;
+    }
+    EXPECT_GT(below, 0u);  // on both sides of the plate
+    EXPECT_LT(below, 30u);
+    expect_error([&] { parse(replace(text, "offset = [0.0, 0.0, -0.01]", "offset = [0.0, 0.0, 0.001]"), dir_); },
+                 "test.toml", "particles[0].particles[0]", "overlaps wall \"plate\"");
+}
+
 // A missing file, a bad triangle (named with its file and its place in
 // it), keys of other shapes and a rotation without its angle are refused
 // at the key.

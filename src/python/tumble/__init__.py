@@ -49,6 +49,8 @@ DRUM_OPTIONS = {
     "wall_radius": ("drum", "wall_radius"),
     "periodic_axis": ("drum", "periodic_axis"),
     "walls": ("drum", "walls"),
+    "mesh": ("drum", "mesh"),
+    "mesh_scale": ("drum", "mesh_scale"),
     "cap_friction": ("drum", "cap_friction"),
     "mode": ("fill", "mode"),
     "arrangement": ("fill", "arrangement"),

@@ -351,9 +351,37 @@ std::vector<Wall> drum_smooth_walls(const DrumGeometry& g, std::int32_t wall_mat
     return {mantle, cap, end};
 }
 
+TriangleMesh drum_mantle_mesh(const DrumGeometry& g, double grain_radius) {
+    if (g.periodic_axis) throw Error("drum: a mesh mantle needs the drum's caps (not a periodic axis)");
+    if (!(grain_radius > 0.0)) throw Error("drum: the grain radius must be positive");
+    const double R = 0.5 * g.diameter;
+    // Sagitta R (1 - cos(pi/n)) <= 0.01 r, i.e. cos(pi/n) >= 1 - 0.01 r / R.
+    const double angle = std::acos(std::max(-1.0, 1.0 - 0.01 * grain_radius / R));
+    const auto at_least = static_cast<std::size_t>(std::ceil(pi / angle - 1e-9));
+    const std::size_t n = std::max<std::size_t>(48, (at_least + 7) / 8 * 8);
+    const double chord = 2.0 * R * std::sin(pi / static_cast<double>(n));
+    const std::size_t rings = interval_count(g.length, chord) + 1;
+    TriangleMesh mesh;
+    for (std::size_t k = 0; k < rings; ++k) {
+        const double z = -0.5 * g.length + g.length * static_cast<double>(k) / static_cast<double>(rings - 1);
+        for (std::size_t j = 0; j < n; ++j) {
+            const double phi = 2.0 * pi * static_cast<double>(j) / static_cast<double>(n);
+            mesh.vertices.push_back({R * std::cos(phi), R * std::sin(phi), z});
+        }
+    }
+    const auto id = [n](std::size_t k, std::size_t j) { return static_cast<std::uint32_t>(k * n + j % n); };
+    for (std::size_t k = 0; k + 1 < rings; ++k)
+        for (std::size_t j = 0; j < n; ++j) {  // normals towards the axis (a mesh is touched from both sides)
+            mesh.triangles.push_back({id(k, j), id(k + 1, j), id(k, j + 1)});
+            mesh.triangles.push_back({id(k, j + 1), id(k + 1, j), id(k + 1, j + 1)});
+        }
+    return mesh;
+}
+
 std::vector<ParticleSpec> fill_drum_region(const DrumGeometry& g, double z_lo, double z_hi, std::size_t count,
                                            double radius, std::int32_t material, std::int32_t tag,
-                                           std::uint64_t seed, const std::vector<ParticleSpec>& existing) {
+                                           std::uint64_t seed, const std::vector<ParticleSpec>& existing,
+                                           const WallDistances* walls) {
     if (!(radius > 0.0) || !std::isfinite(radius)) throw Error("drum fill: radius must be positive");
     if (!(g.length > 0.0) || !(g.diameter > 0.0)) throw Error("drum fill: length and diameter must be positive");
     if (!(z_lo < z_hi)) throw Error("drum fill: need z_lo < z_hi");
@@ -392,7 +420,7 @@ std::vector<ParticleSpec> fill_drum_region(const DrumGeometry& g, double z_lo, d
     constexpr std::size_t stall = 20000;  // tries in a row that found no room
     for (std::size_t failures = 0; x.size() < count && failures < stall;) {
         const Vec3 candidate = region.sample(rng);
-        if (!grid.free(candidate, radius)) {
+        if (!grid.free(candidate, radius) || (walls && !walls->clear(candidate, radius))) {
             ++failures;
             continue;
         }
@@ -406,10 +434,11 @@ std::vector<ParticleSpec> fill_drum_region(const DrumGeometry& g, double z_lo, d
         const std::size_t placed = x.size();
         while (x.size() < count) x.push_back(region.sample(rng));
         constexpr int max_sweeps = 2000;
-        if (!separate(x, radius, fixed, region, max_sweeps))
+        const auto clear = [&](const Vec3& y) { return walls->clear(y, radius); };
+        if (!separate(x, radius, fixed, region, max_sweeps) || (walls && !std::all_of(x.begin(), x.end(), clear)))
             throw Error("drum fill: random placement stalled after " + std::to_string(placed) + " of " +
                         std::to_string(count) + " grains of radius " + metres(radius) + " between z = " +
-                        metres(z_lo) + " and " + metres(z_hi) + ", and pushing the rest apart did not succeed in " +
+                        metres(z_lo) + " and " + metres(z_hi) + ", and pushing the rest apart did not clear them of one another and of the walls in " +
                         std::to_string(max_sweeps) + " sweeps: the region is too full, ask for fewer grains");
     }
 
@@ -746,11 +775,20 @@ DrumSetup build_drum_scenario(const DrumGeometry& g, const std::string& mode, st
             s.pair_properties[grain][own].mu = s.pair_properties[own][grain].mu = *fill.cap_friction;
         cap_material = own;
     }
-    if (g.walls == DrumWalls::smooth) {
-        // No wall spheres: the inner surface is the smooth walls'.
+    if (g.walls != DrumWalls::particles) {
+        // No wall spheres: the inner surface is the smooth walls'; a mesh
+        // mantle's in facets in its place.
         setup.wall.inner_radius = 0.5 * g.diameter;
         setup.wall.inner_length = g.length;
         s.walls = drum_smooth_walls(g, wall_material, cap_material, 0);
+        if (g.walls == DrumWalls::mesh) {
+            s.meshes = {g.mantle ? *g.mantle
+                                 : drum_mantle_mesh(g, std::min(s.materials[large].radius, s.materials[small].radius))};
+            Wall& mantle = s.walls.front();
+            mantle.shape = WallShape::mesh;
+            mantle.mesh = 0;
+            mantle.point = {};  // loads about the drum's centre
+        }
     } else {
         setup.wall =
             build_drum_wall(g, wall_material, 0, std::min(s.materials[large].radius, s.materials[small].radius));
@@ -815,10 +853,13 @@ DrumSetup build_drum_scenario(const DrumGeometry& g, const std::string& mode, st
     std::vector<std::uint64_t> region_seeds;
     for (std::size_t i = 0; i < regions.size(); ++i) region_seeds.push_back(seeds());
     std::vector<ParticleSpec> placed = wall.particles;
+    std::optional<WallDistances> mesh;  // the grains kept clear of a mesh mantle's lifters
+    if (g.walls == DrumWalls::mesh)
+        mesh.emplace(s.walls, s.meshes, std::max(s.materials[large].radius, s.materials[small].radius));
     for (std::size_t i = 0; i < regions.size(); ++i) {
         const Region& r = regions[i];
         auto grains_here = fill_drum_region(g, r.z_lo, r.z_hi, r.count, s.materials[r.material].radius, r.material,
-                                            r.tag, region_seeds[i], placed);
+                                            r.tag, region_seeds[i], placed, mesh ? &*mesh : nullptr);
         placed.insert(placed.end(), grains_here.begin(), grains_here.end());
         s.particles.insert(s.particles.end(), grains_here.begin(), grains_here.end());
     }
@@ -836,7 +877,7 @@ DrumSetup build_drum_scenario(const DrumGeometry& g, const std::string& mode, st
     // largest grain beyond smooth walls (the domain only bounds where
     // particles start; a grain's centre outside it has passed through the
     // wall).
-    const double margin = g.walls == DrumWalls::smooth
+    const double margin = g.walls != DrumWalls::particles
                               ? 2.0 * std::max(s.materials[large].radius, s.materials[small].radius)
                               : 3.0 * g.wall_radius;
     const double reach_r = wall.inner_radius + margin, reach_z = half + margin;

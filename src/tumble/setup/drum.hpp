@@ -12,22 +12,26 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "tumble/core/keyword.hpp"
 #include "tumble/sim/scenario.hpp"
+#include "tumble/walls/clearance.hpp"
 
 namespace tumble {
 
-// What walls the drum: a wall of kinematic spheres (the paper's), or
-// smooth analytic walls (walls/wall.hpp): the mantle a cylinder of the
-// inner radius, the caps two discs in the planes z = +-length/2.
-enum class DrumWalls { particles, smooth };
-inline constexpr std::array<Keyword<DrumWalls>, 2> drum_wall_kinds{{
+// What walls the drum: a wall of kinematic spheres (the paper's), smooth
+// analytic walls (walls/wall.hpp): the mantle a cylinder of the inner
+// radius, the caps two discs in the planes z = +-length/2; or the same with
+// the mantle a triangle mesh (walls/mesh.hpp), as a drum from a CAD file.
+enum class DrumWalls { particles, smooth, mesh };
+inline constexpr std::array<Keyword<DrumWalls>, 3> drum_wall_kinds{{
     {"particles", DrumWalls::particles, "a wall of spheres turning with the drum, as the paper's (the default)"},
     {"smooth", DrumWalls::smooth, "smooth walls: a cylinder of the inner radius and two discs, no wall spheres"},
+    {"mesh", DrumWalls::mesh, "the smooth drum with its mantle in triangles (a mesh wall), the caps smooth discs"},
 }};
 
 // The space the grains live in: a cylinder `length` long (inner, along z)
@@ -44,8 +48,13 @@ struct DrumGeometry {
     // domain periodic in z over [-length/2, length/2).
     bool periodic_axis = false;
     // particles: the wall of spheres below (build_drum_wall); smooth: no
-    // wall spheres (wall_radius unused), the walls of drum_smooth_walls().
+    // wall spheres (wall_radius unused), the walls of drum_smooth_walls();
+    // mesh: those with the mantle in triangles, `mantle` where given (the
+    // user's, from an STL file: a drum with lifters or baffles, in the
+    // drum's frame: the axis z through the origin, the caps at z =
+    // +-length/2), else drum_mantle_mesh().
     DrumWalls walls = DrumWalls::particles;
+    std::shared_ptr<const TriangleMesh> mantle;
 };
 
 // The drum wall. Layout (s = 2 wall_radius, the nominal spacing):
@@ -104,6 +113,17 @@ DrumWall build_drum_wall(const DrumGeometry& g, std::int32_t wall_material, std:
 std::vector<Wall> drum_smooth_walls(const DrumGeometry& g, std::int32_t wall_material, std::int32_t cap_material,
                                     std::int32_t motion);
 
+// The mantle of the mesh drum (DrumWalls::mesh): the smooth mantle's
+// cylinder in facets, in the drum's frame. `segments` around (the fewest,
+// at least 48 and a multiple of 8, whose polygon lies within 1 % of
+// `grain_radius` of the circle: its sagitta R (1 - cos(pi / segments))),
+// rings at z = +-length/2 and between them at axial steps of at most one
+// chord, each quadrilateral in two triangles. Its vertices lie on the
+// circle of radius diameter/2, its faces at most the sagitta inside it
+// (within the fill's clearance, fill_wall_clearance). Throws tumble::Error
+// where the axis is periodic (a mesh has ends).
+TriangleMesh drum_mantle_mesh(const DrumGeometry& g, double grain_radius);
+
 // Clearance (as a fraction of the grain radius) that fill_drum_region()
 // keeps between a new grain and the inner surface of the wall.
 inline constexpr double fill_wall_clearance = 0.02;
@@ -114,8 +134,9 @@ inline constexpr double fill_wall_clearance = 0.02;
 // length/2 - radius (1 + fill_wall_clearance), z_lo + radius <= z <= z_hi -
 // radius; none overlaps another or a sphere of `existing`, nor the smooth
 // walls of the same geometry (the clearance keeps them off the inner
-// surface, where both kinds of wall lie). Velocities zero,
-// free motion. Deterministic for a seed.
+// surface, where both kinds of wall lie), nor the walls in `walls` where
+// given (a mesh mantle's lifters). Velocities zero, free motion.
+// Deterministic for a seed.
 // Method: random sequential placement (uniform random positions, each kept
 // if it overlaps nothing). It stalls near 30 % solid fraction; if it does,
 // the remaining grains go to uniform random positions and all new grains are
@@ -125,7 +146,8 @@ inline constexpr double fill_wall_clearance = 0.02;
 // them apart does not converge.
 std::vector<ParticleSpec> fill_drum_region(const DrumGeometry& g, double z_lo, double z_hi, std::size_t count,
                                            double radius, std::int32_t material, std::int32_t tag,
-                                           std::uint64_t seed, const std::vector<ParticleSpec>& existing);
+                                           std::uint64_t seed, const std::vector<ParticleSpec>& existing,
+                                           const WallDistances* walls = nullptr);
 
 // Of `total` grains of masses m1 and m2, how many of the first kind make the
 // two masses most nearly equal (n1 m1 ~ (total - n1) m2): the two masses

@@ -52,12 +52,8 @@ private:
 };
 }  // namespace
 
-bool clear_of_walls(const Vec3& x, double r, const std::vector<Wall>& walls) {
-    return std::all_of(walls.begin(), walls.end(), [&](const Wall& w) { return wall_touch(w, x).distance >= r; });
-}
-
 std::vector<ParticleSpec> lattice(const Vec3& origin, const std::array<int, 3>& counts, double spacing,
-                                  double radius, std::int32_t material, const std::vector<Wall>& walls) {
+                                  double radius, std::int32_t material, const WallDistances* walls) {
     std::vector<ParticleSpec> out;
     out.reserve(static_cast<std::size_t>(counts[0]) * counts[1] * counts[2]);
     for (int k = 0; k < counts[2]; ++k)
@@ -67,14 +63,14 @@ std::vector<ParticleSpec> lattice(const Vec3& origin, const std::array<int, 3>& 
                 p.position = origin + Vec3{i * spacing, j * spacing, k * spacing};
                 p.radius = radius;
                 p.material = material;
-                if (clear_of_walls(p.position, radius, walls)) out.push_back(p);
+                if (!walls || walls->clear(p.position, radius)) out.push_back(p);
             }
     return out;
 }
 
 std::vector<ParticleSpec> random_fill(const Vec3& lo, const Vec3& hi, std::size_t count, double radius_min,
                                       double radius_max, std::int32_t material, std::uint64_t seed,
-                                      const std::vector<ParticleSpec>& existing, const std::vector<Wall>& walls) {
+                                      const std::vector<ParticleSpec>& existing, const WallDistances* walls) {
     if (!(radius_min > 0.0) || radius_max < radius_min) throw Error("random fill: need 0 < radius_min <= radius_max");
     for (int k = 0; k < 3; ++k)
         if (hi[k] - lo[k] < 2.0 * radius_max)
@@ -98,7 +94,7 @@ std::vector<ParticleSpec> random_fill(const Vec3& lo, const Vec3& hi, std::size_
         const double r = radius_min + (radius_max - radius_min) * uniform(rng);
         Vec3 x;
         for (int k = 0; k < 3; ++k) x[k] = lo[k] + r + (hi[k] - lo[k] - 2.0 * r) * uniform(rng);
-        if (!grid.free(x, r, largest) || !clear_of_walls(x, r, walls)) {
+        if (!grid.free(x, r, largest) || (walls && !walls->clear(x, r))) {
             ++failures;
             continue;
         }

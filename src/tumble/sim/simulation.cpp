@@ -19,23 +19,6 @@ namespace tumble {
 
 namespace {
 
-// The cell of a mesh's facet grid: `cell`, or larger where the mesh's box
-// grown by `reach` would need more than a quarter of FacetGrid::max_cells.
-double facet_cell(const TriangleMesh& m, double cell, double reach) {
-    Vec3 lo = m.vertices.front(), hi = lo;
-    for (const Vec3& v : m.vertices)
-        for (int a = 0; a < 3; ++a) {
-            lo[a] = std::min(lo[a], v[a]);
-            hi[a] = std::max(hi[a], v[a]);
-        }
-    for (;;) {
-        double cells = 1.0;
-        for (int a = 0; a < 3; ++a) cells *= std::floor((hi[a] - lo[a] + 2.0 * reach) / cell) + 2.0;
-        if (cells <= static_cast<double>(FacetGrid::max_cells / 4)) return cell;
-        cell *= 1.5;
-    }
-}
-
 // The vertices of a mesh feature (mesh_feature_code), 1 to 3 of them.
 std::size_t feature_vertices(const MeshTopology& m, std::uint32_t code, std::array<std::uint32_t, 3>& v) {
     const std::uint32_t id = (code - 1) & ((1u << 30) - 1);

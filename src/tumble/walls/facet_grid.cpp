@@ -87,4 +87,19 @@ std::span<const std::uint32_t> FacetGrid::candidates(const Vec3& c) const {
     return {faces_.data() + start_[cell], faces_.data() + start_[cell + 1]};
 }
 
+double facet_cell(const TriangleMesh& m, double cell, double reach) {
+    Vec3 lo = m.vertices.front(), hi = lo;
+    for (const Vec3& v : m.vertices)
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], v[a]);
+            hi[a] = std::max(hi[a], v[a]);
+        }
+    for (;;) {
+        double cells = 1.0;
+        for (int a = 0; a < 3; ++a) cells *= std::floor((hi[a] - lo[a] + 2.0 * reach) / cell) + 2.0;
+        if (cells <= static_cast<double>(FacetGrid::max_cells / 4)) return cell;
+        cell *= 1.5;
+    }
+}
+
 }  // namespace tumble

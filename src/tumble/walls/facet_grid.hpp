@@ -54,4 +54,9 @@ private:
     std::vector<std::uint32_t> start_, faces_;
 };
 
+// The cell of a mesh's facet grid: `cell` (m), or larger where the mesh's
+// box grown by `reach` would need more than a quarter of
+// FacetGrid::max_cells.
+double facet_cell(const TriangleMesh& m, double cell, double reach);
+
 }  // namespace tumble
