@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
-"""The examples of examples/python run as written."""
+"""The examples of examples/python run as written, and the meshes of the
+examples are what examples/meshes/make_meshes.py writes."""
 
 import os
 import subprocess
@@ -27,3 +28,12 @@ def test_drum_callback_then_read_run(tmp_path):
     assert "N = 0.000" in out and (tmp_path / "drum" / "summary.json").is_file()
     out = run("read_run.py", "drum", cwd=tmp_path)
     assert "Hogg D" in out and "MSD D" in out
+
+
+def test_example_meshes_are_what_make_meshes_writes(tmp_path):
+    meshes = SOURCE / "examples" / "meshes"
+    done = subprocess.run([sys.executable, str(meshes / "make_meshes.py"), "--out", str(tmp_path)], capture_output=True,
+                          text=True)
+    assert done.returncode == 0, done.stderr
+    for name in ("chute.stl", "v_blender.stl"):
+        assert (tmp_path / name).read_bytes() == (meshes / name).read_bytes(), name
