@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """Writes the triangle meshes of the examples as binary STL files, in mm.
 
-    python3 examples/meshes/make_meshes.py             # rewrites chute.stl and v_blender.stl beside this file
+    python3 examples/meshes/make_meshes.py             # rewrites chute.stl, v_blender.stl and drum_lifters.stl here
     python3 examples/meshes/make_meshes.py --out DIR   # writes them into DIR instead
 
 Python 3, standard library only; the same files on every run (no dates, no
@@ -24,6 +24,13 @@ centre of its flat end cap. The tubes are mitred where they meet, in the
 plane x = 0 (each tube cut by the V's plane of symmetry; both cuts are the
 same ellipse, whose vertices the two arms share), so the surface is one
 closed mesh: every edge has two faces. SEGMENTS facets round a tube.
+
+drum_lifters.stl (examples/drum_lifters.toml): the mantle of the paper's
+drum (80 mm across, 120 mm long, the axis along z through the origin, open
+at z = +-60 mm where tumble drum puts its smooth caps) with six lifters:
+bars 3 mm thick standing 8 mm in from the mantle along its whole length,
+each three faces (two sides and a top; their ends meet the caps), the sides
+reaching 1 mm into the mantle so that no gap opens between them.
 """
 import argparse
 import math
@@ -44,6 +51,15 @@ BLENDER_ARM = 100.0  # apex to the centre of an end cap, along the arm's axis
 BLENDER_ALPHA = 40.0  # each arm from the vertical: 80 degrees between the arms
 BLENDER_SEGMENTS = 32  # round a tube
 BLENDER_RINGS = 12  # facets along a tube, from the mitre to the cap
+
+# The drum with lifters, mm.
+DRUM_RADIUS = 40.0
+DRUM_LENGTH = 120.0
+DRUM_SEGMENTS = 120  # round the mantle: its faces within 0.014 mm of the circle
+DRUM_PANELS = 4  # along the axis
+LIFTERS = 6
+LIFTER_HEIGHT = 8.0  # in from the mantle
+LIFTER_THICKNESS = 3.0
 
 
 def f32(v):
@@ -138,12 +154,38 @@ def v_blender():
     return right + left
 
 
+def drum_lifters():
+    r, n, half = DRUM_RADIUS, DRUM_SEGMENTS, DRUM_LENGTH / 2.0
+    zs = [-half + DRUM_LENGTH * k / DRUM_PANELS for k in range(DRUM_PANELS + 1)]
+    rings = [[f32((r * math.cos(2.0 * math.pi * j / n), r * math.sin(2.0 * math.pi * j / n), z))
+              for j in range(n)] for z in zs]
+    triangles = []
+    for k in range(DRUM_PANELS):  # the mantle, normals towards the axis
+        for j in range(n):
+            quad(triangles, rings[k][j], rings[k][(j + 1) % n], rings[k + 1][(j + 1) % n], rings[k + 1][j])
+    for i in range(LIFTERS):
+        phi = 2.0 * math.pi * i / LIFTERS
+        u = (math.cos(phi), math.sin(phi), 0.0)  # from the axis
+        t = (-math.sin(phi), math.cos(phi), 0.0)  # across the bar
+        def at(rho, side, z):
+            w = side * LIFTER_THICKNESS / 2.0
+            return f32((rho * u[0] + w * t[0], rho * u[1] + w * t[1], z))
+        outer, inner = r + 1.0, r - LIFTER_HEIGHT
+        for k in range(DRUM_PANELS):
+            z0, z1 = zs[k], zs[k + 1]
+            quad(triangles, at(outer, -1, z0), at(inner, -1, z0), at(inner, -1, z1), at(outer, -1, z1))
+            quad(triangles, at(inner, -1, z0), at(inner, 1, z0), at(inner, 1, z1), at(inner, -1, z1))
+            quad(triangles, at(inner, 1, z0), at(outer, 1, z0), at(outer, 1, z1), at(inner, 1, z1))
+    return triangles
+
+
 def main():
-    parser = argparse.ArgumentParser(description="Writes the examples' STL files (chute.stl, v_blender.stl).")
+    parser = argparse.ArgumentParser(
+        description="Writes the examples' STL files (chute.stl, v_blender.stl, drum_lifters.stl).")
     parser.add_argument("--out", default=HERE, help="directory to write them into (default: beside this script)")
     out = parser.parse_args().out
     os.makedirs(out, exist_ok=True)
-    for name, triangles in (("chute", chute()), ("v_blender", v_blender())):
+    for name, triangles in (("chute", chute()), ("v_blender", v_blender()), ("drum_lifters", drum_lifters())):
         path = os.path.join(out, name + ".stl")
         count = write_stl(path, name, triangles)
         print(f"{path}: {count} triangles, {os.path.getsize(path)} bytes")

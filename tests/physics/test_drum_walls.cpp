@@ -273,14 +273,38 @@ TEST(MeshDrum, TheMantleInTrianglesHoldsTheBedAsTheCylinderDoes) {
 
 // Lifters: the smooth mantle in facets with six radial plates 8 mm high
 // along the whole drum, as a user's STL of a drum with lifters would be
-// (each plate a sheet of two triangles through the mantle). On the paper's
-// wall friction the smooth mantle lets the bed slide back (above); the
-// lifters carry it up: over the second half revolution its surface stands
-// steeper than the smooth drum's highest, and no grain passes a plate or
-// the mantle.
-TEST(MeshDrum, LiftersCarryTheBedUp) {
+// (each plate a sheet of two triangles through the mantle). Cohesionless
+// grains (W = 0) on the paper's wall friction: the smooth mantle lets the
+// bed slide at the bottom, no grain above the axis; the lifters carry
+// grains over the top and drop them: over the second half revolution a
+// tenth of them or more lie above the axis at any time (measured 19 %),
+// where the mantle in facets without plates keeps none there. No grain
+// passes a plate or the mantle.
+TEST(MeshDrum, LiftersCarryGrainsOverTheTop) {
     DrumGeometry g = smooth_geometry();
     g.walls = DrumWalls::mesh;
+    DrumMaterials cohesionless = paper_drum_materials();
+    cohesionless.paper = false;
+    for (auto& row : cohesionless.pair_properties)
+        for (PairProperties& pair : row) pair.W = 0.0;
+    auto above_the_axis = [&](const DrumGeometry& geometry) {
+        SmoothRun run(build_drum_scenario(geometry, "two-component", 400, 3, {}, cohesionless));
+        run.sim.advance(std::llround(0.3 / run.sim.dt()));
+        run.turn(5.0, 0.5, 5);
+        double fraction = 0.0;
+        constexpr int checks = 10;
+        for (int k = 0; k < checks; ++k) {
+            run.turn(5.0, 0.05, 1);
+            const ParticleStore& p = run.sim.particles();
+            std::size_t above = 0;
+            for (std::size_t i = 0; i < p.size(); ++i) above += p.position[i].y > 0.0;
+            fraction += static_cast<double>(above) / static_cast<double>(p.size()) / checks;
+        }
+        EXPECT_LT(run.largest_overlap, 0.20);
+        std::fprintf(stderr, "ABOVE %g\n", fraction);  // TEMP
+        return fraction;
+    };
+    EXPECT_LT(above_the_axis(g), 0.02);
     TriangleMesh m = drum_mantle_mesh(g, 1.6e-3);
     const double R = 0.5 * g.diameter, h = 8e-3, half = 0.5 * g.length;
     for (int k = 0; k < 6; ++k) {
@@ -294,20 +318,14 @@ TEST(MeshDrum, LiftersCarryTheBedUp) {
         m.triangles.push_back({first, first + 2, first + 3});
     }
     g.mantle = std::make_shared<const TriangleMesh>(std::move(m));
-    SmoothRun run(build_drum_scenario(g, "two-component", 600, 3));
-    for (const ParticleSpec& p : run.sim.scenario().particles)  // the fill keeps clear of the plates
+    const DrumSetup filled = build_drum_scenario(g, "two-component", 400, 3, {}, cohesionless);
+    for (const ParticleSpec& p : filled.scenario.particles)  // the fill keeps clear of the plates
         for (int k = 0; k < 6; ++k) {
             const double phi = pi / 3.0 * k;
             const Vec3 u{std::cos(phi), std::sin(phi), 0.0}, across{-u.y, u.x, 0.0};
-            const double along = dot(p.position, u);
-            if (along > R - h) EXPECT_GE(std::abs(dot(p.position, across)), p.radius) << k;
+            if (dot(p.position, u) > R - h) EXPECT_GE(std::abs(dot(p.position, across)), p.radius) << k;
         }
-    run.sim.advance(std::llround(0.3 / run.sim.dt()));
-    const std::vector<double> angles = run.turn(5.0, 1.0, 20);
-    EXPECT_LT(run.largest_overlap, 0.20);
-    double mean = 0.0;
-    for (std::size_t k = 10; k < angles.size(); ++k) mean += angles[k] / 10.0;
-    EXPECT_GT(mean, 30.0);
+    EXPECT_GT(above_the_axis(g), 0.10);
 }
 
 // The walls' contacts go through the law in blocks, over the wall list

@@ -572,6 +572,39 @@ TEST_F(Cli, DrumRefusesImpossibleSettingsAndWritesNothing) {
     EXPECT_NE(r.output.find("drum.toml: rotation.spin: unknown key"), std::string::npos) << r.output;
 }
 
+// A drum on a mantle from an STL file: a missing or bad file, a mesh with
+// smooth walls and a mesh on a periodic axis are refused naming the option
+// and writing nothing; a good one runs briefly and is recorded.
+TEST_F(Cli, DrumOnAMeshMantleRefusesBadFilesAndRecordsGoodOnes) {
+    const std::string out = " --out " + (dir_ / "drum").string();
+    const fs::path flat = write("flat.stl", "solid flat\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                                            "vertex 2 0 0\nendloop\nendfacet\nendsolid flat\n");
+    const std::pair<std::string, std::string> cases[] = {
+        {"drum --mesh " + (dir_ / "none.stl").string(), "none.stl: no such file"},
+        {"drum --mesh " + flat.string(), "triangle 1 (line 2): degenerate"},
+        {"drum --walls smooth --mesh " + (fs::path(TUMBLE_SOURCE_DIR) / "examples/meshes/drum_lifters.stl").string(),
+         "--walls: smooth walls, but the mantle is the mesh"},
+        {"drum --walls mesh --periodic-axis", "periodic_axis: a mesh mantle has ends"},
+        {"drum --mesh-scale 0", "--mesh-scale: must be a finite number > 0"},
+    };
+    for (const auto& [arguments, key] : cases) {
+        const Result r = run_tumble(arguments + out);
+        EXPECT_NE(r.exit_code, 0) << arguments;
+        EXPECT_NE(r.output.find(key), std::string::npos) << arguments << ": " << r.output;
+        EXPECT_FALSE(fs::exists(dir_ / "drum")) << arguments;
+    }
+    const fs::path run = dir_ / "lifters";
+    const Result r = run_tumble("drum -q --no-plot --config " +
+                                (fs::path(TUMBLE_SOURCE_DIR) / "examples/drum_lifters.toml").string() +
+                                " --grains 200 --omega 8 --revolutions 0.1 --samples 40 --snapshots 0 --out " +
+                                run.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const tumble::io::DrumRunInfo info = tumble::io::read_drum_run_info(run / "drum_run.toml");
+    EXPECT_EQ(info.walls, "mesh");
+    EXPECT_EQ(fs::path(info.mesh).filename(), "drum_lifters.stl");
+    EXPECT_EQ(info.mesh_scale, 1e-3);
+}
+
 // The drum of its own materials (cohesionless glass-like beads of 3 and 2
 // mm, a steel wall) with smooth walls, short: the run and its analysis go
 // through, and what was run is recorded. It checks the files, not the

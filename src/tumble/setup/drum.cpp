@@ -359,8 +359,7 @@ TriangleMesh drum_mantle_mesh(const DrumGeometry& g, double grain_radius) {
     const double angle = std::acos(std::max(-1.0, 1.0 - 0.01 * grain_radius / R));
     const auto at_least = static_cast<std::size_t>(std::ceil(pi / angle - 1e-9));
     const std::size_t n = std::max<std::size_t>(48, (at_least + 7) / 8 * 8);
-    const double chord = 2.0 * R * std::sin(pi / static_cast<double>(n));
-    const std::size_t rings = interval_count(g.length, chord) + 1;
+    const std::size_t rings = interval_count(g.length, g.diameter) + 1;
     TriangleMesh mesh;
     for (std::size_t k = 0; k < rings; ++k) {
         const double z = -0.5 * g.length + g.length * static_cast<double>(k) / static_cast<double>(rings - 1);

@@ -118,7 +118,8 @@ std::vector<Wall> drum_smooth_walls(const DrumGeometry& g, std::int32_t wall_mat
 // at least 48 and a multiple of 8, whose polygon lies within 1 % of
 // `grain_radius` of the circle: its sagitta R (1 - cos(pi / segments))),
 // rings at z = +-length/2 and between them at axial steps of at most one
-// chord, each quadrilateral in two triangles. Its vertices lie on the
+// diameter (long panels, as a CAD export makes them: few faces near a
+// grain), each quadrilateral in two triangles. Its vertices lie on the
 // circle of radius diameter/2, its faces at most the sagitta inside it
 // (within the fill's clearance, fill_wall_clearance). Throws tumble::Error
 // where the axis is periodic (a mesh has ends).

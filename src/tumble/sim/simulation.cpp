@@ -98,7 +98,10 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
         }
         const TriangleMesh& mesh = scenario_.meshes[static_cast<std::size_t>(w.mesh)];
         MeshTopology topology(mesh);
-        FacetGrid grid(facet_cell(mesh, std::max(2.0 * reach + skin, 1e-6), reach), reach);
+        // Cells of the largest radius plus the skin: fewer faces to test near
+        // a wall than in cells of the neighbour list's size (the long drum on
+        // its mantle in facets: 13 % faster; half that size gains nothing).
+        FacetGrid grid(facet_cell(mesh, std::max(reach + skin, 1e-6), reach), reach);
         grid.rebuild(topology);
         mesh_walls_.push_back({std::move(topology), std::move(grid)});
         wall_slots_ += mesh_wall_slots;
@@ -580,7 +583,16 @@ void Simulation::add_mesh_forces(std::size_t i, std::size_t k, const PlacedWall&
     std::vector<MeshContact>& found = mesh_contacts_[static_cast<std::size_t>(c)];
     const double R = p.radius[i];
     const Vec3 x = to_start_frame(wall.now, p.position[i]);
-    mesh_contacts(mesh.topology, x, R, mesh.grid.candidates(x), found);
+    // Most spheres touch no mesh and held no contact with it at the last
+    // step: they end here, their slots' records (by global id, all over the
+    // memory) unread. The byte of the first slot says whether any may hold
+    // one (1 after a restore or a migration: any).
+    std::uint8_t& held = wall_history_set_[first];
+    const std::span<const std::uint32_t> candidates = mesh.grid.candidates(x);
+    if (candidates.empty() && !held) return;
+    mesh_contacts(mesh.topology, x, R, candidates, found);
+    if (found.empty() && !held) return;
+    held = found.empty() ? 0 : 1;
     if (found.size() > S) {  // the S deepest, otherwise in their order
         std::stable_sort(found.begin(), found.end(),
                          [](const MeshContact& a, const MeshContact& b) { return a.overlap > b.overlap; });

@@ -270,7 +270,9 @@ private:
     std::vector<MeshWall> mesh_walls_;
     std::vector<std::vector<MeshContact>> mesh_contacts_;
     // Per record of wall_history_: 0 where the record is zero (1: it may
-    // not be). Derived, not state: restore() and migrations set every byte.
+    // not be); for a mesh wall the byte of its first slot speaks for all its
+    // slots (add_mesh_forces()). Derived, not state: restore() and
+    // migrations set every byte.
     std::vector<std::uint8_t> wall_history_set_;
     // While every wall stays put, the pairs of a sphere and a wall that may
     // touch before the next rebuild, with their histories (sim/wall_loop.hpp;

@@ -409,6 +409,7 @@ void mesh_contacts(const MeshTopology& mesh, const Vec3& c, double R, std::span<
     // vertex's part of 3), one pass over the faces, kept in out as faces,
     // then edges, then vertices (each in the order found).
     std::size_t faces_end = 0, edges_end = 0;
+    bool near = false;  // a face's edges or corners within R: rule 5 may find a contact
     MeshContact k;
     for (std::uint32_t f : candidate_faces) {
         const FaceTest t = test_face(mesh.face(f), c);
@@ -424,6 +425,7 @@ void mesh_contacts(const MeshTopology& mesh, const Vec3& c, double R, std::span<
         // Else only the face's edges and corners can touch, if the face comes
         // within R at all (d^2 + s_max^2 < R^2).
         if (!(t.d * t.d + t.s_max * t.s_max < R2)) continue;
+        near = true;
         // Rule 2: the edges of the sides c lies beyond (where s < 0 the edge
         // fails its test in this face anyway), within R.
         for (int side = 0; side < 3; ++side) {
@@ -455,7 +457,8 @@ void mesh_contacts(const MeshTopology& mesh, const Vec3& c, double R, std::span<
         out[kept++] = out[i];
     }
     out.resize(kept);
-    if (out.empty()) add_nearest(mesh, c, R, candidate_faces, out);
+    // (Rule 5 looks for a face within R as the loop above: none, no contact.)
+    if (out.empty() && near) add_nearest(mesh, c, R, candidate_faces, out);
 }
 
 }  // namespace tumble
