@@ -91,32 +91,44 @@ void expect_agreement(const tumble::Scenario& s, int steps, double R, double spe
 TEST(Slabs, WalledDrumAgreesWithOneProcess) { expect_agreement(short_drum(), 200, R2, 1.0, "short drum"); }
 
 // The short drum's grains in a smooth drum (a turning capped cylinder, no
-// wall spheres): the smooth walls' contact histories migrate with their
-// grains (one slot per wall and grain) and the loads on the walls are the
-// sums over the ranks: the same tolerances and reason, the loads within
-// 1e-8 of the largest, as the forces.
+// wall spheres), and with the mantle in triangles (a mesh wall): the walls'
+// contact histories migrate with their grains (one slot per analytic wall
+// and grain, four per mesh with the features they follow) and the loads on
+// the walls are the sums over the ranks: the same tolerances and reason,
+// the loads within 1e-8 of the largest, as the forces.
 TEST(Slabs, SmoothDrumAgreesWithOneProcess) {
-    tumble::Scenario s = short_drum();
-    std::erase_if(s.particles, [](const tumble::ParticleSpec& p) { return p.motion != tumble::free_motion; });
-    const double R = 0.04, half = 0.03;
-    const tumble::Wall mantle{.name = "mantle", .shape = tumble::WallShape::cylinder, .point = {0.0, 0.0, -half},
-                              .radius = R, .length = 2.0 * half, .material = 2, .motion = 0};
-    tumble::Wall cap{.name = "start", .shape = tumble::WallShape::disc, .point = mantle.point, .radius = R,
-                     .material = 2, .motion = 0};
-    s.walls = {mantle, cap};
-    cap.name = "end";
-    cap.point.z = half;
-    s.walls.push_back(cap);
-    expect_agreement(s, 200, R2, 1.0, "smooth drum");
-    Simulation alone(s, 1), shared(s, 1, Ranks::world);
-    alone.advance(200);
-    shared.advance(200);
-    const std::vector<tumble::WallLoad> a = alone.wall_loads(), b = shared.wall_loads();
-    ASSERT_EQ(a.size(), 3u);
-    double F = 0.0;
-    for (const tumble::WallLoad& l : a) F = std::max(F, tumble::norm(l.force));
-    EXPECT_GT(F, 0.0);  // the grains were thrown at the wall
-    for (std::size_t k = 0; k < a.size(); ++k) EXPECT_LE(tumble::norm(a[k].force - b[k].force), 1e-8 * F) << k;
+    for (const bool mesh : {false, true}) {  // the mantle a cylinder, or in triangles (a mesh wall's four slots)
+        tumble::Scenario s = short_drum();
+        std::erase_if(s.particles, [](const tumble::ParticleSpec& p) { return p.motion != tumble::free_motion; });
+        const double R = 0.04, half = 0.03;
+        tumble::Wall mantle{.name = "mantle", .shape = tumble::WallShape::cylinder, .point = {0.0, 0.0, -half},
+                            .radius = R, .length = 2.0 * half, .material = 2, .motion = 0};
+        if (mesh) {
+            tumble::DrumGeometry g;
+            g.length = 2.0 * half;
+            g.diameter = 2.0 * R;
+            s.meshes = {tumble::drum_mantle_mesh(g, 2.4e-3)};
+            mantle.shape = tumble::WallShape::mesh;
+            mantle.mesh = 0;
+        }
+        tumble::Wall cap{.name = "start", .shape = tumble::WallShape::disc, .point = {0.0, 0.0, -half}, .radius = R,
+                         .material = 2, .motion = 0};
+        s.walls = {mantle, cap};
+        cap.name = "end";
+        cap.point.z = half;
+        s.walls.push_back(cap);
+        const char* what = mesh ? "drum on a mesh mantle" : "smooth drum";
+        expect_agreement(s, 200, R2, 1.0, what);
+        Simulation alone(s, 1), shared(s, 1, Ranks::world);
+        alone.advance(200);
+        shared.advance(200);
+        const std::vector<tumble::WallLoad> a = alone.wall_loads(), b = shared.wall_loads();
+        ASSERT_EQ(a.size(), 3u);
+        double F = 0.0;
+        for (const tumble::WallLoad& l : a) F = std::max(F, tumble::norm(l.force));
+        EXPECT_GT(F, 0.0) << what;  // the grains were thrown at the wall
+        for (std::size_t k = 0; k < a.size(); ++k) EXPECT_LE(tumble::norm(a[k].force - b[k].force), 1e-8 * F) << what << k;
+    }
 }
 
 // Hybrid: threads inside each rank (the chunks of the pair list sum in
