@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // tumble render DIR: a movie of a run's particle snapshots, the paper's
-// "animated videos" of the drum (docs/RENDER.md). Every snapshots/NNNNNN.csv
-// becomes a frame, frames/NNNNNN.png (two views side by side over the clock
-// and the legend, drawn by src/io/render/ on -j threads), and ffmpeg joins
-// the frames into DIR/NAME.mp4, NAME the run directory's.
+// "animated videos" of the drum (docs/RENDER.md). Every snapshots/NNNNNN.csv,
+// with the smooth walls of NNNNNN_walls.vtp where the run has them, becomes
+// a frame, frames/NNNNNN.png (two views side by side over the clock and the
+// legend, drawn by src/io/render/ on -j threads), and ffmpeg joins the
+// frames into DIR/NAME.mp4, NAME the run directory's.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -78,12 +79,20 @@ void parallel_for(std::size_t count, unsigned jobs, const std::function<void(std
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// What every frame shares: the box that holds every particle of every
-// snapshot, the wall's centre, the grain materials.
+// A snapshot as a frame draws it: its particles (NNNNNN.csv) and its smooth
+// walls (NNNNNN_walls.vtp, where the run has them).
+io::SnapshotParticles read_snapshot(const fs::path& csv) {
+    io::SnapshotParticles snapshot = io::read_snapshot_csv(csv);
+    snapshot.walls = io::read_snapshot_walls(csv);
+    return snapshot;
+}
+
+// What every frame shares: the box that holds every particle and wall of
+// every snapshot, the wall's centre, the grain materials.
 io::render::Scene gather_scene(const std::vector<fs::path>& snapshots, unsigned jobs, ProgressStyle style) {
     std::vector<io::render::Scene> parts(snapshots.size());
     Progress progress("reading", 0, static_cast<std::int64_t>(snapshots.size()), style, {.unit = "snapshots"});
-    parallel_for(snapshots.size(), jobs, [&](std::size_t k) { parts[k].add(io::read_snapshot_csv(snapshots[k])); },
+    parallel_for(snapshots.size(), jobs, [&](std::size_t k) { parts[k].add(read_snapshot(snapshots[k])); },
                  progress);
     io::render::Scene scene;
     for (const io::render::Scene& part : parts) scene.add(part);
@@ -111,7 +120,7 @@ void draw_frames(const std::vector<fs::path>& snapshots, const io::render::Scene
                  unsigned jobs, ProgressStyle shown) {
     Progress progress("drawing", 0, static_cast<std::int64_t>(snapshots.size()), shown, {.unit = "frames"});
     parallel_for(snapshots.size(), jobs, [&](std::size_t k) {
-        const io::SnapshotParticles snapshot = io::read_snapshot_csv(snapshots[k]);
+        const io::SnapshotParticles snapshot = read_snapshot(snapshots[k]);
         const io::render::Image image = io::render::render_frame(snapshot, scene, style, clock_text(snapshot, drum));
         io::write_png(frames / fmt::format("{:06d}.png", k), image, true);
     }, progress);

@@ -11,6 +11,7 @@
 
 #include "io/csv_table.hpp"
 #include "io/output.hpp"
+#include "io/vtk_input.hpp"
 #include "io/xyz_output.hpp"
 #include "tumble/core/mpi.hpp"
 
@@ -90,6 +91,14 @@ SnapshotParticles read_snapshot_csv(const fs::path& file) {
         if (known == p.material_names.end()) p.material_names.push_back(name);
     }
     return p;
+}
+
+WallSurface read_snapshot_walls(const fs::path& csv_file) {
+    fs::path vtp = csv_file;
+    vtp.replace_filename(csv_file.stem().string() + "_walls.vtp");
+    std::error_code ec;
+    if (!fs::exists(vtp, ec)) return {};
+    return read_vtp_walls(vtp);
 }
 
 std::vector<fs::path> list_snapshot_csv(const fs::path& directory) {

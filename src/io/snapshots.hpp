@@ -20,6 +20,7 @@
 #include "io/csv_table.hpp"
 #include "io/vtk_output.hpp"
 #include "tumble/sim/simulation.hpp"
+#include "tumble/walls/wall_surface.hpp"
 
 namespace tumble::io {
 
@@ -51,9 +52,15 @@ struct SnapshotParticles {
     std::vector<std::int32_t> tag;
     std::vector<std::uint8_t> kinematic;   // 1: moves by a prescribed motion (a drum wall particle)
     std::optional<double> time;            // s, when it was taken; none if the file does not say
+    WallSurface walls;                     // the smooth walls: read_snapshot_walls, none until then
 };
 // tumble::Error naming the file if it cannot be read or lacks a column.
 SnapshotParticles read_snapshot_csv(const std::filesystem::path& file);
+
+// The walls of the snapshot whose CSV file is `csv_file`, all in one:
+// NNNNNN_walls.vtp beside it (vtk_input.hpp); no triangles if it has none
+// (the run has no smooth walls). tumble::Error if the file cannot be read.
+WallSurface read_snapshot_walls(const std::filesystem::path& csv_file);
 
 // The simulated time a snapshot CSV was taken at, s: its `time` column, or
 // the first line "# time = T s, step = S" of snapshots written before it

@@ -1,12 +1,16 @@
 // SPDX-License-Identifier: MIT
 // tumble render: the sphere rasteriser on a known scene, the drum's cut-away
 // views, the caption (clock and legend) and the palette shared with the
-// figures, PNG files read back, and the command on a tiny drum run (frames,
-// and the movie checked by ffprobe where ffmpeg is installed).
+// figures, PNG files read back, the smooth walls (outline, cut-away, the
+// ring of a smooth drum in its frames) and the command on a tiny drum run
+// (frames, and the movie checked by ffprobe where ffmpeg is installed).
 #include <gtest/gtest.h>
+
+#include <fmt/format.h>
 
 #include "test_support.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -122,6 +126,93 @@ TEST(Scene, WallParticlesInFrontOfTheWallCentreAreCutAway) {
         const Rgb grain = pixel(snapshot.position[0]);
         EXPECT_GT(grain.b, grain.r) << "the grain has the first grain colour (blue)";
     }
+}
+
+// A square of two triangles, half-width a (m), in the plane z = z0.
+tumble::WallSurface square(double a, double z0) {
+    tumble::WallSurface s;
+    s.vertices = {{-a, -a, z0}, {a, -a, z0}, {a, a, z0}, {-a, a, z0}};
+    s.triangles = {{0, 1, 2}, {0, 2, 3}};
+    return s;
+}
+
+// A smooth wall's outline: the edges that bound it and its creases, not the
+// diagonal between two triangles of one plane.
+TEST(Scene, WallOutlineIsTheBoundaryAndTheCreases) {
+    EXPECT_EQ(wall_outline(square(1.0, 0.0)).size(), 4u);
+    tumble::WallSurface folded = square(1.0, 0.0);
+    folded.vertices[3].z = 1.0;  // the second triangle folded up 45 degrees along the diagonal
+    EXPECT_EQ(wall_outline(folded).size(), 5u);
+    folded.vertices[3].z = 0.1;  // 6 degrees: no crease
+    EXPECT_EQ(wall_outline(folded).size(), 4u);
+}
+
+// The edge of the cut: the plane x = 0.25 crosses both triangles of the
+// square, the line x = 0.25 across it in two segments.
+TEST(Scene, WallCutIsWhereThePlaneCrossesTheTriangles) {
+    const auto lines = wall_cut(square(1.0, 0.0), {0.25, 0.0, 0.0}, {1.0, 0.0, 0.0});
+    ASSERT_EQ(lines.size(), 2u);
+    double length = 0.0;
+    for (const auto& [a, b] : lines) {
+        EXPECT_NEAR(a.x, 0.25, 1e-15);
+        EXPECT_NEAR(b.x, 0.25, 1e-15);
+        length += std::abs(b.y - a.y);
+    }
+    EXPECT_NEAR(length, 2.0, 1e-12);
+    EXPECT_TRUE(wall_cut(square(1.0, 0.0), {2.0, 0.0, 0.0}, {1.0, 0.0, 0.0}).empty());
+}
+
+// A grain between two smooth square walls, one behind it and one in front
+// in the axial view (seen from +z): the near one is cut away, the far one is
+// seen through, behind the grain, with its outline.
+TEST(Scene, SmoothWallsInFrontOfTheWallCentreAreCutAway) {
+    tumble::io::SnapshotParticles snapshot;
+    snapshot.material_names = {"a"};
+    snapshot.position = {{0.0, 0.0, 0.0}};
+    snapshot.radius = {0.005};
+    snapshot.material = {0};
+    snapshot.tag = {0};
+    snapshot.kinematic = {0};
+    const tumble::WallSurface far = square(0.02, -0.02), near = square(0.02, 0.02);
+    snapshot.walls = far;
+    for (const auto& t : near.triangles) snapshot.walls.triangles.push_back({t[0] + 4, t[1] + 4, t[2] + 4});
+    snapshot.walls.vertices.insert(snapshot.walls.vertices.end(), near.vertices.begin(), near.vertices.end());
+    Scene scene;
+    scene.add(snapshot);
+    EXPECT_NEAR(scene.particles.hi.x, 0.02, 1e-15) << "the frame holds the walls";
+    EXPECT_NEAR(scene.wall.centre().z, 0.0, 1e-15) << "the cut passes midway between them";
+    ASSERT_EQ(scene_legend(scene, ColourBy::material).back().name, "wall");
+
+    const FrameStyle style{200, ColourBy::material, drum_orientation(), {}};
+    const Image image = render_frame(snapshot, scene, style, "");
+    const View view = frame_layout(scene, style).first;
+    auto at = [&](double x, double y) {
+        const Vec3 p = view.project({x, y, 0.0});
+        return std::pair{static_cast<int>(p.x), static_cast<int>(p.y)};
+    };
+    // The grain, in front of the far wall and not behind the near one: as
+    // it is drawn without the walls.
+    tumble::io::SnapshotParticles bare = snapshot;
+    bare.walls = {};
+    const Image grain_only = render_frame(bare, scene, style, "");
+    const auto [grain_x, grain_y] = at(0.0, 0.0);
+    EXPECT_EQ(image.at(grain_x, grain_y), grain_only.at(grain_x, grain_y));
+    EXPECT_EQ(image.at(grain_x + 20, grain_y), grain_only.at(grain_x + 20, grain_y)) << "the grain's rim";
+    // Beside the grain, the far wall (facing the viewer: its colour unshaded)
+    // laid over the background: once, the near wall cut away.
+    auto over = [](std::uint8_t under, std::uint8_t wall) {
+        return static_cast<std::uint8_t>(std::lround((1.0 - wall_opacity) * under + wall_opacity * wall));
+    };
+    const Rgb seen_through{over(background_colour.r, wall_fill_colour.r), over(background_colour.g, wall_fill_colour.g),
+                           over(background_colour.b, wall_fill_colour.b)};
+    for (auto [x, y] : {at(0.012, 0.003), at(0.011, 0.011) /* on the diagonal: no line */})
+        EXPECT_EQ(image.at(x, y), seen_through) << "pixel " << x << ", " << y;
+    // The far wall's four edges, 0.04 m each, in the line colour.
+    int outline = 0;
+    for (int y = view.y0; y < view.y0 + view.height; ++y)
+        for (int x = view.x0; x < view.x0 + view.width; ++x) outline += image.at(x, y) == wall_line_colour;
+    EXPECT_GE(outline, 4 * 0.9 * 0.04 * view.pixels_per_metre);
+    EXPECT_LE(outline, 4 * 1.1 * 0.04 * view.pixels_per_metre);
 }
 
 // The grains' colours are those of the figures: tools/palette.txt, in order.
@@ -273,6 +364,61 @@ TEST_F(RenderCommand, TinyDrumRunGivesAFramePerSnapshotAndTheMovie) {
                                    "stream=width,height,nb_read_frames -of csv=p=0 " + (run / "run.mp4").string());
     ASSERT_EQ(probe.exit_code, 0) << probe.output;
     EXPECT_EQ(probe.output, "160," + std::to_string(first.height()) + "," + std::to_string(snapshots) + "\n");
+}
+
+// A smooth drum's walls in its frames: in the axial view, its mantle's rims
+// (projected onto one circle, the drum's inner radius R) are a ring of the
+// walls' line colour, hidden only where grains lie in front of it, as at the
+// bottom; a drum of wall particles has none there.
+TEST_F(RenderCommand, SmoothDrumIsARingInTheAxialView) {
+    double radius = 0.0;  // m, the smooth drum's: its farthest wall point from the axis (z)
+    for (const std::string walls : {"smooth", "particles"}) {
+        const fs::path run = dir_ / walls;
+        const auto drum = run_tumble("drum --walls " + walls +
+                                     " --grains 100 --revolutions 0.05 --snapshots 40 -q --no-plot --out " +
+                                     run.string());
+        ASSERT_EQ(drum.exit_code, 0) << drum.output;
+        const auto render = run_tumble("render " + run.string() + " --width 160 -j 2 -q --frames-only");
+        ASSERT_EQ(render.exit_code, 0) << render.output;
+
+        // The views as the command lays them out: around every snapshot's particles and walls.
+        const std::vector<fs::path> snapshots = tumble::io::list_snapshot_csv(run);
+        ASSERT_GE(snapshots.size(), 2u);
+        Scene scene;
+        for (const fs::path& csv : snapshots) {
+            tumble::io::SnapshotParticles snapshot = tumble::io::read_snapshot_csv(csv);
+            snapshot.walls = tumble::io::read_snapshot_walls(csv);
+            if (walls == "smooth") {
+                ASSERT_FALSE(snapshot.walls.triangles.empty()) << csv;
+                for (const Vec3& v : snapshot.walls.vertices) radius = std::max(radius, std::hypot(v.x, v.y));
+            } else {
+                EXPECT_TRUE(snapshot.walls.triangles.empty()) << csv;
+            }
+            scene.add(snapshot);
+        }
+        const View view = frame_layout(scene, {160, ColourBy::material, drum_orientation(), {}}).first;
+        const Vec3 axis = view.project({0.0, 0.0, 0.0});
+        const double ring = radius * view.pixels_per_metre;  // pixels
+
+        // The upper half of the ring, above the bed of 100 grains: in every
+        // column within 0.9 R of the axis, a pixel of the line colour within
+        // 1.5 pixels of the ring.
+        const Image frame = tumble::io::read_png(run / "frames" / fmt::format("{:06d}.png", snapshots.size() - 1));
+        int columns = 0, drawn = 0;
+        for (int x = static_cast<int>(axis.x - 0.9 * ring); x <= static_cast<int>(axis.x + 0.9 * ring); ++x) {
+            ++columns;
+            bool line = false;
+            for (int y = view.y0; y < static_cast<int>(axis.y); ++y)
+                line = line || (std::abs(std::hypot(x + 0.5 - axis.x, y + 0.5 - axis.y) - ring) <= 1.5 &&
+                                frame.at(x, y) == wall_line_colour);
+            drawn += line;
+        }
+        ASSERT_GT(columns, 80) << "R = " << ring << " pixels";
+        if (walls == "smooth")
+            EXPECT_EQ(drawn, columns) << "the ring over the top of the drum";
+        else
+            EXPECT_EQ(drawn, 0);
+    }
 }
 
 TEST_F(RenderCommand, ErrorsNameThePathAndTheReason) {

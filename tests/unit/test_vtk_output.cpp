@@ -21,7 +21,9 @@
 #include <string>
 #include <vector>
 
+#include "io/vtk_input.hpp"
 #include "io/vtk_output.hpp"
+#include "tumble/core/error.hpp"
 #include "tumble/setup/paper_materials.hpp"
 #include "tumble/sim/contact_network.hpp"
 #include "tumble/sim/simulation.hpp"
@@ -419,4 +421,43 @@ TEST_F(VtkOutput, WallsReadBackExactlyByVtk) {
     const double angle = 3.0 * sim.time();
     EXPECT_NEAR(drawn[0].vertices[0].x, 0.12 * std::sin(angle), 1e-15);
     EXPECT_NEAR(drawn[0].vertices[0].y, -0.12 * std::cos(angle), 1e-15);
+}
+
+// tumble render reads the walls back (io/vtk_input.hpp): every wall's points
+// bit for bit and its triangles, numbered over all walls as the file numbers
+// them; arrays of more than one compressed block (32768 bytes) too.
+TEST_F(VtkOutput, WallsReadBackExactlyByTumble) {
+    tumble::io::SnapshotData snapshot;
+    snapshot.wall_names = {"strip", "triangle"};
+    tumble::WallSurface strip, triangle;
+    for (std::uint32_t k = 0; k < 3000; ++k) {  // 3000 points: 72 000 bytes, three blocks
+        strip.vertices.push_back({0.001 * k, std::sin(0.1 * k), 1.0 / 3.0});
+        if (k >= 2) strip.triangles.push_back({k - 2, k - 1, k});
+    }
+    triangle.vertices = {{0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}};
+    triangle.triangles = {{0, 1, 2}};
+    snapshot.walls = {strip, triangle};
+    const fs::path vtp = dir_ / "walls.vtp";
+    tumble::io::write_vtp_walls(vtp, snapshot);
+
+    const tumble::WallSurface back = tumble::io::read_vtp_walls(vtp);
+    ASSERT_EQ(back.vertices.size(), 3003u);
+    ASSERT_EQ(back.triangles.size(), 2999u);
+    for (std::size_t k = 0; k < 3000; ++k) {
+        EXPECT_EQ(back.vertices[k].y, strip.vertices[k].y) << k;
+        EXPECT_EQ(back.vertices[k].z, 1.0 / 3.0) << k;
+    }
+    EXPECT_EQ(back.vertices[3001].x, 1.0);
+    EXPECT_EQ(back.triangles[0], (std::array<std::uint32_t, 3>{0, 1, 2}));
+    EXPECT_EQ(back.triangles[2997], (std::array<std::uint32_t, 3>{2997, 2998, 2999}));
+    EXPECT_EQ(back.triangles[2998], (std::array<std::uint32_t, 3>{3000, 3001, 3002})) << "the second wall's";
+
+    // Not a walls file: an error naming it.
+    write("contacts.vtp", "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\">\n");
+    try {
+        tumble::io::read_vtp_walls(dir_ / "contacts.vtp");
+        FAIL() << "no error";
+    } catch (const tumble::Error& e) {
+        EXPECT_NE(std::string(e.what()).find((dir_ / "contacts.vtp").string()), std::string::npos) << e.what();
+    }
 }

@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <map>
 #include <sstream>
 
 #include "io/render/text.hpp"
+#include "tumble/core/constants.hpp"
 
 namespace tumble::io::render {
 
@@ -41,6 +43,7 @@ void Scene::add(const SnapshotParticles& snapshot) {
         particles.add(snapshot.position[i], snapshot.radius[i]);
         if (snapshot.kinematic[i]) {
             wall.add(snapshot.position[i], snapshot.radius[i]);
+            wall_particles = true;
         } else {
             grain_material[static_cast<std::size_t>(snapshot.material[i])] = true;
             names.grain_tags.push_back(std::abs(snapshot.tag[i]));
@@ -48,12 +51,19 @@ void Scene::add(const SnapshotParticles& snapshot) {
     }
     for (std::size_t m = 0; m < grain_material.size(); ++m)
         if (grain_material[m]) names.grain_materials.push_back(snapshot.material_names[m]);
+    for (const Vec3& v : snapshot.walls.vertices) {
+        particles.add(v, 0.0);
+        wall.add(v, 0.0);
+    }
+    smooth_walls = smooth_walls || !snapshot.walls.triangles.empty();
     add(names);
 }
 
 void Scene::add(const Scene& other) {
     particles.add(other.particles);
     wall.add(other.wall);
+    wall_particles = wall_particles || other.wall_particles;
+    smooth_walls = smooth_walls || other.smooth_walls;
     sorted_union(grain_materials, other.grain_materials);
     sorted_union(grain_tags, other.grain_tags);
 }
@@ -77,6 +87,44 @@ const std::vector<Rgb>& palette() {
 }
 
 }  // namespace
+
+std::vector<std::array<Vec3, 2>> wall_outline(const WallSurface& walls) {
+    const double crease = std::cos(30.0 * pi / 180.0);  // cosine of the least angle between normals drawn
+    // Each edge (lower vertex index first) and the triangles on it.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
+    std::vector<Vec3> normal;
+    for (std::size_t t = 0; t < walls.triangles.size(); ++t) {
+        const auto& v = walls.triangles[t];
+        const Vec3 n = cross(walls.vertices[v[1]] - walls.vertices[v[0]], walls.vertices[v[2]] - walls.vertices[v[0]]);
+        const double length = std::sqrt(dot(n, n));
+        normal.push_back(length > 0.0 ? (1.0 / length) * n : Vec3{});
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t a = v[k], b = v[(k + 1) % 3];
+            edges[{std::min(a, b), std::max(a, b)}].push_back(t);
+        }
+    }
+    std::vector<std::array<Vec3, 2>> lines;
+    for (const auto& [edge, on] : edges)
+        if (on.size() != 2 || dot(normal[on[0]], normal[on[1]]) < crease)
+            lines.push_back({walls.vertices[edge.first], walls.vertices[edge.second]});
+    return lines;
+}
+
+std::vector<std::array<Vec3, 2>> wall_cut(const WallSurface& walls, const Vec3& point, const Vec3& normal) {
+    std::vector<std::array<Vec3, 2>> lines;
+    for (const auto& t : walls.triangles) {
+        // The points where the plane crosses the triangle's edges (m from the
+        // plane: h; an edge from h <= 0 to h > 0 crosses it once).
+        std::vector<Vec3> crossing;
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 &a = walls.vertices[t[k]], &b = walls.vertices[t[(k + 1) % 3]];
+            const double ha = dot(a - point, normal), hb = dot(b - point, normal);
+            if ((ha <= 0.0) != (hb <= 0.0)) crossing.push_back(a + (ha / (ha - hb)) * (b - a));
+        }
+        if (crossing.size() == 2) lines.push_back({crossing[0], crossing[1]});
+    }
+    return lines;
+}
 
 Rgb grain_colour(std::size_t index) { return palette()[index % palette().size()]; }
 std::size_t palette_size() { return palette().size(); }
@@ -105,7 +153,9 @@ std::vector<LegendEntry> scene_legend(const Scene& scene, ColourBy colour_by, co
             legend.push_back({k < tag_names.size() ? tag_names[k] : "tag " + std::to_string(tag), grain_colour(k)});
         }
     }
-    if (!scene.wall.empty()) legend.push_back({"wall", wall_colour});
+    const bool both = scene.wall_particles && scene.smooth_walls;
+    if (scene.wall_particles) legend.push_back({both ? "wall particles" : "wall", wall_colour});
+    if (scene.smooth_walls) legend.push_back({both ? "smooth walls" : "wall", wall_line_colour});
     return legend;
 }
 
@@ -197,8 +247,23 @@ Image render_frame(const SnapshotParticles& snapshot, const Scene& scene, const 
                    const std::string& clock) {
     const FrameLayout layout = frame_layout(scene, style);
     Image image(2 * style.view_width, layout.height, background_colour);
+    const std::vector<std::array<Vec3, 2>> outline = wall_outline(snapshot.walls);
+    Surface walls{{}, {}, wall_fill_colour, wall_line_colour, wall_opacity};
+    for (const auto& v : snapshot.walls.triangles)
+        walls.triangles.push_back({snapshot.walls.vertices[v[0]], snapshot.walls.vertices[v[1]],
+                                   snapshot.walls.vertices[v[2]]});
     for (const View& view : {layout.first, layout.second}) {
-        draw_spheres(image, view, visible_spheres(snapshot, scene, style.colour_by, view));
+        DepthBuffer depth(view);
+        draw_spheres(image, view, visible_spheres(snapshot, scene, style.colour_by, view), depth);
+        walls.lines = outline;
+        if (!scene.wall.empty()) {
+            // The wall particles' cut-away, and half a pixel more, so that
+            // the edge of the cut, in its plane, is drawn whole despite round-off.
+            const auto edge = wall_cut(snapshot.walls, scene.wall.centre(), view.toward_viewer());
+            walls.lines.insert(walls.lines.end(), edge.begin(), edge.end());
+            walls.cut = view.project(scene.wall.centre()).z + 0.5 / view.pixels_per_metre;
+        }
+        draw_surface(image, view, walls, depth);
         draw_view_label(image, view, layout.text_scale);
     }
     draw_caption(image, layout, style.legend, clock);
