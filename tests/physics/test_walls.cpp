@@ -78,8 +78,15 @@ TEST(WallShapes, TouchOfEachShapeAtHandWorkedPoints) {
     cylinder.length = 2.0;
     expect_touch(wall_touch(cylinder, {0.3, 0.4, 1.0}), 0.5, {-0.6, -0.8, 0}, 1.0, "cylinder, inside");
     expect_touch(wall_touch(cylinder, {0.7, 0.0, 2.4}), 0.5, {-0.6, 0, 0.8}, 0.0, "cylinder, beyond its end: the rim");
+    // A finite mantle is a thin shell: a centre behind it (outside a
+    // cylinder whose grains are inside) is pushed away from its outer face,
+    // which curves the other way.
+    expect_touch(wall_touch(cylinder, {1.8, 0.0, 1.0}), 0.8, {1, 0, 0}, -1.0, "cylinder, behind its mantle");
     cylinder.inside = false;
     expect_touch(wall_touch(cylinder, {1.8, 0.0, 1.0}), 0.8, {1, 0, 0}, -1.0, "cylinder, outside");
+    expect_touch(wall_touch(cylinder, {0.3, 0.4, 1.0}), 0.5, {-0.6, -0.8, 0}, 1.0, "cylinder, behind from inside");
+    cylinder.length = std::numeric_limits<double>::infinity();  // no rim to go round: one-sided
+    expect_touch(wall_touch(cylinder, {0.3, 0.4, 1.0}), -0.5, {0.6, 0.8, 0}, -1.0, "infinite cylinder, behind");
 
     // A cone from radius 1 at s = 0 to a tip at s = 1 (half-angle 45
     // degrees). At (s, rho) = (0.3, 0.2) the nearest point of the meridian

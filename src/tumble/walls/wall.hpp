@@ -115,9 +115,10 @@ inline WallTouch from_edge(const Vec3& v, const Vec3& fallback_normal) {
 // meridian is the segment from (s, rho) = (0, r0) to (length, r1) (s along
 // the axis, rho from it): a cylinder where r0 = r1, a cone otherwise.
 // Within the segment's reach the centre is touched across the mantle along
-// the meridian's normal, towards the axis for grains inside; beyond it
-// from the rim circle at its nearer end (none where the cylinder is
-// infinite).
+// the meridian's normal, from whichever side it lies on (towards the axis
+// for grains inside); beyond it from the rim circle at its nearer end. An
+// infinite cylinder has no rim to go round: it is one-sided, the grains on
+// the `inside` side.
 inline WallTouch revolution_touch(const Vec3& point, const Vec3& u, double r0, double r1, double length,
                                   bool inside, const Vec3& x) {
     const Vec3 d = x - point;
@@ -143,15 +144,21 @@ inline WallTouch revolution_touch(const Vec3& point, const Vec3& u, double r0, d
     const double q_s = s, q_rho = rho - r0;  // from the meridian's start
     const double along = q_s * T_s + q_rho * T_rho;
     if (along >= 0.0 && along <= l) {
+        // A mantle with ends is a thin shell, touched from either side: a
+        // grain that has gone round its rim (one bouncing up under a
+        // hopper) is pushed away from it, not through it. On the grains'
+        // side (`inside`) the touch is the one-sided mantle's, to the bit.
         WallTouch t;
         const double towards_axis = q_s * N_s + q_rho * N_rho;  // > 0 on the axis's side
-        t.distance = inside ? towards_axis : -towards_axis;
+        const bool axis_side = inside ? towards_axis >= 0.0 : towards_axis > 0.0;
+        t.distance = axis_side ? towards_axis : -towards_axis;
         const Vec3 n_in = N_s * u + N_rho * out;
-        t.n = inside ? n_in : -n_in;
+        t.n = axis_side ? n_in : -n_in;
         // Across the mantle a surface of revolution curves by |N_rho| / rho
         // (Meusnier), rho the radius at the contact; along the meridian not.
+        // Concave seen from the axis's side, convex from the other.
         const double rho_contact = cylinder ? r0 : r0 + along * T_rho;  // (r0 + along 0 is r0)
-        t.curvature = (inside ? 1.0 : -1.0) * T_s / rho_contact;
+        t.curvature = (axis_side ? 1.0 : -1.0) * T_s / rho_contact;
         return t;
     }
     const bool at_start = along < 0.0;
