@@ -17,6 +17,7 @@
 #include "tumble/materials/pair_table.hpp"
 #include "tumble/setup/paper_materials.hpp"
 #include "tumble/sim/time_step.hpp"
+#include "tumble/walls/facet_grid.hpp"
 
 namespace tumble::experiments {
 
@@ -80,10 +81,32 @@ MemoryNeed scenario_memory(const io::RunConfig& settings, const io::ParticleCoun
     // Pairs within reach in a dense packing (solid fraction 0.64), each stored once.
     const double pairs = std::min(0.5 * (n - 1.0), 0.5 * 0.64 * std::pow((2.0 * r_max + skin) / r_min, 3));
     const bool box_walls = s.domain.walls[0] || s.domain.walls[1] || s.domain.walls[2];
-    const double wall_slots = box_walls || !s.walls.empty() ? 6.0 + static_cast<double>(s.walls.size()) : 0.0;
-    MemoryNeed need{estimate(n, pairs, wall_slots, threads),
+    double wall_slots = box_walls || !s.walls.empty() ? 6.0 + static_cast<double>(s.walls.size()) : 0.0;
+    // The mesh walls: 3 more history slots per sphere each (mesh_wall_slots
+    // = 4), and their triangles: the mesh, its topology and face and edge
+    // geometry, and its listing in the facet grid, some 1000 bytes a
+    // triangle, with the grid's cells (4 bytes each, at most a quarter of
+    // FacetGrid::max_cells), twice over (the run's, and the fill's while
+    // it places the spheres clear of the walls).
+    double mesh_bytes = 0.0, triangles = 0.0;
+    for (const Wall& w : s.walls) {
+        if (w.shape != WallShape::mesh || w.mesh < 0 || static_cast<std::size_t>(w.mesh) >= s.meshes.size()) continue;
+        const TriangleMesh& m = s.meshes[static_cast<std::size_t>(w.mesh)];
+        wall_slots += 3.0;
+        triangles += static_cast<double>(m.triangles.size());
+        Vec3 lo = m.vertices.front(), hi = lo;
+        for (const Vec3& v : m.vertices)
+            for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], v[a]), hi[a] = std::max(hi[a], v[a]);
+        double cells = 1.0;
+        for (int a = 0; a < 3; ++a) cells *= (hi[a] - lo[a] + 2.0 * r_max) / (r_max + skin) + 2.0;
+        mesh_bytes += 2.0 * (1000.0 * static_cast<double>(m.triangles.size()) +
+                             4.0 * std::min(cells, static_cast<double>(FacetGrid::max_cells / 4)));
+    }
+    const double sphere_bytes = estimate(n, pairs, wall_slots, threads);
+    MemoryNeed need{sphere_bytes + mesh_bytes,
                     fmt::format("{} spheres ({}), {:.3g} neighbour pairs each", count.spheres, count.keys, pairs)};
     if (pairs > 3.0 && s.neighbor.skin > 0.0) need.driver += " (neighbor.skin)";
+    if (mesh_bytes > 0.0) need.driver += fmt::format(", and {:.0f} mesh triangles ({})", triangles, gib(mesh_bytes));
     return need;
 }
 

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -461,6 +462,55 @@ spacing = 0.008
                                        "GiB (--max-memory GIB; default half the machine's memory)"))
         << r.output;
     EXPECT_LT(seconds, 5.0) << "the spheres were made before the refusal";
+    EXPECT_FALSE(fs::exists(out));
+}
+
+// A mesh wall counts in the memory a run will need: a floor of 199,712
+// triangles (a 316 x 316 grid of squares, 0.5 mm each) under 8 spheres is
+// some 0.37 GiB (1000 bytes a triangle, twice over), refused at a limit of
+// 0.1 GiB, naming the triangles, before any step.
+TEST_F(Safety, AHugeMeshIsRefusedByTheMemoryLimit) {
+    constexpr int n = 316;
+    std::string stl(80, ' ');
+    const std::uint32_t count = 2 * n * n;
+    stl.append(reinterpret_cast<const char*>(&count), 4);
+    auto corner = [&](int i, int j) {
+        const float xyz[3] = {0.5f * static_cast<float>(i), 0.5f * static_cast<float>(j), 0.0f};
+        stl.append(reinterpret_cast<const char*>(xyz), 12);
+    };
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+            for (const int half : {0, 1}) {
+                stl.append(12, '\0');  // the normal (recomputed from the corners)
+                corner(i, j);
+                half == 0 ? corner(i + 1, j) : corner(i + 1, j + 1);
+                half == 0 ? corner(i + 1, j + 1) : corner(i, j + 1);
+                stl.append(2, '\0');
+            }
+    write("floor.stl", stl);
+    const fs::path scenario = write("mesh.toml", R"([simulation]
+duration = 0.01
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [0.16, 0.16, 0.05]
+)" + tumble::test_support::material_m_toml + R"([[wall]]
+name = "floor"
+shape = "mesh"
+material = "m"
+file = "floor.stl"
+scale = 1e-3
+[[particles]]
+kind = "lattice"
+material = "m"
+origin = [0.02, 0.02, 0.02]
+counts = [2, 2, 2]
+spacing = 0.02
+)");
+    const fs::path out = dir_ / "mesh";
+    const auto r = tumble("run -q " + scenario.string() + " --max-memory 0.1 --out " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_TRUE(contains(r.output, "and 199712 mesh triangles (0.37")) << r.output;
+    EXPECT_TRUE(contains(r.output, "more than the limit of 0.1 GiB")) << r.output;
     EXPECT_FALSE(fs::exists(out));
 }
 
