@@ -2,6 +2,8 @@
 """The drum protocol from Python: the callback at every sample, the
 settings as tumble drum's options, the drum as a scenario to step."""
 
+import os
+
 import numpy as np
 import pytest
 
@@ -155,6 +157,12 @@ def test_walls_and_materials_are_the_drum_files():
     assert tumble.drum_settings(walls="smooth").walls == "smooth"  # --walls, [drum] walls
     with pytest.raises(tumble.Error, match="drum.walls"):
         tumble.drum_settings(walls="glass")
+    # A mantle from an STL file ([drum] mesh, --mesh): the walls become "mesh";
+    # a missing file is refused naming the key.
+    lifters = os.path.join(os.environ["TUMBLE_SOURCE_DIR"], "examples", "meshes", "drum_lifters.stl")
+    assert tumble.drum_settings(mesh=lifters, mesh_scale=1e-3).walls == "mesh"
+    with pytest.raises(tumble.Error, match="drum.mesh: .*no such file"):
+        tumble.drum_settings(mesh=lifters + ".missing")
     assert tumble.drum_settings().materials == {"paper": True, "large": "material-1", "small": "material-2",
                                                "wall": "wall", "cap": "wall"}
     materials, pairs = _glass_tables()
