@@ -437,7 +437,8 @@ std::vector<ParticleSpec> fill_drum_region(const DrumGeometry& g, double z_lo, d
         if (!separate(x, radius, fixed, region, max_sweeps) || (walls && !std::all_of(x.begin(), x.end(), clear)))
             throw Error("drum fill: random placement stalled after " + std::to_string(placed) + " of " +
                         std::to_string(count) + " grains of radius " + metres(radius) + " between z = " +
-                        metres(z_lo) + " and " + metres(z_hi) + ", and pushing the rest apart did not clear them of one another and of the walls in " +
+                        metres(z_lo) + " and " + metres(z_hi) +
+                        ", and pushing the rest apart did not clear them of one another and of the walls in " +
                         std::to_string(max_sweeps) + " sweeps: the region is too full, ask for fewer grains");
     }
 
