@@ -390,7 +390,8 @@ the store to other memory).)");
             py::arg("axis_direction") = std::array<double, 3>{0.0, 0.0, 1.0},
             py::arg("velocity") = std::array<double, 3>{},
             "Replaces prescribed motion k from now on (rad/s about the axis, m/s); its particles go on from "
-            "where they are")
+            "where they are. Refused (tumble.Error) where its spheres or walls would move faster than the health "
+            "check allows (100 x the time step's reference impact speed), as a scenario's motions are")
         .def(
             "write_snapshot",
             [](const Simulation& s, const fs::path& directory, int number) {

@@ -101,6 +101,14 @@ def test_a_motion_that_is_not_finite_is_refused():
     for arguments in ((float("nan"),), (1.0, (0.0, float("inf"), 0.0)), (1.0, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))):
         with pytest.raises(tumble.Error, match=r"^set_motion: motion 0: (values must be finite|axis direction is zero)"):
             sim.set_motion(0, *arguments)
+    # As a scenario's motions when it is read: a drum turned so fast that its
+    # wall would move faster than the health check allows is refused (the
+    # tiny drum's wall spheres reach 2.1 cm from the axis: at 1e4 rad/s 210
+    # m/s, against 100 x its 0.858 m/s reference impact speed).
+    with pytest.raises(tumble.Error, match=r"^set_motion: motion 0: its spheres and walls would move at up to 210 m/s "
+                                           r".* faster than the 85.8 m/s"):
+        sim.set_motion(0, 1.0e4)
+    sim.set_motion(0, 5.0)  # the paper's speed is fine
     sim.step()
     sim.step()
     assert all(abs(x) < 1.0 for x in sim.positions.ravel())
