@@ -181,8 +181,11 @@ int run_command(const RunOptions& options) {
     if (mpi::rank() == 0) lock.emplace(io::prepare_output_directory(dir, options.force));
     if (!options.quiet && mpi::rank() == 0) {
         const TimeStepReport& t = sim.time_step_report();
-        fmt::print("tumble run {}: {} particles ({} free), {} steps of {:.3g} s ({}; safe maximum {:.3g} s){}\n",
-                   options.scenario_file, sim.scenario().particles.size(), sim.scenario().free_count(), plan.steps, dt,
+        std::int64_t poured = 0;  // still to come
+        for (std::size_t q = 0; q < sim.inserted().size(); ++q) poured += sim.scenario().insertions[q].count - sim.inserted()[q];
+        fmt::print("tumble run {}: {} particles ({} free{}), {} steps of {:.3g} s ({}; safe maximum {:.3g} s){}\n",
+                   options.scenario_file, sim.scenario().particles.size(), sim.scenario().free_count(),
+                   poured > 0 ? fmt::format("; {} more to be poured in", poured) : "", plan.steps, dt,
                    t.automatic ? "chosen automatically" : "given", t.maximum,
                    shared ? fmt::format(", shared among {} MPI ranks (slabs along {})", mpi::size(),
                                         "xyz"[sim.slabs()->axis()])

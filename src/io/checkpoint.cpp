@@ -111,6 +111,7 @@ void put_scenario(ByteWriter& w, const Scenario& s) {
         w.put(wall.material);
         w.put(wall.motion);
         w.put(wall.mesh);
+        w.put(wall.sided);
     }
     w.put(static_cast<std::uint64_t>(s.meshes.size()));
     for (const TriangleMesh& m : s.meshes) {
@@ -126,6 +127,14 @@ void put_scenario(ByteWriter& w, const Scenario& s) {
         w.put(p.material);
         w.put(p.motion);
         w.put(p.tag);
+    }
+    w.put(static_cast<std::uint64_t>(s.insertions.size()));
+    for (const Insertion& q : s.insertions) {
+        for (const Vec3& v : {q.lo, q.hi, q.velocity}) w.put(v);
+        for (std::int64_t v : {q.count, q.batch}) w.put(v);
+        for (double v : {q.start, q.every, q.radius_min, q.radius_max}) w.put(v);
+        for (std::int32_t v : {q.material, q.tag}) w.put(v);
+        w.put(q.seed);
     }
 }
 
@@ -169,7 +178,7 @@ Scenario get_scenario(ByteReader& r, std::uint32_t version) {
     s.neighbor.sort_every = r.get<std::int32_t>("neighbour settings");
     s.motions = r.get_array<RigidMotion>("motions");
     if (version >= 7) {  // before: no walls besides the box's
-        const std::size_t mesh_index = version >= 8 ? sizeof(std::int32_t) : 0;
+        const std::size_t mesh_index = version >= 9 ? sizeof(std::int32_t) + 1 : version >= 8 ? sizeof(std::int32_t) : 0;
         s.walls.resize(
             r.count(8 + 1 + 3 * sizeof(Vec3) + 6 * sizeof(double) + 1 + 2 * sizeof(std::int32_t) + mesh_index, "walls"));
         for (Wall& wall : s.walls) {
@@ -186,6 +195,7 @@ Scenario get_scenario(ByteReader& r, std::uint32_t version) {
             wall.material = r.get<std::int32_t>("wall material");
             wall.motion = r.get<std::int32_t>("wall motion");
             if (version >= 8) wall.mesh = r.get<std::int32_t>("wall mesh");
+            if (version >= 9) wall.sided = r.get_bool("wall side");
         }
     }
     if (version >= 8) {  // before: no meshes
@@ -204,6 +214,17 @@ Scenario get_scenario(ByteReader& r, std::uint32_t version) {
         p.material = r.get<std::int32_t>("particle");
         p.motion = r.get<std::int32_t>("particle");
         p.tag = r.get<std::int32_t>("particle");
+    }
+    if (version >= 9) {  // before: nothing poured in
+        s.insertions.resize(r.count(3 * sizeof(Vec3) + 2 * 8 + 4 * sizeof(double) + 2 * sizeof(std::int32_t) + 8,
+                                    "insertions"));
+        for (Insertion& q : s.insertions) {
+            for (Vec3* v : {&q.lo, &q.hi, &q.velocity}) *v = r.get<Vec3>("insertion");
+            for (std::int64_t* v : {&q.count, &q.batch}) *v = r.get<std::int64_t>("insertion");
+            for (double* v : {&q.start, &q.every, &q.radius_min, &q.radius_max}) *v = r.get<double>("insertion");
+            for (std::int32_t* v : {&q.material, &q.tag}) *v = r.get<std::int32_t>("insertion");
+            q.seed = r.get<std::uint64_t>("insertion");
+        }
     }
     return s;
 }
@@ -227,6 +248,7 @@ void put_state(ByteWriter& w, const SimulationState& s) {
     w.put_array(s.wall_history);
     w.put_array(s.wall_feature);
     w.put_array(s.motions);
+    w.put_array(s.inserted);
     w.put(s.dt);
     w.put(s.time);
     w.put(s.step);
@@ -279,6 +301,7 @@ SimulationState get_state(ByteReader& r, std::uint32_t version, bool cuts) {
     else  // before: no meshes, no features
         s.wall_feature.assign(s.wall_history.size(), 0);
     s.motions = r.get_array<MotionClock>("motions");
+    if (version >= 9) s.inserted = r.get_array<std::int64_t>("spheres poured in");
     s.dt = r.get<double>("dt");
     s.time = r.get<double>("time");
     s.step = r.get<std::int64_t>("step");

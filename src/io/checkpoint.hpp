@@ -41,12 +41,13 @@ namespace tumble::io {
 // 6: the model's tangential stiffness (earlier files: the paper's); 7: the
 // scenario's smooth walls (earlier files: none); 8: the mesh walls, their
 // triangles, and the mesh feature each wall history slot follows (earlier
-// files: no meshes).
+// files: no meshes); 9: a mesh wall's side, the insertions and how many
+// spheres each has poured in (earlier files: none).
 // (From 16:51 to 19:20 UTC of 2026-11-30 tumble wrote the cuts under the
 // number 4; a file of format 4 is read with the cuts, and if that does not
 // fit its bytes, without. A rank's file of format 4 without cuts resumes on
 // another number of ranks or on one process, not on as many.)
-inline constexpr std::uint32_t checkpoint_format_version = 8;
+inline constexpr std::uint32_t checkpoint_format_version = 9;
 
 // Named values; reading a missing key, or one of another kind, throws
 // tumble::Error naming the source (the checkpoint file) and the key.

@@ -22,6 +22,7 @@
 #include "io/stl.hpp"
 #include "tumble/core/constants.hpp"
 #include "tumble/sim/health.hpp"
+#include "tumble/sim/placement.hpp"
 #include "tumble/sim/time_step.hpp"
 #include "tumble/walls/clearance.hpp"
 #include "tumble/walls/wall.hpp"
@@ -48,13 +49,6 @@ namespace {
 
 constexpr auto max_particles = static_cast<std::int64_t>(max_scenario_particles);
 
-std::uint64_t splitmix64(std::uint64_t x) {
-    x += 0x9e3779b97f4a7c15ULL;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-    return x ^ (x >> 31);
-}
-
 // The seed of one random stream of one [[particles]] block: the scenario
 // seed mixed with the block index and the purpose, so that blocks (and
 // placement and velocities) draw independent numbers.
@@ -79,7 +73,7 @@ public:
 
     RunConfig read(const toml::table& root) {
         r_.only_keys(root, "", {"simulation", "time_step", "domain", "model", "neighbor", "material", "pair",
-                                "motion", "wall", "particles", "output"});
+                                "motion", "wall", "particles", "insert", "output"});
         config_.source = r_.file();
         read_simulation(*r_.table(root, "simulation", true));
         read_materials(root);
@@ -222,7 +216,7 @@ private:
                     keys.insert(keys.end(), {"axis", "radius", "length", "inside", "caps", "cap_material"});
                     break;
                 case WallShape::cone: keys.insert(keys.end(), {"axis", "radius", "end_radius", "length", "inside"}); break;
-                case WallShape::mesh: keys.insert(keys.end(), {"file", "scale", "rotation", "offset"}); break;
+                case WallShape::mesh: keys.insert(keys.end(), {"file", "scale", "rotation", "offset", "inside"}); break;
             }
             r_.only_keys(t, p, keys);
             w.material = material_index(r_.required(t, p, "material"), join(p, "material"));
@@ -263,7 +257,14 @@ private:
                     s().meshes.push_back(read_mesh(t, p));
                     break;
             }
-            if (const toml::node* n = t.get("inside")) w.inside = r_.boolean(*n, join(p, "inside"));
+            if (const toml::node* n = t.get("inside")) {
+                w.inside = r_.boolean(*n, join(p, "inside"));
+                if (w.shape == WallShape::mesh) {
+                    w.sided = true;
+                    const std::string why = closed_surface_problem(MeshTopology(s().meshes.back()));
+                    if (!why.empty()) r_.fail(join(p, "inside"), "a mesh has an inside only if it is closed: " + why, n);
+                }
+            }
             if (const std::string why = wall_problem(w); !why.empty()) r_.fail(p, why, &t);
             const bool caps = t.get("caps") && r_.boolean(*t.get("caps"), join(p, "caps"));
             if (t.get("cap_material") && !caps) r_.fail(join(p, "cap_material"), "given, but caps is not true", t.get("cap_material"));
@@ -444,6 +445,7 @@ private:
         double smallest_radius = 0.0, largest_radius = 0.0;
         std::vector<ParticleSpec> particles;                   // a list's or a CSV file's
         std::function<std::vector<ParticleSpec>()> make;       // a generator's
+        bool poured = false;                                   // an [[insert]]'s: counted, made while the run goes
     };
 
     // Spheres that the blocks still to be read may add.
@@ -484,21 +486,24 @@ private:
         };
     }
 
-    void plan_random_fill(const toml::table& t, const std::string& p, std::size_t block, PlannedBlock& plan) const {
-        const BlockDefaults& d = plan.defaults;
-        const std::int32_t material = required_material(t, p, d);
-        const Vec3 lo = r_.required_vec3(t, p, "lo");
-        const Vec3 hi = r_.required_vec3(t, p, "hi");
+    // The region, material and radii of a random fill or an insertion.
+    struct RandomRegion {
+        Vec3 lo, hi;
+        std::int32_t material = 0;
+        double radius_min = 0.0, radius_max = 0.0;
+    };
+
+    RandomRegion read_random_region(const toml::table& t, const std::string& p, const BlockDefaults& d) const {
+        RandomRegion g;
+        g.material = required_material(t, p, d);
+        g.lo = r_.required_vec3(t, p, "lo");
+        g.hi = r_.required_vec3(t, p, "hi");
         for (int k = 0; k < 3; ++k)
-            if (!(hi[k] > lo[k]))
+            if (!(g.hi[k] > g.lo[k]))
                 r_.fail(at(join(p, "hi"), k),
-                        fmt::format("must exceed lo along {} ({} <= {})", "xyz"[k], show(hi[k]), show(lo[k])),
+                        fmt::format("must exceed lo along {} ({} <= {})", "xyz"[k], show(g.hi[k]), show(g.lo[k])),
                         t.get("hi"));
-        const auto count = static_cast<std::size_t>(
-            r_.integer(r_.required(t, p, "count"), join(p, "count"), 1, max_particles));
-        if (static_cast<std::int64_t>(count) > room())
-            r_.fail(join(p, "count"), fmt::format("more than {} spheres in the scenario", max_particles), t.get("count"));
-        double radius_min = default_radius(d, material), radius_max = radius_min;
+        g.radius_min = g.radius_max = default_radius(d, g.material);
         const auto rmin = r_.number(t, p, "radius_min", Bound::positive);
         const auto rmax = r_.number(t, p, "radius_max", Bound::positive);
         if (rmin || rmax) {
@@ -509,20 +514,38 @@ private:
             if (*rmax < *rmin)
                 r_.fail(join(p, "radius_max"), fmt::format("must be >= radius_min = {}, got {}", show(*rmin), show(*rmax)),
                         t.get("radius_max"));
-            radius_min = *rmin;
-            radius_max = *rmax;
+            g.radius_min = *rmin;
+            g.radius_max = *rmax;
         }
-        // Random sequential placement jams near a volume fraction of 0.38;
-        // refuse at once what cannot fit instead of trying for minutes.
-        const Vec3 size = hi - lo;
-        const double fraction = static_cast<double>(count) * 4.0 / 3.0 * 3.141592653589793 * radius_min * radius_min *
-                                radius_min / (size.x * size.y * size.z);
+        return g;
+    }
+
+    // Random sequential placement jams near a volume fraction of 0.38;
+    // refuse at once what cannot fit instead of trying for minutes.
+    void refuse_overfull(const toml::table& t, const std::string& p, const std::string& key, std::size_t count,
+                         const RandomRegion& g) const {
+        const Vec3 size = g.hi - g.lo;
+        const double fraction = static_cast<double>(count) * 4.0 / 3.0 * pi * g.radius_min * g.radius_min *
+                                g.radius_min / (size.x * size.y * size.z);
         if (fraction > 0.5)
-            r_.fail(join(p, "count"),
+            r_.fail(join(p, key),
                     fmt::format("{} spheres of radius >= {} m would fill {:.2g} of the region's volume; random placement "
                                 "cannot exceed about 0.38 (enlarge the region or ask for fewer)",
-                                count, show(radius_min), fraction),
-                    t.get("count"));
+                                count, show(g.radius_min), fraction),
+                    t.get(key));
+    }
+
+    void plan_random_fill(const toml::table& t, const std::string& p, std::size_t block, PlannedBlock& plan) const {
+        const BlockDefaults& d = plan.defaults;
+        const RandomRegion g = read_random_region(t, p, d);
+        const auto count = static_cast<std::size_t>(
+            r_.integer(r_.required(t, p, "count"), join(p, "count"), 1, max_particles));
+        if (static_cast<std::int64_t>(count) > room())
+            r_.fail(join(p, "count"), fmt::format("more than {} spheres in the scenario", max_particles), t.get("count"));
+        refuse_overfull(t, p, "count", count, g);
+        const Vec3 lo = g.lo, hi = g.hi;
+        const double radius_min = g.radius_min, radius_max = g.radius_max;
+        const std::int32_t material = g.material;
         plan.count = count;
         plan.count_key = join(p, "count");
         plan.smallest_radius = radius_min;
@@ -543,6 +566,48 @@ private:
             apply_defaults(out, d);
             return out;
         };
+    }
+
+    // [[insert]] k: spheres poured in while the run goes (sim/scenario.hpp,
+    // Insertion); counted with the blocks, made by the simulation.
+    Insertion read_insertion(const toml::table& t, const std::string& p, std::size_t k) const {
+        r_.only_keys(t, p, {"material", "lo", "hi", "count", "batch", "every", "start", "radius", "radius_min",
+                            "radius_max", "velocity", "tag"});
+        BlockDefaults d;
+        if (const toml::node* n = t.get("material")) d.material = material_index(*n, join(p, "material"));
+        d.radius = r_.number(t, p, "radius", Bound::positive);
+        const RandomRegion g = read_random_region(t, p, d);
+        Insertion q;
+        q.lo = g.lo;
+        q.hi = g.hi;
+        q.material = g.material;
+        q.radius_min = g.radius_min;
+        q.radius_max = g.radius_max;
+        q.count = r_.integer(r_.required(t, p, "count"), join(p, "count"), 1, max_particles);
+        if (q.count > room())
+            r_.fail(join(p, "count"), fmt::format("more than {} spheres in the scenario", max_particles), t.get("count"));
+        q.batch = q.count;
+        if (const toml::node* n = t.get("batch")) q.batch = r_.integer(*n, join(p, "batch"), 1, q.count);
+        refuse_overfull(t, p, t.get("batch") ? "batch" : "count", static_cast<std::size_t>(q.batch), g);
+        q.start = r_.number(t, p, "start", Bound::non_negative, 0.0);
+        if (q.batch < q.count) q.every = r_.required_number(t, p, "every", Bound::positive);
+        else q.every = r_.number(t, p, "every", Bound::positive, 1.0);  // one batch: no interval needed
+        q.velocity = r_.vec3(t, p, "velocity").value_or(Vec3{});
+        if (const toml::node* n = t.get("tag"))
+            q.tag = static_cast<std::int32_t>(r_.integer(*n, join(p, "tag"), std::numeric_limits<std::int32_t>::min(),
+                                                         std::numeric_limits<std::int32_t>::max()));
+        const Domain& box = s_const().domain;
+        for (int a = 0; a < 3; ++a) {
+            if (q.hi[a] - q.lo[a] < 2.0 * q.radius_max)
+                r_.fail(p, fmt::format("the region is thinner than one sphere of radius {} m along {}", show(q.radius_max),
+                                       "xyz"[a]),
+                        &t);
+            if ((box.periodic[a] || box.walls[a]) && (q.lo[a] < box.lo[a] || q.hi[a] > box.hi[a]))
+                r_.fail(p, fmt::format("the region reaches beyond domain.lo or domain.hi along {}", "xyz"[a]), &t);
+        }
+        // Its own stream, apart from every block's (their inputs are below 2^63).
+        q.seed = splitmix64(splitmix64(config_.seed) ^ splitmix64((std::uint64_t{1} << 63) | k));
+        return q;
     }
 
     std::vector<ParticleSpec> read_list(const toml::table& t, const std::string& p, const BlockDefaults& d) const {
@@ -618,7 +683,9 @@ private:
     // check_ (the memory a run will need) and before any sphere is made.
     void read_particles(const toml::table& root) {
         const auto entries = r_.tables(root, "", "particles");
-        if (entries.empty()) r_.fail("particles", "missing: at least one [[particles]] block is required");
+        const auto pours = r_.tables(root, "", "insert");
+        if (entries.empty() && pours.empty())
+            r_.fail("particles", "missing: at least one [[particles]] or [[insert]] block is required");
         static const std::vector<std::string> kinds{"lattice", "random_fill", "list", "csv"};
         std::vector<PlannedBlock> plans;
         for (std::size_t b = 0; b < entries.size(); ++b) {
@@ -665,11 +732,26 @@ private:
             planned_ += plan.count;
             plans.push_back(std::move(plan));
         }
+        for (std::size_t k = 0; k < pours.size(); ++k) {
+            const std::string p = at("insert", k);
+            const Insertion q = read_insertion(*pours[k], p, k);
+            s().insertions.push_back(q);
+            PlannedBlock plan;
+            plan.count = static_cast<std::size_t>(q.count);
+            plan.info.path = p;
+            plan.count_key = join(p, "count");
+            plan.smallest_radius = q.radius_min;
+            plan.largest_radius = q.radius_max;
+            plan.poured = true;
+            planned_ += plan.count;
+            plans.push_back(std::move(plan));
+        }
         if (check_) check_(config_, count_of(plans));
 
         s().particles.reserve(planned_);
         for (std::size_t b = 0; b < plans.size(); ++b) {
             PlannedBlock& plan = plans[b];
+            if (plan.poured) continue;
             std::vector<ParticleSpec> block = plan.make ? plan.make() : std::move(plan.particles);
             if (plan.defaults.speed)
                 randomize_velocities(block, *plan.defaults.speed, block_seed(config_.seed, b, Stream::velocities));

@@ -340,6 +340,8 @@ the store to other memory).)");
         .def_property_readonly("time", &Simulation::time, "s")
         .def_property_readonly("dt", &Simulation::dt, "time step, s")
         .def_property_readonly("step_count", &Simulation::step_count)
+        .def_property_readonly("inserted", &Simulation::inserted,
+                               "Per [[insert]] of the scenario, the spheres it has poured in so far")
         .def_property("threads", &Simulation::threads, &Simulation::set_threads)
         .def_property_readonly("size", [](const Simulation& s) { return s.particles().size(); })
         .def_property_readonly("free_count", [](const Simulation& s) { return s.particles().free_count(); })

@@ -223,3 +223,26 @@ def test_walls_from_a_dict_with_their_surfaces_and_loads():
     with pytest.raises(tumble.Error, match=r"<dict>: wall\[1\]\.radius: must be > 0"):
         scenario["wall"][1]["radius"] = -1.0
         tumble.Scenario.from_dict(scenario)
+
+
+def test_spheres_poured_in_from_a_dict():
+    """An [[insert]] in a dict and no [[particles]]: the simulation starts
+    empty and pours 40 grains, 10 at a time every 0.01 s (where the region is
+    still crowded a batch places fewer and the next the rest); `inserted`
+    counts them, the arrays grow, the ids run on, and a bad batch is refused
+    at its key."""
+    scenario = tomllib.loads(SCENARIO)
+    del scenario["particles"]
+    scenario["insert"] = [{"material": "material-1", "lo": [-0.02, -0.02, 0.03], "hi": [0.02, 0.02, 0.045],
+                           "count": 40, "batch": 10, "every": 0.01}]
+    sim = tumble.Simulation(tumble.Scenario.from_dict(scenario))
+    assert sim.size == 0 and sim.inserted == [0]
+    sim.step()
+    assert sim.inserted == [10] and sim.size == 10
+    sim.run(duration=0.2)
+    assert sim.inserted == [40] and sim.size == 40
+    assert sorted(sim.ids) == list(range(40))
+    assert np.all(sim.positions[:, 2] < 0.045)
+    scenario["insert"][0]["batch"] = 50
+    with pytest.raises(tumble.Error, match=r"<dict>: insert\[0\]\.batch: must lie in \[1, 40\], got 50"):
+        tumble.Scenario.from_dict(scenario)

@@ -351,8 +351,8 @@ TEST(CheckpointFormat, BothKindsOfFormat4Load) {
         EXPECT_EQ(c.state.ranks, 1) << name;
         EXPECT_TRUE(c.state.slabs.cuts.empty()) << name;
     }
-    // And what tumble writes now is format 8 (the mesh walls).
-    EXPECT_EQ(io::checkpoint_format_version, 8u);
+    // And what tumble writes now is format 9 (a mesh's side, the insertions).
+    EXPECT_EQ(io::checkpoint_format_version, 9u);
 }
 
 }  // namespace

@@ -367,7 +367,7 @@ TEST(ConfigErrors, TheParticleCheckSeesTheCountBeforeAnySphereIsMade) {
 
 TEST(ConfigErrors, ParticleSetMustNotBeEmpty) {
     const std::string no_particles = base.substr(0, base.find("[[particles]]"));
-    expect_error(no_particles, "particles", "at least one [[particles]] block is required");
+    expect_error(no_particles, "particles", "at least one [[particles]] or [[insert]] block is required");
     expect_error(no_particles + "[[particles]]\nkind = \"list\"\nmaterial = \"material-1\"\nparticles = []\n",
                  "particles[0].particles", "the list is empty");
 }
@@ -898,6 +898,106 @@ count = 30
     EXPECT_LT(below, 30u);
     expect_error([&] { parse(replace(text, "offset = [0.0, 0.0, -0.01]", "offset = [0.0, 0.0, 0.001]"), dir_); },
                  "test.toml", "particles[0].particles[0]", "overlaps wall \"plate\"");
+}
+
+// A closed mesh with `inside`: a fill over the whole box keeps to the
+// inside of a cube of 30 mm (ASCII STL, faces turned out), and with
+// `inside = false` to the outside, where the two listed grains at the
+// centre are then refused as beyond the wall; an open mesh has no inside.
+TEST_F(ConfigFiles, AFillKeepsToTheInsideOfAClosedMesh) {
+    // The cube [-15, 15]^3 mm: each side as four corners counter-clockwise seen from outside.
+    const double h = 15.0;
+    const std::vector<std::array<std::array<double, 3>, 4>> sides{
+        {{{h, -h, -h}, {h, h, -h}, {h, h, h}, {h, -h, h}}},     {{{-h, -h, -h}, {-h, -h, h}, {-h, h, h}, {-h, h, -h}}},
+        {{{-h, h, -h}, {-h, h, h}, {h, h, h}, {h, h, -h}}},     {{{-h, -h, -h}, {h, -h, -h}, {h, -h, h}, {-h, -h, h}}},
+        {{{-h, -h, h}, {h, -h, h}, {h, h, h}, {-h, h, h}}},     {{{-h, -h, -h}, {-h, h, -h}, {h, h, -h}, {h, -h, -h}}}};
+    std::string stl = "solid cube\n";
+    for (const auto& q : sides)
+        for (const std::array<int, 3> t : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{0, 2, 3}}) {
+            stl += "facet normal 0 0 0\nouter loop\n";
+            for (int k : t)
+                stl += "vertex " + std::to_string(q[k][0]) + " " + std::to_string(q[k][1]) + " " + std::to_string(q[k][2]) + "\n";
+            stl += "endloop\nendfacet\n";
+        }
+    write("cube.stl", stl + "endsolid cube\n");
+    const std::string text = two_materials + R"(
+[[wall]]
+name = "cube"
+shape = "mesh"
+material = "material-2"
+file = "cube.stl"
+scale = 1e-3
+inside = true
+
+[[particles]]
+kind = "random_fill"
+material = "material-1"
+radius = 0.002
+lo = [-0.02, -0.02, -0.02]
+hi = [0.02, 0.02, 0.02]
+count = 30
+)";
+    const RunConfig c = parse(text, dir_);
+    ASSERT_EQ(c.scenario.particles.size(), 32u);
+    EXPECT_TRUE(c.scenario.walls.at(0).sided);
+    for (std::size_t i = 2; i < c.scenario.particles.size(); ++i)
+        for (int a = 0; a < 3; ++a)
+            EXPECT_LE(std::abs(c.scenario.particles[i].position[a]), 0.015 - 0.002) << "particle " << i;
+    expect_error([&] { parse(replace(text, "inside = true", "inside = false"), dir_); }, "test.toml",
+                 "particles[0].particles[0]", "its centre lies beyond the wall");
+    write("plate.stl", "solid plate\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                       "endloop\nendfacet\nendsolid plate\n");
+    expect_error([&] { parse(replace(text, "cube.stl", "plate.stl"), dir_); }, "test.toml", "wall[0].inside",
+                 "a mesh has an inside only if it is closed: the edge between vertices 1 and 2 has 1 face");
+}
+
+// [[insert]]: counted with the particles (a scenario may start empty), the
+// stream of each its own, and its settings refused at the key.
+TEST_F(ConfigFiles, InsertionsAreReadAndTheirBadSettingsRefusedAtTheKey) {
+    const std::string insert = R"(
+[[insert]]
+material = "material-1"
+radius = 0.002
+lo = [-0.019, -0.019, 0.0]
+hi = [0.019, 0.019, 0.02]
+count = 50
+batch = 10
+every = 0.01
+start = 0.002
+velocity = [0.0, 0.0, -1.0]
+tag = 3
+)";
+    const RunConfig c = parse(two_materials + insert + insert, dir_);
+    ASSERT_EQ(c.scenario.insertions.size(), 2u);
+    const tumble::Insertion& q = c.scenario.insertions[0];
+    EXPECT_EQ(q.count, 50);
+    EXPECT_EQ(q.batch, 10);
+    EXPECT_EQ(q.every, 0.01);
+    EXPECT_EQ(q.start, 0.002);
+    EXPECT_EQ(q.radius_min, 0.002);
+    EXPECT_EQ(q.radius_max, 0.002);
+    EXPECT_EQ(q.velocity, (tumble::Vec3{0.0, 0.0, -1.0}));
+    EXPECT_EQ(q.tag, 3);
+    EXPECT_NE(q.seed, c.scenario.insertions[1].seed);
+    EXPECT_EQ(c.scenario.particles.size(), 2u);  // none made yet
+    const std::string t = two_materials + insert;
+    expect_error([&] { parse(replace(t, "batch = 10", "batch = 60"), dir_); }, "test.toml", "insert[0].batch",
+                 "must lie in [1, 50], got 60");
+    expect_error([&] { parse(replace(t, "every = 0.01", ""), dir_); }, "test.toml", "insert[0].every",
+                 "missing required key");
+    expect_error([&] { parse(replace(t, "every = 0.01", "every = 0.0"), dir_); }, "test.toml", "insert[0].every",
+                 "must be > 0");
+    expect_error([&] {
+        parse(replace(replace(t, "[domain]\n", "[domain]\nwalls = [false, false, true]\nwall_material = \"material-2\"\n"), "hi = [0.019, 0.019, 0.02]",
+                      "hi = [0.019, 0.019, 0.03]"),
+              dir_);
+    }, "test.toml", "insert[0]", "the region reaches beyond domain.lo or domain.hi along z");
+    expect_error([&] { parse(replace(t, "lo = [-0.019, -0.019, 0.0]", "lo = [-0.019, -0.019, 0.017]"), dir_); }, "test.toml",
+                 "insert[0]", "the region is thinner than one sphere");
+    expect_error([&] { parse(replace(t, "batch = 10", "batch = 10\nspeed = 1.0"), dir_); }, "test.toml",
+                 "insert[0].speed", "unknown key");
+    expect_error([&] { parse(replace(replace(t, "count = 50", "count = 900"), "batch = 10", "batch = 900"), dir_); },
+                 "test.toml", "insert[0].batch", "would fill");
 }
 
 // A missing file, a bad triangle (named with its file and its place in

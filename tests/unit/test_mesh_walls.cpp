@@ -248,6 +248,31 @@ TEST(MeshWalls, BoxTopologyIsClosed) {
         }
 }
 
+// The winding number of the closed box is 1 inside and 0 outside (to the
+// round-off of twelve solid angles), -1 inside when every face is turned
+// in; the box is a closed surface, and it is not with a face missing (an
+// edge of one face) or one face turned (its edges run the same way twice).
+TEST(MeshWalls, TheWindingNumberTellsInsideAClosedMeshFromOutside) {
+    TriangleMesh mesh = unit_box();
+    const MeshTopology box(mesh);
+    EXPECT_EQ(closed_surface_problem(box), "");
+    for (const Vec3& x : {Vec3{0.5, 0.5, 0.5}, Vec3{0.01, 0.99, 0.5}, Vec3{0.999, 0.001, 0.999}})
+        EXPECT_NEAR(winding_number(box, x), 1.0, 1e-12);
+    for (const Vec3& x : {Vec3{1.5, 0.5, 0.5}, Vec3{-0.001, 0.5, 0.5}, Vec3{3.0, -2.0, 7.0}})
+        EXPECT_NEAR(winding_number(box, x), 0.0, 1e-12);
+    TriangleMesh turned = mesh;
+    for (auto& t : turned.triangles) std::swap(t[1], t[2]);
+    EXPECT_NEAR(winding_number(MeshTopology(turned), {0.5, 0.5, 0.5}), -1.0, 1e-12);
+    TriangleMesh open = mesh;
+    open.triangles.pop_back();
+    EXPECT_NE(closed_surface_problem(MeshTopology(open)).find("has 1 face, not two"), std::string::npos)
+        << closed_surface_problem(MeshTopology(open));
+    TriangleMesh twisted = mesh;
+    std::swap(twisted.triangles[0][1], twisted.triangles[0][2]);
+    EXPECT_NE(closed_surface_problem(MeshTopology(twisted)).find("run along it the same way"), std::string::npos)
+        << closed_surface_problem(MeshTopology(twisted));
+}
+
 TEST(MeshWalls, ConvexEdgeOfABoxGivesOneEdgeContact) {
     const MeshTopology box(unit_box());
     const double R = 0.3, a = 0.1, b = 0.2;  // the centre 0.1 beyond the side y = 1, 0.2 above the top

@@ -176,6 +176,20 @@ std::vector<Bytes> gather(const Bytes& mine) {
     return parts;
 }
 
+std::vector<Bytes> all_gather(const Bytes& mine) {
+    if (world_size == 1) return {mine};
+    int count = static_cast<int>(mine.size());
+    std::vector<int> counts(static_cast<std::size_t>(world_size)), offsets(counts.size());
+    MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    for (std::size_t r = 1; r < counts.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+    Bytes all(static_cast<std::size_t>(offsets.back() + counts.back()));
+    MPI_Allgatherv(mine.data(), count, MPI_CHAR, all.data(), counts.data(), offsets.data(), MPI_CHAR, MPI_COMM_WORLD);
+    std::vector<Bytes> parts;
+    for (std::size_t r = 0; r < counts.size(); ++r)
+        parts.emplace_back(all.begin() + offsets[r], all.begin() + offsets[r] + counts[r]);
+    return parts;
+}
+
 bool any(bool mine) {
     int v = mine ? 1 : 0, all = 0;
     if (world_size == 1) return mine;
@@ -231,6 +245,7 @@ std::array<Bytes, 2> exchange_pair(const std::array<int, 2>&, const std::array<B
     return out;
 }
 std::vector<Bytes> gather(const Bytes& mine) { return {mine}; }
+std::vector<Bytes> all_gather(const Bytes& mine) { return {mine}; }
 bool any(bool mine) { return mine; }
 double sum(double mine) { return mine; }
 std::int64_t sum(std::int64_t mine) { return mine; }

@@ -100,6 +100,8 @@ std::array<Bytes, 2> exchange_pair(const std::array<int, 2>& to, const std::arra
                                    const std::array<int, 2>& tag);
 // Every rank's `mine`, in rank order, on rank 0 (empty elsewhere).
 std::vector<Bytes> gather(const Bytes& mine);
+// The same on every rank.
+std::vector<Bytes> all_gather(const Bytes& mine);
 // Logical or, sum and maximum over the ranks; the result on every rank.
 bool any(bool mine);
 double sum(double mine);

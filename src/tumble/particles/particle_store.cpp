@@ -23,6 +23,10 @@ void ParticleStore::resize(std::size_t n) {
     std::apply([&](auto&... field) { (field.resize(n), ...); }, fields());
 }
 
+void ParticleStore::reserve(std::size_t n) {
+    std::apply([&](auto&... field) { (field.reserve(n), ...); }, fields());
+}
+
 void ParticleStore::keep(const std::vector<std::uint32_t>& indices) {
     // In place: indices[k] >= k, so no field value is overwritten before it is read.
     std::apply(

@@ -63,6 +63,8 @@ struct ParticleStore {
     void gather(const ParticleStore& from, const std::vector<std::uint32_t>& order, IndexRange r);
     // Every field n particles long (the first n kept; new ones zero).
     void resize(std::size_t n);
+    // Room for n particles in every field: growing to n then moves no array.
+    void reserve(std::size_t n);
     // Keep the particles at `indices` (increasing), in that order.
     void keep(const std::vector<std::uint32_t>& indices);
     // Append particle i of `from`.

@@ -11,4 +11,7 @@ namespace tumble {
 // kinematic particles get zero inverse mass and inertia.
 ParticleStore make_particle_store(const Scenario& s);
 
+// One particle appended to the store, with global id `id`, as above.
+void add_particle(ParticleStore& p, const ParticleSpec& spec, std::int64_t id, const std::vector<Material>& materials);
+
 }  // namespace tumble

@@ -72,8 +72,27 @@ std::string scenario_problem(const Scenario& s) {
         // The features' ids must fit mesh_feature_code (an edge per corner at most).
         if (3 * s.meshes[k].triangles.size() >= (std::size_t{1} << 30) - 1) return who + "too many triangles";
     }
-    if (s.particles.empty()) return "no particles";
-    if (s.particles.size() >= (std::size_t{1} << 31)) return "too many particles (at most 2^31 - 1)";
+    if (s.particles.empty() && s.insertions.empty()) return "no particles";
+    std::size_t total = s.particles.size();
+    for (std::size_t k = 0; k < s.insertions.size(); ++k) {
+        const Insertion& q = s.insertions[k];
+        const std::string who = "insertion " + std::to_string(k) + ": ";
+        if (!finite(q.lo) || !finite(q.hi) || !finite(q.velocity) || !std::isfinite(q.start) || !std::isfinite(q.every))
+            return who + "its region, velocity and times must be finite";
+        if (q.count < 1 || q.batch < 1) return who + "count and batch must be at least 1";
+        if (!(q.radius_min > 0.0) || !(q.radius_max >= q.radius_min)) return who + "need 0 < radius_min <= radius_max";
+        if (q.material < 0 || q.material >= n_materials) return who + "unknown material";
+        if (!(q.start >= 0.0) || !(q.every > 0.0)) return who + "start must be >= 0 and every > 0";
+        for (int a = 0; a < 3; ++a) {
+            if (!(q.hi[a] - q.lo[a] >= 2.0 * q.radius_max))
+                return who + "its region is thinner than one sphere along " + "xyz"[a];
+            const bool bounded = s.domain.periodic[a] || s.domain.walls[a];
+            if (bounded && (q.lo[a] < s.domain.lo[a] || q.hi[a] > s.domain.hi[a]))
+                return who + "its region reaches beyond the domain along " + "xyz"[a];
+        }
+        total += static_cast<std::size_t>(q.count);
+    }
+    if (total >= (std::size_t{1} << 31)) return "too many particles (at most 2^31 - 1, those poured in included)";
     for (std::size_t i = 0; i < s.particles.size(); ++i) {
         const ParticleSpec& p = s.particles[i];
         const std::string who = "particle " + std::to_string(i) + ": ";
@@ -104,6 +123,11 @@ std::string scenario_problem(const Scenario& s) {
     return {};
 }
 
+InsertionSteps insertion_steps(const Insertion& q, double dt) {
+    return {static_cast<std::int64_t>(std::ceil(q.start / dt)),
+            std::max<std::int64_t>(1, std::llround(q.every / dt))};
+}
+
 std::string motion_problem(const RigidMotion& m) {
     if (!(norm(m.axis_direction) > 0.0)) return "axis direction is zero";
     if (!finite(m.axis_point) || !finite(m.axis_direction) || !finite(m.velocity) || !std::isfinite(m.angular_velocity))
@@ -114,10 +138,11 @@ std::string motion_problem(const RigidMotion& m) {
 
 OverlapReport largest_overlap(const Scenario& s) {
     const ParticleStore store = make_particle_store(s);
+    OverlapReport worst;
+    if (store.size() == 0) return worst;  // spheres poured in later only
     PairList pairs;
     cell_list_pairs(store, s.domain, 0.0, pairs);
     const PeriodicImages images(s.domain);
-    OverlapReport worst;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         const std::uint32_t i = pairs.first[k], j = pairs.second[k];
         const double distance = norm(store.position[i] - store.position[j] + images[pairs.image[k]]);

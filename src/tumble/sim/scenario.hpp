@@ -43,6 +43,26 @@ struct ParticleSpec {
     std::int32_t tag = 0;
 };
 
+// Spheres poured in while the run goes (a scenario's [[insert]], as
+// LIGGGHTS's insert/stream does it): a batch of up to `batch` spheres every
+// `every` seconds from `start`, each batch placed at random in the box
+// [lo, hi] (whole spheres inside) clear of every sphere and wall there at
+// that moment, until `count` are in. A batch places what fits and leaves
+// the rest to the next. Free spheres of one material, radius uniform in
+// [radius_min, radius_max], starting at `velocity` without spin.
+struct Insertion {
+    Vec3 lo, hi;                   // m
+    std::int64_t count = 0;        // spheres in all
+    std::int64_t batch = 0;        // at most this many at a time
+    double start = 0.0;            // s: the first batch at the first step at or after this time
+    double every = 0.0;            // s between batches: a whole number of time steps, at least one (insertion_period())
+    double radius_min = 0.0, radius_max = 0.0;  // m
+    std::int32_t material = 0;
+    std::int32_t tag = 0;
+    Vec3 velocity;                 // m/s
+    std::uint64_t seed = 0;        // batch k draws from (seed, k)
+};
+
 struct TimeStepSettings {
     double dt = 0.0;               // s; 0 chooses it automatically from the collision times
     double reference_speed = 1.0;  // impact speed (m/s) whose Hertz collision must be resolved
@@ -69,6 +89,10 @@ struct Scenario {
     // the lab frame at the start of their wall's motion; m.
     std::vector<TriangleMesh> meshes;
     std::vector<ParticleSpec> particles;
+    // Spheres poured in later; Simulation appends them to `particles` (ids
+    // go on from the last), so a running simulation's scenario holds every
+    // sphere in so far.
+    std::vector<Insertion> insertions;
 
     // The free particles (of every rank, when the run is shared among ranks).
     std::size_t free_count() const {
@@ -76,10 +100,12 @@ struct Scenario {
         for (const ParticleSpec& p : particles) n += p.motion == free_motion;
         return n;
     }
-    // The largest particle radius, m (0 with no particles).
+    // The largest particle radius, m (0 with no particles), of those poured
+    // in later too.
     double largest_radius() const {
         double largest = 0.0;
         for (const ParticleSpec& p : particles) largest = std::max(largest, p.radius);
+        for (const Insertion& q : insertions) largest = std::max(largest, q.radius_max);
         return largest;
     }
 };
@@ -87,6 +113,13 @@ struct Scenario {
 // The Verlet-list skin a simulation of the scenario uses, m: neighbor.skin,
 // or 0.2 x the largest radius if that is 0 (automatic).
 double neighbor_skin(const Scenario& s);
+
+// The steps of insertion q's batches: batch k at step first + k period
+// (first = ceil(start / dt), period = round(every / dt), at least 1).
+struct InsertionSteps {
+    std::int64_t first = 0, period = 1;
+};
+InsertionSteps insertion_steps(const Insertion& q, double dt);
 
 // Reason why a scenario cannot be simulated, or empty if it can. Checks
 // materials, pair table completeness and symmetry, particle radii, material

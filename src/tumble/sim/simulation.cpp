@@ -2,6 +2,9 @@
 #include "tumble/sim/simulation.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
 #include <sstream>
 #include <tuple>
 #include <utility>
@@ -14,6 +17,7 @@
 #include "tumble/particles/rigid_motion.hpp"
 #include "tumble/sim/pair_loop.hpp"
 #include "tumble/sim/particle_setup.hpp"
+#include "tumble/sim/placement.hpp"
 #include "tumble/sim/health.hpp"
 #include "tumble/walls/wall_surface.hpp"
 
@@ -122,6 +126,12 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
         neighbors_ = VerletList(scenario_.domain, skin, scenario_.neighbor.sort_every);
     }
     owned_ = particles_.size();
+    inserted_.assign(scenario_.insertions.size(), 0);
+    std::size_t total = particles_.size();  // the store's arrays stay where they are as spheres are poured in
+    for (const Insertion& q : scenario_.insertions) total += static_cast<std::size_t>(q.count);
+    particles_.reserve(total);
+    if (!scenario_.insertions.empty() && !scenario_.walls.empty())
+        insertion_walls_.emplace(scenario_.walls, scenario_.meshes, reach);
     for (const RigidMotion& m : scenario_.motions) motions_.push_back({m, 0.0});
     move_kinematic(particles_, motions_now(time_), {0, owned_});
     prepare_chunks();
@@ -349,13 +359,124 @@ void Simulation::set_threads(int threads) {
 }
 
 // All the steps in one parallel region (core/parallel.hpp).
+// All the steps in one parallel region (core/parallel.hpp), or one region
+// from each batch of poured spheres to the next.
 void Simulation::advance(std::int64_t steps) {
-    if (steps <= 0) return;
-    prepare_chunks();
-    const std::int64_t first = step_;  // step_ is written while the team runs: each step is given its number
+    while (steps > 0) {
+        insert_due();
+        const std::int64_t run = std::min(steps, next_insertion_step() - step_);
+        prepare_chunks();
+        const std::int64_t first = step_;  // step_ is written while the team runs: each step is given its number
+        run_in_team(chunks(), [&](Team& team) {
+            for (std::int64_t s = 1; s <= run; ++s) step(team, first + s, s > 1, s < run ? After::step : After::stop);
+        });
+        steps -= run;
+    }
+}
+
+std::int64_t Simulation::next_insertion_step() const {
+    std::int64_t next = std::numeric_limits<std::int64_t>::max();
+    for (std::size_t q = 0; q < scenario_.insertions.size(); ++q) {
+        if (inserted_[q] >= scenario_.insertions[q].count) continue;
+        const InsertionSteps at = insertion_steps(scenario_.insertions[q], dt_);
+        const std::int64_t after = step_ + 1;  // the first batch step after step_
+        next = std::min(next, after <= at.first ? at.first : at.first + (after - at.first + at.period - 1) / at.period * at.period);
+    }
+    return next;
+}
+
+// A batch: the spheres near its region (every rank's, by global id) and
+// the walls where they are now are the obstacles of place_at_random; the
+// new spheres get the next global ids on every rank, each rank keeps those
+// in its slab, and the list is found anew with the histories by global id.
+// The new spheres touch nothing, so every force stays as it is.
+void Simulation::insert_due() {
+    std::vector<ParticleSpec> poured;
+    for (std::size_t q = 0; q < scenario_.insertions.size(); ++q) {
+        const Insertion& in = scenario_.insertions[q];
+        const InsertionSteps at = insertion_steps(in, dt_);
+        if (inserted_[q] >= in.count || step_ < at.first || (step_ - at.first) % at.period != 0) continue;
+        const std::int64_t k = (step_ - at.first) / at.period;
+        const std::int64_t due = std::min(in.count, (k + 1) * in.batch) - inserted_[q];
+        // The obstacles: every sphere whose centre lies within the reach of
+        // the region (across a periodic axis, its image nearest the region).
+        const double reach = in.radius_max + scenario_.largest_radius();
+        const Domain& box = scenario_.domain;
+        mpi::Bytes mine;
+        const auto image = [&](Vec3 x) {
+            for (int a = 0; a < 3; ++a)
+                if (box.periodic[a]) {
+                    const double length = box.hi[a] - box.lo[a];
+                    x[a] -= length * std::round((x[a] - 0.5 * (in.lo[a] + in.hi[a])) / length);
+                }
+            return x;
+        };
+        const auto near = [&](const Vec3& x) {
+            for (int a = 0; a < 3; ++a)
+                if (x[a] < in.lo[a] - reach || x[a] > in.hi[a] + reach) return false;
+            return true;
+        };
+        const auto put = [&](std::int64_t id, const Vec3& x, double r) {
+            const char* b[3] = {reinterpret_cast<const char*>(&id), reinterpret_cast<const char*>(&x),
+                                reinterpret_cast<const char*>(&r)};
+            mine.insert(mine.end(), b[0], b[0] + sizeof id);
+            mine.insert(mine.end(), b[1], b[1] + sizeof x);
+            mine.insert(mine.end(), b[2], b[2] + sizeof r);
+        };
+        for (std::size_t i = 0; i < owned_; ++i)
+            if (const Vec3 x = image(particles_.position[i]); near(x)) put(particles_.id[i], x, particles_.radius[i]);
+        std::vector<std::pair<std::int64_t, ParticleSpec>> found;
+        constexpr std::size_t record = sizeof(std::int64_t) + sizeof(Vec3) + sizeof(double);
+        for (const mpi::Bytes& part : slabs_ ? mpi::all_gather(mine) : std::vector<mpi::Bytes>{mine})
+            for (std::size_t at_byte = 0; at_byte + record <= part.size(); at_byte += record) {
+                std::pair<std::int64_t, ParticleSpec> f;
+                std::memcpy(&f.first, part.data() + at_byte, sizeof f.first);
+                std::memcpy(&f.second.position, part.data() + at_byte + sizeof f.first, sizeof(Vec3));
+                std::memcpy(&f.second.radius, part.data() + at_byte + sizeof f.first + sizeof(Vec3), sizeof(double));
+                found.push_back(f);
+            }
+        std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        std::vector<ParticleSpec> existing;
+        for (const auto& f : found) existing.push_back(f.second);
+        for (const ParticleSpec& p : poured)  // this step's earlier batches
+            if (near(image(p.position))) existing.push_back({image(p.position), {}, {}, p.radius});
+        ClearOfWalls clear;
+        const std::vector<MotionNow> now = motions_now(time_);
+        if (insertion_walls_) clear = [&](const Vec3& x, double r) { return insertion_walls_->clear(x, r, now); };
+        constexpr std::size_t give_up_after = 10000;  // tries in a row: the region is full for now
+        const std::uint64_t seed = splitmix64(in.seed ^ splitmix64(static_cast<std::uint64_t>(k)));
+        for (ParticleSpec p : place_at_random(in.lo, in.hi, static_cast<std::size_t>(due), in.radius_min, in.radius_max,
+                                              in.material, seed, existing, clear, give_up_after)) {
+            p.velocity = in.velocity;
+            p.tag = in.tag;
+            poured.push_back(p);
+            ++inserted_[q];
+        }
+    }
+    if (poured.empty()) return;
     run_in_team(chunks(), [&](Team& team) {
-        for (std::int64_t s = 1; s <= steps; ++s) step(team, first + s, s > 1, s < steps ? After::step : After::stop);
+        team.one([&] {
+            histories_ = keyed_histories(particles_, neighbors_.pairs());
+            particles_.resize(owned_);  // the ghosts go; rebuild() makes them anew
+            ParticleStore fresh;
+            for (const ParticleSpec& p : poured) {
+                add_particle(fresh, p, static_cast<std::int64_t>(scenario_.particles.size()), scenario_.materials);
+                scenario_.particles.push_back(p);
+            }
+            if (slabs_) slabs_->keep_own(fresh);
+            for (std::size_t i = 0; i < fresh.size(); ++i) particles_.append(fresh, i);
+            owned_ = particles_.size();
+            if (!walls_.empty()) {  // by global id: records for the new ids
+                const std::size_t records = wall_slots() * scenario_.particles.size();
+                wall_history_.resize(records);
+                wall_feature_.resize(records);
+                wall_history_set_.resize(records, 0);
+            }
+        });
+        rebuild(team, true);
+        locate_kinds(team);
     });
+    note_build(time_);
 }
 
 // The arrays each chunk writes on its own, for the current chunk count
@@ -804,7 +925,7 @@ SimulationState Simulation::capture() const {
     std::vector<ContactHistory> wall_history = wall_history_;
     for (std::size_t e = 0; e < wall_list_.record.size(); ++e)  // the wall list's, where it is valid
         wall_history[wall_list_.record[e]] = wall_list_.history[e];
-    return {particles_, neighbors_.state(), std::move(wall_history), wall_feature_, motions_, dt_, time_, step_, owned_,
+    return {particles_, neighbors_.state(), std::move(wall_history), wall_feature_, motions_, inserted_, dt_, time_, step_, owned_,
             slabs_ ? slabs_->state() : SlabState{}, slabs_ ? mpi::size() : 1};
 }
 
@@ -902,6 +1023,10 @@ void Simulation::restore(SimulationState state) {
             why = "its wall-contact history names a mesh feature that the scenario's walls do not have";
     }
     if (why.empty() && state.motions.size() != motions_.size()) why = "its number of prescribed motions differs";
+    if (why.empty() && state.inserted.size() != inserted_.size()) why = "its number of insertions differs";
+    for (std::size_t q = 0; why.empty() && q < state.inserted.size(); ++q)
+        if (state.inserted[q] < 0 || state.inserted[q] > scenario_.insertions[q].count)
+            why = "insertion " + std::to_string(q) + " has poured in more spheres than its count, or fewer than none";
     if (!why.empty()) throw Error("restoring a simulation state: " + why);
     particles_ = std::move(state.particles);
     particles_.half_kick.assign(particles_.size(), Vec3{});  // 0 between steps
@@ -912,6 +1037,7 @@ void Simulation::restore(SimulationState state) {
     wall_history_set_.assign(wall_history_.size(), 1);  // any record may be set
     wall_list_ = WallList{};  // found anew at the next step
     motions_ = std::move(state.motions);
+    inserted_ = std::move(state.inserted);
     for (std::size_t k = 0; k < motions_.size(); ++k) scenario_.motions[k] = motions_[k].motion;
     time_ = state.time;
     step_ = state.step;
@@ -944,6 +1070,7 @@ SimulationState whole_state(const std::vector<SimulationState>& ranks) {
     whole.time = first.time;
     whole.step = first.step;
     whole.motions = first.motions;
+    whole.inserted = first.inserted;
     whole.neighbors.builds = first.neighbors.builds;
     whole.wall_history.assign(first.wall_history.size(), ContactHistory{});
     whole.wall_feature.assign(first.wall_history.size(), 0);

@@ -22,6 +22,7 @@
 #include "tumble/sim/slabs.hpp"
 #include "tumble/sim/step_clock.hpp"
 #include "tumble/sim/wall_loop.hpp"
+#include "tumble/walls/clearance.hpp"
 #include "tumble/walls/facet_grid.hpp"
 #include "tumble/walls/mesh.hpp"
 
@@ -129,6 +130,11 @@ public:
     SimulationState capture() const;
     void restore(SimulationState state);
 
+    // Per insertion of the scenario (Scenario::insertions), the spheres it
+    // has poured in so far. advance() pours each batch at the start of the
+    // step its time falls on (insertion_steps()), before that step.
+    const std::vector<std::int64_t>& inserted() const { return inserted_; }
+
     // Where prescribed motion k has carried its spheres and walls at time().
     MotionNow motion_now(std::size_t k) const { return motions_now(time_).at(k); }
 
@@ -196,6 +202,11 @@ private:
     std::array<IndexRange, 2> own_parts(const Team& team, int c) const;
     std::size_t free_boundary(int c, int chunks, std::size_t split) const;
     std::size_t kinematic_split() const;
+    // The batches due at step_ poured in (collective; nothing when none is
+    // due), and the next step at which one is due after step_ (none: the
+    // largest step there is).
+    void insert_due();
+    std::int64_t next_insertion_step() const;
     // The list built from the positions at `time`: each motion's reach
     // noted for walls_within_limit().
     void note_build(double time);
@@ -291,6 +302,10 @@ private:
     HistoryTable history_table_;
     bool rebuild_now_ = false;
     StepClock clock_;
+    // Per insertion, the spheres poured in so far (state), and the walls
+    // they are placed clear of (with insertions and walls only).
+    std::vector<std::int64_t> inserted_;
+    std::optional<WallDistances> insertion_walls_;
 };
 
 // The whole state of a run shared among ranks, from the states its ranks

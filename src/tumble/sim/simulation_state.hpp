@@ -33,6 +33,7 @@ struct SimulationState {
     // slot follows (mesh_feature_code()), 0 for none and for the other walls.
     std::vector<std::uint32_t> wall_feature;
     std::vector<MotionClock> motions;
+    std::vector<std::int64_t> inserted;      // per Scenario::insertions, the spheres poured in so far
     double dt = 0.0;                         // s
     double time = 0.0;                       // s
     std::int64_t step = 0;

@@ -36,6 +36,8 @@ std::vector<ContactPair> contact_pairs(const Scenario& s) {
         double& r = p.motion == free_motion ? free_radius[p.material] : kinematic_radius[p.material];
         r = std::min(r, p.radius);
     }
+    for (const Insertion& q : s.insertions)  // free spheres poured in later
+        free_radius[q.material] = std::min(free_radius[q.material], q.radius_min);
     auto mass = [&](std::size_t a, double R) { return 4.0 / 3.0 * pi * s.materials[a].rho * R * R * R; };
     std::vector<ContactPair> pairs;
     auto add = [&](std::string name, std::size_t a, std::size_t b, Partner partner, double R_a, double R_b) {

@@ -57,12 +57,25 @@ double WallDistances::distance(std::size_t k, const Vec3& x) const {
     mesh_contacts(m.topology, x, reach_, m.grid.candidates(x), found_);
     double deepest = -1.0;
     for (const MeshContact& c : found_) deepest = std::max(deepest, c.overlap);
-    return deepest >= 0.0 ? reach_ - deepest : std::numeric_limits<double>::infinity();
+    const double d = deepest >= 0.0 ? reach_ - deepest : std::numeric_limits<double>::infinity();
+    if (!w.sided || d == 0.0) return d;
+    // A closed mesh: beyond it where the winding number says x lies on the
+    // other side (|w| is 1 inside, 0 outside; 1/2 is the surface).
+    const bool within = std::abs(winding_number(m.topology, x)) > 0.5;
+    return within == w.inside ? d : -std::min(d, reach_);
 }
 
 bool WallDistances::clear(const Vec3& x, double r) const {
     for (std::size_t k = 0; k < walls_.size(); ++k)
         if (distance(k, x) < r) return false;
+    return true;
+}
+
+bool WallDistances::clear(const Vec3& x, double r, const std::vector<MotionNow>& now) const {
+    for (std::size_t k = 0; k < walls_.size(); ++k) {
+        const std::int32_t m = walls_[k].motion;  // x in the wall's frame at the start of its motion
+        if (distance(k, m < 0 ? x : to_start_frame(&now.at(static_cast<std::size_t>(m)), x)) < r) return false;
+    }
     return true;
 }
 

@@ -27,12 +27,17 @@ public:
     // between its ends where the nearest point is its rim, as a grain just
     // outside a hopper below its rim: minus how far); for a mesh the
     // distance to its nearest point where that is below the reach, else
-    // infinity.
+    // infinity, and for a closed mesh with a side (Wall::sided) negative
+    // on the other side: minus that distance, at most the reach (the
+    // winding number decides, at a cost of every face per point).
     double distance(std::size_t k, const Vec3& x) const;
 
     // Whether a sphere at x of radius r (<= reach) lies clear of every wall:
     // on the grains' side of each and touching none.
     bool clear(const Vec3& x, double r) const;
+    // The same with the walls where their motions have carried them (now:
+    // per motion of the scenario, where it is; a wall without one at rest).
+    bool clear(const Vec3& x, double r, const std::vector<MotionNow>& now) const;
 
 private:
     struct MeshGrid {

@@ -8,6 +8,8 @@
 #include <limits>
 #include <unordered_map>
 
+#include "tumble/core/constants.hpp"
+
 namespace tumble {
 
 namespace {
@@ -459,6 +461,40 @@ void mesh_contacts(const MeshTopology& mesh, const Vec3& c, double R, std::span<
     out.resize(kept);
     // (Rule 5 looks for a face within R as the loop above: none, no contact.)
     if (out.empty() && near) add_nearest(mesh, c, R, candidate_faces, out);
+}
+
+std::string closed_surface_problem(const MeshTopology& mesh) {
+    const auto edges = mesh.edges();
+    for (std::uint32_t e = 0; e < edges.size(); ++e) {
+        const auto sides = mesh.edge_sides(e);
+        const std::string where = "the edge between vertices " + std::to_string(edges[e][0] + 1) + " and " +
+                                  std::to_string(edges[e][1] + 1);
+        if (sides.size() != 2)
+            return where + " has " + std::to_string(sides.size()) + (sides.size() == 1 ? " face" : " faces") +
+                   ", not two: the mesh is not a closed surface";
+        // The side k of face f runs from its corner k to corner k + 1.
+        const auto runs_up = [&](std::uint32_t side) {
+            const auto& t = mesh.triangles()[side / 3];
+            return t[side % 3] < t[(side % 3 + 1) % 3];
+        };
+        if (runs_up(sides[0]) == runs_up(sides[1]))
+            return where + ": triangles " + std::to_string(sides[0] / 3 + 1) + " and " + std::to_string(sides[1] / 3 + 1) +
+                   " run along it the same way, so their normals point to opposite sides of the surface";
+    }
+    return {};
+}
+
+double winding_number(const MeshTopology& mesh, const Vec3& x) {
+    const auto vertices = mesh.vertices();
+    double sum = 0.0;
+    for (const auto& t : mesh.triangles()) {
+        const Vec3 a = vertices[t[0]] - x, b = vertices[t[1]] - x, c = vertices[t[2]] - x;
+        const double la = norm(a), lb = norm(b), lc = norm(c);
+        const double numerator = dot(a, cross(b, c));
+        const double denominator = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
+        sum += 2.0 * std::atan2(numerator, denominator);
+    }
+    return sum / (4.0 * pi);
 }
 
 }  // namespace tumble

@@ -249,6 +249,23 @@ private:
     std::vector<std::uint32_t> vertex_plane_;
 };
 
+// Why the mesh does not bound a region of space, or empty when it does:
+// every edge has exactly two faces, which run along it in opposite
+// directions (a closed surface, its normals all outward or all inward).
+// A fill inside or outside a mesh needs this (a chute has no inside).
+std::string closed_surface_problem(const MeshTopology& mesh);
+
+// The winding number of a closed surface about the point x: the sum of the
+// solid angles its faces subtend at x over 4 pi. 1 inside a surface whose
+// normals point out, -1 inside one whose normals point in, 0 outside; in
+// between only within rounding of the surface. The solid angle of a
+// triangle with corners a, b, c seen from x (Van Oosterom & Strackee, IEEE
+// Trans. Biomed. Eng. 30, 125, 1983), with A = a - x, B = b - x, C = c - x:
+//   tan(Omega / 2) = A . (B x C) / (|A||B||C| + (A . B)|C| + (B . C)|A| + (C . A)|B|),
+// Omega > 0 where x lies behind the face (against N). Cost: every face, per
+// point.
+double winding_number(const MeshTopology& mesh, const Vec3& x);
+
 enum class MeshFeature : std::uint8_t { face, edge, vertex };
 
 // One contact of a sphere with a mesh (the rule above).

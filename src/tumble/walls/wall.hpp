@@ -66,7 +66,12 @@ struct Wall {
     // cylinder, cone: how far the wall reaches along the axis from `point`;
     // a cylinder may be infinite (then it has no rims).
     double length = std::numeric_limits<double>::infinity();
-    bool inside = true;        // cylinder, cone: the grains move inside it (else outside)
+    // cylinder, cone: the grains move inside it (else outside). mesh, where
+    // `sided`: the grains lie inside the closed surface (else outside); the
+    // fills and the start's checks keep them there (a mesh's contact is
+    // two-sided whatever this says).
+    bool inside = true;
+    bool sided = false;  // mesh: a closed surface with an inside (the key `inside` given)
     std::int32_t material = 0;
     std::int32_t motion = -1;  // index into Scenario::motions, or -1: at rest
     std::int32_t mesh = -1;    // mesh: index into Scenario::meshes (walls/mesh.hpp), else -1
