@@ -46,8 +46,10 @@ std::string field_settings_problem(const FieldSettings& s) {
             if (averaged(s, k) && n != 1.0)
                 return fmt::format("cells: the averaged axis {} has one cell, got {}", axes[k], n);
         }
-        if (s.lo && !std::isfinite((*s.lo)[k])) return fmt::format("lo: must be finite, got {} along {}", (*s.lo)[k], axes[k]);
-        if (s.hi && !std::isfinite((*s.hi)[k])) return fmt::format("hi: must be finite, got {} along {}", (*s.hi)[k], axes[k]);
+        if (s.lo && !std::isfinite((*s.lo)[k]))
+            return fmt::format("lo: must be finite, got {} along {}", (*s.lo)[k], axes[k]);
+        if (s.hi && !std::isfinite((*s.hi)[k]))
+            return fmt::format("hi: must be finite, got {} along {}", (*s.hi)[k], axes[k]);
         if (s.lo && s.hi && !((*s.hi)[k] > (*s.lo)[k]))
             return fmt::format("hi: must be above lo along every axis, got hi {} <= lo {} along {}", (*s.hi)[k],
                                (*s.lo)[k], axes[k]);
@@ -96,7 +98,8 @@ analysis::CgSettings complete(const FieldSettings& s, const Vec3& lo, Vec3 hi, d
     }
     const std::string driver = fmt::format("a grid of {:g} x {:g} x {:g} nodes ({})", count[0], count[1], count[2],
                                            s.cells ? "cells" : (s.cell ? "cell" : "cell = width"));
-    if (!(nodes <= max_nodes)) throw Error(fmt::format("{}: {}, more than any memory holds", s.cells ? "cells" : "cell", driver));
+    if (!(nodes <= max_nodes))
+        throw Error(fmt::format("{}: {}, more than any memory holds", s.cells ? "cells" : "cell", driver));
     for (std::size_t k = 0; k < 3; ++k) out.grid.cells[k] = static_cast<std::size_t>(count[k]);
     out.grid.lo = lo;
     out.grid.hi = hi;
@@ -165,7 +168,8 @@ RunFields run_fields(const RunFieldsOptions& o, const std::function<void(const s
     if (!fs::is_directory(o.run_directory, ec))
         throw Error("run directory: no such directory: " + o.run_directory.string());
     // A grid given in full is checked, its memory too, before the checkpoint is read.
-    if (const auto early = grid_settings(o.settings, o.memory_option)) say("grid " + grid_summary(o.settings, early->grid));
+    if (const auto early = grid_settings(o.settings, o.memory_option))
+        say("grid " + grid_summary(o.settings, early->grid));
 
     io::LoadedCheckpoint loaded = load_checkpoint(o.run_directory, o.checkpoint);
     say("states from " + loaded.file.string());
@@ -187,7 +191,8 @@ RunFields run_fields(const RunFieldsOptions& o, const std::function<void(const s
         if (!sum) {
             const analysis::CgSettings settings =
                 grid_settings(o.settings, state.grains(), o.memory_option, &sim.scenario().domain);
-            if (!o.settings.lo || !o.settings.hi || !o.settings.width) say("grid " + grid_summary(o.settings, settings.grid));
+            if (!o.settings.lo || !o.settings.hi || !o.settings.width)
+                say("grid " + grid_summary(o.settings, settings.grid));
             sum.emplace(settings);
         }
         const auto start = std::chrono::steady_clock::now();

@@ -75,7 +75,8 @@ void write_rows(std::ofstream& stream, const std::filesystem::path& part, const 
                 fmt::format_to(fmt::appender(out), "{},{},{},{}", x.x, x.y, x.z, f.samples);
                 for (const FieldColumn& column : columns) {
                     const std::size_t n = column.components.size();
-                    for (std::size_t k = 0; k < n; ++k) fmt::format_to(fmt::appender(out), ",{}", column.values[n * node + k]);
+                    for (std::size_t k = 0; k < n; ++k)
+                        fmt::format_to(fmt::appender(out), ",{}", column.values[n * node + k]);
                 }
                 out.push_back('\n');
                 if (out.size() > (1u << 20)) {  // a block of rows at a time

@@ -8,6 +8,7 @@
 
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
+#include "tumble/core/isa.hpp"
 
 namespace tumble::analysis {
 
@@ -242,62 +243,66 @@ void FieldAccumulator::add(const CgGrains& grains, std::span<const CgContact> co
     std::fill(sample_mass_.begin(), sample_mass_.end(), 0.0);
     std::fill(sample_momentum_.begin(), sample_momentum_.end(), Vec3{});
 
-    // Mass, volume and momentum: rho(r) = sum_i m_i W(r - r_i) and so on.
-    for (std::size_t i = 0; i < N; ++i) {
-        const double m = grains.mass[i], R = grains.radius[i];
-        const double V = 4.0 / 3.0 * pi * R * R * R;
-        const Vec3 p = m * grains.velocity[i];
-        W.spread(grains.position[i], [&](std::size_t n, double w) {
-            sample_mass_[n] += m * w;
-            volume_[n] += V * w;
-            mass_diameter_[n] += 2.0 * R * m * w;
-            sample_momentum_[n] += w * p;
-        });
-    }
-    for (std::size_t n = 0; n < mass_.size(); ++n) mass_[n] += sample_mass_[n], momentum_[n] += sample_momentum_[n];
-
-    // The contact stress, sigma_c(r) = sum_contacts f (x) b psi(r), where
-    // psi(r) = int_0^1 W(r - r_i + s b) ds is the kernel along the branch
-    // from r_i (s = 0) to r_i - b (s = 1). Its divergence is
-    // f (W(r - r_i + b) - W(r - r_i)), so that the contacts' sum balances
-    // each grain's contact force: div sigma = rho g at rest, exactly up to
-    // the quadrature. Quadrature: the composite Simpson rule with M panels
-    // of length |b| / M <= w (M = ceil(|b| / w)), points s_q = q / 2M, q =
-    // 0 .. 2M, weights (1, 4, 2, 4, ..., 4, 1) / 6M; its error is at most
-    // 3 (|b| / 2M)^4 / 180 w^4, about 0.1 % of the Gaussian's peak. The points at
-    // s = 0 (at r_i) and s = 1 at the centre of j go with the grains' own
-    // sums below; the others, and a wall's contact point, are spread here.
-    std::vector<Tensor> at_grain(N);
-    for (const CgContact& c : contacts) {
-        const double length = norm(c.branch);
-        const double panels = std::max(1.0, std::ceil(length / s_.width));
-        const Tensor fb = dyad(c.force, c.branch);
-        const double end_weight = 1.0 / (6.0 * panels);
-        add_scaled(at_grain[c.i], end_weight, fb);
-        const Vec3 other_end = grains.position[c.i] - c.branch;
-        const bool at_j = c.j != CgContact::wall && norm(other_end - grains.position[c.j]) <= 1e-9 * length;
-        if (at_j) add_scaled(at_grain[c.j], end_weight, fb);
-        const auto points = static_cast<std::size_t>(2.0 * panels);
-        for (std::size_t q = 1; q <= points; ++q) {
-            if (q == points && at_j) break;
-            const double weight = (q == points ? 1.0 : (q % 2 == 1 ? 4.0 : 2.0)) * end_weight;
-            const Vec3 x = grains.position[c.i] - (static_cast<double>(q) / static_cast<double>(points)) * c.branch;
-            W.spread(x, [&](std::size_t n, double w) { add_scaled(contact_[n], weight * w, fb); });
+    // The passes over the grains and contacts run on the processor's widest
+    // vectors (core/isa.hpp): the same numbers on every level.
+    run_for_isa([&] {
+        // Mass, volume and momentum: rho(r) = sum_i m_i W(r - r_i) and so on.
+        for (std::size_t i = 0; i < N; ++i) {
+            const double m = grains.mass[i], R = grains.radius[i];
+            const double V = 4.0 / 3.0 * pi * R * R * R;
+            const Vec3 p = m * grains.velocity[i];
+            W.spread(grains.position[i], [&](std::size_t n, double w) {
+                sample_mass_[n] += m * w;
+                volume_[n] += V * w;
+                mass_diameter_[n] += 2.0 * R * m * w;
+                sample_momentum_[n] += w * p;
+            });
         }
-    }
+        for (std::size_t n = 0; n < mass_.size(); ++n) mass_[n] += sample_mass_[n], momentum_[n] += sample_momentum_[n];
 
-    // The kinetic stress, sum_i m_i v'_i (x) v'_i W(r - r_i) with the
-    // fluctuation v'_i = v_i - V(r_i) from the sample's velocity field, and
-    // the contacts' ends at the grains.
-    for (std::size_t i = 0; i < N; ++i) {
-        const Vec3 u = grains.velocity[i] - velocity_at(s_.grid, sample_mass_, sample_momentum_, grains.position[i]);
-        const Tensor k = dyad(grains.mass[i] * u, u);
-        const Tensor& t = at_grain[i];
-        W.spread(grains.position[i], [&](std::size_t n, double w) {
-            add_scaled(kinetic_[n], w, k);
-            add_scaled(contact_[n], w, t);
-        });
-    }
+        // The contact stress, sigma_c(r) = sum_contacts f (x) b psi(r), where
+        // psi(r) = int_0^1 W(r - r_i + s b) ds is the kernel along the branch
+        // from r_i (s = 0) to r_i - b (s = 1). Its divergence is
+        // f (W(r - r_i + b) - W(r - r_i)), so that the contacts' sum balances
+        // each grain's contact force: div sigma = rho g at rest, exactly up to
+        // the quadrature. Quadrature: the composite Simpson rule with M panels
+        // of length |b| / M <= w (M = ceil(|b| / w)), points s_q = q / 2M, q =
+        // 0 .. 2M, weights (1, 4, 2, 4, ..., 4, 1) / 6M; its error is at most
+        // 3 (|b| / 2M)^4 / 180 w^4, about 0.1 % of the Gaussian's peak. The points at
+        // s = 0 (at r_i) and s = 1 at the centre of j go with the grains' own
+        // sums below; the others, and a wall's contact point, are spread here.
+        std::vector<Tensor> at_grain(N);
+        for (const CgContact& c : contacts) {
+            const double length = norm(c.branch);
+            const double panels = std::max(1.0, std::ceil(length / s_.width));
+            const Tensor fb = dyad(c.force, c.branch);
+            const double end_weight = 1.0 / (6.0 * panels);
+            add_scaled(at_grain[c.i], end_weight, fb);
+            const Vec3 other_end = grains.position[c.i] - c.branch;
+            const bool at_j = c.j != CgContact::wall && norm(other_end - grains.position[c.j]) <= 1e-9 * length;
+            if (at_j) add_scaled(at_grain[c.j], end_weight, fb);
+            const auto points = static_cast<std::size_t>(2.0 * panels);
+            for (std::size_t q = 1; q <= points; ++q) {
+                if (q == points && at_j) break;
+                const double weight = (q == points ? 1.0 : (q % 2 == 1 ? 4.0 : 2.0)) * end_weight;
+                const Vec3 x = grains.position[c.i] - (static_cast<double>(q) / static_cast<double>(points)) * c.branch;
+                W.spread(x, [&](std::size_t n, double w) { add_scaled(contact_[n], weight * w, fb); });
+            }
+        }
+
+        // The kinetic stress, sum_i m_i v'_i (x) v'_i W(r - r_i) with the
+        // fluctuation v'_i = v_i - V(r_i) from the sample's velocity field, and
+        // the contacts' ends at the grains.
+        for (std::size_t i = 0; i < N; ++i) {
+            const Vec3 u = grains.velocity[i] - velocity_at(s_.grid, sample_mass_, sample_momentum_, grains.position[i]);
+            const Tensor k = dyad(grains.mass[i] * u, u);
+            const Tensor& t = at_grain[i];
+            W.spread(grains.position[i], [&](std::size_t n, double w) {
+                add_scaled(kinetic_[n], w, k);
+                add_scaled(contact_[n], w, t);
+            });
+        }
+    });
     ++samples_;
 }
 
