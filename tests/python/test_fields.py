@@ -106,3 +106,26 @@ def test_the_command_line_writes_what_python_computes(tiny_drum, tumble_binary, 
     points = image.GetPointData()
     np.testing.assert_array_equal(vtk_to_numpy(points.GetArray("pressure")), f["pressure"].ravel())
     np.testing.assert_array_equal(vtk_to_numpy(points.GetArray("contact_stress")), f["contact_stress"].reshape(-1, 9))
+
+
+def test_the_fields_of_a_simulation_stepped_in_python():
+    """sim.grain_state() hands tumble.coarse_grain a state's grains and
+    contacts, the walls' too: the contact stress of 40 grains in a walled
+    box, integrated over the box, is the sum of f (x) b over the contacts."""
+    from test_simulation import SCENARIO
+    sim = tumble.Simulation(tumble.Scenario.from_toml(SCENARIO))
+    sim.run(duration=0.1)
+    sim.set_contact_recording(True)
+    sim.step()
+    state = sim.grain_state()
+    contacts = state["contacts"]
+    assert state["positions"].shape == (40, 3) and len(contacts["i"]) > 0
+    assert (contacts["j"] == -1).any()  # the box's walls
+    w = 0.0018
+    L = 0.052  # the box (5 cm) and the wall contacts' points on its faces, averaged over x and y
+    f = tumble.coarse_grain(**state, lo=[-L / 2, -L / 2, -3.5 * w], hi=[L / 2, L / 2, 0.05 + 3.5 * w],
+                            cell=w / 4, average="xy", width=w, kernel="lucy")
+    dz = f["z"][1] - f["z"][0]
+    integral = f["contact_stress"].sum(axis=(0, 1, 2)) * dz * L * L
+    expected = np.einsum("ka,kb->ab", contacts["force"], contacts["branch"])
+    np.testing.assert_allclose(integral, expected, rtol=1e-3, atol=1e-3 * np.abs(expected).max())
