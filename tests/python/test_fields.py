@@ -62,6 +62,8 @@ def test_bad_settings_and_arrays_are_refused_naming_them(tmp_path):
         tumble.coarse_grain(x, v, m, np.ones(7))
     with pytest.raises(tumble.Error, match="max_memory_gib"):
         tumble.coarse_grain(x, v, m, R, lo=[0, 0, 0], hi=[1, 1, 1], cell=1e-3, width=1e-3, max_memory_gib=1)
+    with pytest.raises(tumble.Error, match="grain 0 has a position"):
+        tumble.coarse_grain(x, v, -m, R, lo=[0, 0, 0], hi=[1, 1, 1], width=0.5)
     with pytest.raises(tumble.Error, match="names a grain beyond"):
         tumble.coarse_grain(x, v, m, R, dict(i=[0], j=[9], force=[[0, 0, 1]], branch=[[0, 0, 1e-3]]))
     with pytest.raises(tumble.Error, match="^run directory: no such directory"):

@@ -235,6 +235,12 @@ TEST(CoarseGrain, ImpossibleSettingsAreRefusedNamingTheSetting) {
     FieldAccumulator sum(cube_grid(0.0, 1.0, 0.5, CgKernel::gaussian, 0.1));
     const std::vector<CgContact> beyond{{0, 3, {}, {}}};
     EXPECT_THROW(sum.add(g.view(), beyond), tumble::Error);
+    const std::vector<CgContact> infinite{{0, CgContact::wall, {0.0, 0.0, HUGE_VAL}, {}}};
+    EXPECT_THROW(sum.add(g.view(), infinite), tumble::Error);
+    g.R[0] = -0.1;
+    EXPECT_THROW(sum.add(g.view(), {}), tumble::Error);
+    g.R[0] = 0.1, g.x[0].y = std::nan("");
+    EXPECT_THROW(sum.add(g.view(), {}), tumble::Error);
 }
 
 }  // namespace

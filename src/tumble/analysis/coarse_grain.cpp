@@ -161,7 +161,7 @@ Vec3 velocity_at(const CgGrid& g, const std::vector<double>& mass, const std::ve
         if (g.averaged[k] || g.cells[k] == 1) continue;
         const double u = (x[k] - g.lo[k]) / g.spacing(k) - 0.5;
         const double last = static_cast<double>(g.cells[k] - 1);
-        const double clamped = std::clamp(u, 0.0, last);
+        const double clamped = std::isfinite(u) ? std::clamp(u, 0.0, last) : 0.0;
         a0[k] = static_cast<std::size_t>(std::min(std::floor(clamped), last - 1.0));
         a1[k] = a0[k] + 1;
         t[k] = clamped - static_cast<double>(a0[k]);
@@ -235,10 +235,20 @@ void FieldAccumulator::add(const CgGrains& grains, std::span<const CgContact> co
         throw Error("coarse-graining: the grains' positions, velocities, masses and radii differ in number (" +
                     std::to_string(N) + ", " + std::to_string(grains.velocity.size()) + ", " +
                     std::to_string(grains.mass.size()) + ", " + std::to_string(grains.radius.size()) + ")");
-    for (std::size_t k = 0; k < contacts.size(); ++k)
-        if (contacts[k].i >= N || (contacts[k].j != CgContact::wall && contacts[k].j >= N))
+    const auto finite = [](const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    for (std::size_t i = 0; i < N; ++i)
+        if (!finite(grains.position[i]) || !finite(grains.velocity[i]) || !(grains.mass[i] >= 0.0) ||
+            !(grains.radius[i] >= 0.0) || !std::isfinite(grains.mass[i]) || !std::isfinite(grains.radius[i]))
+            throw Error("coarse-graining: grain " + std::to_string(i) +
+                        " has a position, velocity, mass or radius that is not finite, or a negative mass or radius");
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+        const CgContact& c = contacts[k];
+        if (c.i >= N || (c.j != CgContact::wall && c.j >= N))
             throw Error("coarse-graining: contact " + std::to_string(k) + " names a grain beyond the " +
                         std::to_string(N) + " given");
+        if (!finite(c.force) || !finite(c.branch))
+            throw Error("coarse-graining: contact " + std::to_string(k) + " has a force or branch that is not finite");
+    }
     GridKernel W(s_);
     std::fill(sample_mass_.begin(), sample_mass_.end(), 0.0);
     std::fill(sample_momentum_.begin(), sample_momentum_.end(), Vec3{});

@@ -153,8 +153,9 @@ class FieldAccumulator {
 public:
     explicit FieldAccumulator(const CgSettings& settings);
     // One state: its grains and contacts (each contact's i and j index
-    // `grains`). tumble::Error if an index is out of range or a span's
-    // length differs from the positions'.
+    // `grains`). tumble::Error if an index is out of range, a span's length
+    // differs from the positions', a number is not finite or a mass or
+    // radius is negative.
     void add(const CgGrains& grains, std::span<const CgContact> contacts);
     Fields finish() &&;
 
