@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "experiments/drum.hpp"
+#include "experiments/fields.hpp"
 #include "experiments/machine.hpp"
 #include "experiments/progress.hpp"
 #include "experiments/run_control.hpp"
@@ -101,5 +102,16 @@ struct RenderOptions {
 };
 // A movie of the run's particle snapshots (docs/RENDER.md).
 int render_command(const RenderOptions& options);
+
+// tumble fields: the coarse-grained fields of a run directory
+// (experiments/fields.hpp, docs/FIELDS.md) into OUT/fields.vti and
+// OUT/fields.csv.
+struct FieldsOptions {
+    RunFieldsOptions run;
+    std::string out;              // empty: RUN/fields
+    std::string format = "both";  // "vti", "csv" or "both"
+    bool quiet = false;
+};
+int fields_command(const FieldsOptions& options);
 
 }  // namespace tumble::cli

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The tumble command line: run, bench, drum, contact, analyze, plot, sweep, render, resume.
+// The tumble command line: run, bench, drum, contact, analyze, plot, sweep, render, resume, fields.
 #include <algorithm>
 #include <cmath>
 #include <csignal>
@@ -446,6 +446,45 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     render_cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors");
 
+    FieldsOptions fields;
+    std::vector<double> fields_lo, fields_hi, fields_cells;
+    std::optional<double> fields_cell, fields_width;
+    std::string fields_kernel = "gaussian";
+    CLI::App* fields_cmd = app.add_subcommand(
+        "fields", "Coarse-grained fields of a run on a grid: solid fraction, velocity, temperature, stress, "
+                  "shear rate, inertial number and friction, as VTK image data and CSV (docs/FIELDS.md)");
+    fields_cmd->add_option("directory", fields.run.run_directory, "Run directory of tumble run or tumble drum")
+        ->required();
+    fields_cmd->add_option("--lo", fields_lo, "The grid's lower corner X,Y,Z, m (default: the grains' extent)")
+        ->delimiter(',')
+        ->expected(3);
+    fields_cmd->add_option("--hi", fields_hi, "The grid's upper corner X,Y,Z, m (default: the grains' extent)")
+        ->delimiter(',')
+        ->expected(3);
+    auto* cell_opt = fields_cmd->add_option("--cell", fields_cell,
+                                            "Cell size along every resolved axis, m (default: the width); hi moves "
+                                            "up to a whole number of cells");
+    fields_cmd->add_option("--cells", fields_cells, "Cells along x, y and z, NX,NY,NZ (1 on an averaged axis)")
+        ->delimiter(',')
+        ->expected(3)
+        ->excludes(cell_opt);
+    fields_cmd->add_option("--average", fields.run.settings.average,
+                           "Axes averaged over [lo, hi], e.g. z (a drum's cross-section) or xy (a profile in z)");
+    fields_cmd->add_option("--kernel", fields_kernel, "gaussian (cut off at 3 widths; default) or lucy")
+        ->check(CLI::IsMember({"gaussian", "lucy"}));
+    fields_cmd->add_option("--width", fields_width, "Kernel width w, m (default: the grains' mean radius)");
+    fields_cmd->add_option("--samples", fields.run.samples, "States averaged (default 1)");
+    fields_cmd->add_option("--every", fields.run.every, "Simulated seconds between the states (default 0.01)");
+    fields_cmd->add_option("--checkpoint", fields.run.checkpoint,
+                           "The checkpoint the states start from (default: the run's newest)");
+    fields_cmd->add_option("-o,--out", fields.out, "Where fields.vti and fields.csv go (default DIR/fields)");
+    fields_cmd->add_option("--format", fields.format, "vti, csv or both (default)")
+        ->check(CLI::IsMember({"vti", "csv", "both"}));
+    fields_cmd->add_option("--max-memory", fields.run.settings.max_memory_gib,
+                           "Refuse a grid that needs more memory than this many GiB (default: half the machine's)")
+        ->check(finite_non_negative);
+    fields_cmd->add_flag("-q,--quiet", fields.quiet, "Print nothing but errors");
+
     SweepOptions sweep;
     CLI::App* sweep_cmd = app.add_subcommand(
         "sweep", "The drum experiment over rotation speeds, modes and seeds, one child run per point "
@@ -496,6 +535,17 @@ int main(int argc, char** argv) {
         }
         if (plot_cmd->parsed()) return plot_command(plot_compare ? "compare" : "run", plot_inputs, plot_out);
         if (sweep_cmd->parsed()) return sweep_command(sweep);
+        if (fields_cmd->parsed()) {
+            FieldSettings& f = fields.run.settings;
+            if (!fields_lo.empty()) f.lo = tumble::Vec3{fields_lo[0], fields_lo[1], fields_lo[2]};
+            if (!fields_hi.empty()) f.hi = tumble::Vec3{fields_hi[0], fields_hi[1], fields_hi[2]};
+            if (!fields_cells.empty()) f.cells = std::array<double, 3>{fields_cells[0], fields_cells[1], fields_cells[2]};
+            f.cell = fields_cell;
+            f.width = fields_width;
+            f.kernel = fields_kernel == "lucy" ? tumble::analysis::CgKernel::lucy : tumble::analysis::CgKernel::gaussian;
+            f.vti = fields.format != "csv";
+            return fields_command(fields);
+        }
         if (render_cmd->parsed()) return render_command(render);
         if (resume_cmd->parsed()) return resume_command(resume_dir, resume_quiet, resume_progress_every, resume_revolutions);
         if (contact_cmd->parsed()) {

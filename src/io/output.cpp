@@ -60,7 +60,7 @@ void kill_point_for_tests() {
 namespace {
 // Writes `bytes` into file.tmp and renames it over `file`; with `to_disk`,
 // the file and then the directory are flushed to the disk (fsync) as well.
-void replace_file(const fs::path& file, std::string_view bytes, bool to_disk) {
+void replace_file(const fs::path& file, std::span<const std::string_view> parts, bool to_disk) {
     const fs::path temporary = file.string() + ".tmp";
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) fail_with_errno(temporary, "opening for writing");
@@ -71,12 +71,13 @@ void replace_file(const fs::path& file, std::string_view bytes, bool to_disk) {
         errno = saved;
         fail_with_errno(temporary, what);
     };
-    for (std::size_t done = 0; done < bytes.size();) {
-        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) give_up("writing (disk full?)");
-        done += static_cast<std::size_t>(n);
-    }
+    for (const std::string_view bytes : parts)
+        for (std::size_t done = 0; done < bytes.size();) {
+            const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) give_up("writing (disk full?)");
+            done += static_cast<std::size_t>(n);
+        }
     if (to_disk && ::fsync(fd) != 0) give_up("flushing to disk");
     if (::close(fd) != 0) {
         const int saved = errno;
@@ -100,9 +101,13 @@ void replace_file(const fs::path& file, std::string_view bytes, bool to_disk) {
 }
 }  // namespace
 
-void write_file_atomically(const fs::path& file, std::string_view bytes) { replace_file(file, bytes, true); }
+void write_file_atomically(const fs::path& file, std::string_view bytes) { replace_file(file, {&bytes, 1}, true); }
 
-void write_file_whole(const fs::path& file, std::string_view bytes) { replace_file(file, bytes, false); }
+void write_file_whole(const fs::path& file, std::string_view bytes) { replace_file(file, {&bytes, 1}, false); }
+
+void write_file_whole(const fs::path& file, std::span<const std::string_view> parts) {
+    replace_file(file, parts, false);
+}
 
 void check_written(std::ofstream& out, const fs::path& file) {
     out.flush();

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,6 +40,8 @@ void write_file_atomically(const std::filesystem::path& file, std::string_view b
 // failed write or a kill leaves no cut file under `file`'s name, only the
 // cost of the fsync is saved (a power cut may still lose the newest of them).
 void write_file_whole(const std::filesystem::path& file, std::string_view bytes);
+// The same of parts written one after the other (no copy of them joined).
+void write_file_whole(const std::filesystem::path& file, std::span<const std::string_view> parts);
 // Flushes and reports a failed write (disk full, ...) as tumble::Error naming the file.
 void check_written(std::ofstream& out, const std::filesystem::path& file);
 
@@ -65,7 +68,7 @@ std::filesystem::path write_snapshot(const std::filesystem::path& directory, int
 std::filesystem::path write_snapshot(const std::filesystem::path& directory, int number, const Simulation& sim);
 
 // Every file and folder that tumble writes into a run directory: tumble run,
-// drum, resume, analyze (with --so-far), plot and render (with the movie
+// drum, resume, analyze (with --so-far), fields, plot and render (with the movie
 // DIR/NAME.mp4, NAME the directory's, which has no fixed name and is removed
 // beside these). What --force clears, so it holds them all: a test runs each
 // command and checks every file it wrote against this list
@@ -79,7 +82,7 @@ inline constexpr std::string_view run_files[] = {
     "depth_mobility_long.csv", "axial_msd.csv", "bed_structure.csv", "flow_profile.csv", "bands.json",
     "bands.csv",     "band_positions.csv", "band_spectrum.csv", "band_edges.csv",   "kymograph.png",
     "particles.pvd", "contacts.pvd",    "walls.pvd",         "snapshots",         "checkpoints",        "figures",
-    "so_far",        "frames"};
+    "so_far",        "frames",          "fields"};
 
 // tumble render's movie by default: DIR/NAME.mp4, NAME the directory's.
 std::filesystem::path default_movie_file(const std::filesystem::path& directory);

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <iterator>
 #include <numeric>
+#include <span>
 #include <string_view>
 #include <type_traits>
 
@@ -13,6 +14,7 @@
 
 #include <fmt/format.h>
 
+#include "io/fields_output.hpp"
 #include "io/output.hpp"
 #include "tumble/core/error.hpp"
 #include "tumble/sim/contact_network.hpp"
@@ -58,13 +60,14 @@ void put_uint64(std::string& out, std::uint64_t v) { out.append(reinterpret_cast
 // data, counted from the byte after the '_' that opens it.
 class VtkFile {
 public:
-    explicit VtkFile(std::string_view type) : type_(type) {
+    // attributes: of the dataset's element (ImageData's extent, origin, spacing).
+    explicit VtkFile(std::string_view type, std::string_view attributes = {}) : type_(type) {
         fmt::format_to(fmt::appender(xml_),
                        "<?xml version=\"1.0\"?>\n"
                        "<VTKFile type=\"{0}\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\" "
                        "compressor=\"vtkZLibDataCompressor\">\n"
-                       "  <{0}>\n",
-                       type_);
+                       "  <{0}{1}>\n",
+                       type_, attributes);
     }
 
     // XML text between the arrays (elements opened and closed).
@@ -72,14 +75,19 @@ public:
 
     // A <DataArray> of `values`, `components` per tuple.
     template <class T>
-    void array(std::string_view name, const std::vector<T>& values, int components = 1) {
+    void array(std::string_view name, std::span<const T> values, int components = 1) {
         data_array(8, vtk_type<T>(), name, fmt::format("NumberOfComponents=\"{}\"", components), bytes_of(values));
+    }
+    template <class T>
+    void array(std::string_view name, const std::vector<T>& values, int components = 1) {
+        array(name, std::span<const T>(values), components);
     }
 
     // A <DataArray> of one value per tuple, in FieldData.
     template <class T>
     void field(std::string_view name, const std::vector<T>& values) {
-        data_array(6, vtk_type<T>(), name, fmt::format("NumberOfTuples=\"{}\"", values.size()), bytes_of(values));
+        data_array(6, vtk_type<T>(), name, fmt::format("NumberOfTuples=\"{}\"", values.size()),
+                   bytes_of(std::span<const T>(values)));
     }
 
     // A String <DataArray> in FieldData: each string followed by a zero byte.
@@ -92,14 +100,13 @@ public:
     // Closes the dataset and writes the XML, then the appended data.
     void write(const fs::path& file) {
         fmt::format_to(fmt::appender(xml_), "    </Piece>\n  </{}>\n  <AppendedData encoding=\"raw\">\n   _", type_);
-        std::string bytes(xml_.data(), xml_.size());
-        bytes.append(appended_).append("\n  </AppendedData>\n</VTKFile>\n");
-        write_file_whole(file, bytes);
+        const std::string_view parts[] = {{xml_.data(), xml_.size()}, appended_, "\n  </AppendedData>\n</VTKFile>\n"};
+        write_file_whole(file, parts);
     }
 
 private:
     template <class T>
-    static std::string_view bytes_of(const std::vector<T>& values) {
+    static std::string_view bytes_of(std::span<const T> values) {
         return {reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T)};
     }
 
@@ -305,6 +312,22 @@ void write_vtp_walls(const fs::path& file, const SnapshotData& snapshot) {
     f.array("connectivity", connectivity);
     f.array("offsets", offsets);
     f.text("      </Polys>\n");
+    f.write(file);
+}
+
+void write_vti_fields(const fs::path& file, const analysis::Fields& fields) {
+    const analysis::CgGrid& g = fields.grid;
+    const Vec3 origin = g.node(0, 0, 0);
+    const std::string extent = fmt::format("0 {} 0 {} 0 {}", g.cells[0] - 1, g.cells[1] - 1, g.cells[2] - 1);
+    VtkFile f("ImageData", fmt::format(" WholeExtent=\"{}\" Origin=\"{} {} {}\" Spacing=\"{} {} {}\"", extent,
+                                       origin.x, origin.y, origin.z, g.spacing(0), g.spacing(1), g.spacing(2)));
+    f.text("    <FieldData>\n");
+    f.field("samples", std::vector<std::int64_t>{static_cast<std::int64_t>(fields.samples)});
+    f.text(fmt::format("    </FieldData>\n    <Piece Extent=\"{}\">\n", extent));
+    f.text("      <PointData Scalars=\"solid_fraction\" Vectors=\"velocity\" Tensors=\"stress\">\n");
+    for (const FieldColumn& c : field_columns(fields))
+        f.array(c.name, c.values, static_cast<int>(c.components.size()));
+    f.text("      </PointData>\n");
     f.write(file);
 }
 

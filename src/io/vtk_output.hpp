@@ -26,6 +26,9 @@
 //                wall_surface.hpp; infinite planes and cylinders cut to the
 //                box). Cell data: wall (Int32, index into the scenario's walls,
 //                whose names are in the FieldData String array "wall_names").
+//   NAME.vti     coarse-grained fields (tumble fields): VTK ImageData, its
+//                points the grid's nodes, each field a point-data array
+//                (io/fields_output.hpp lists them).
 //   *.pvd        a ParaView collection: one DataSet entry per (time, file).
 //
 // Both data files carry the simulated time in FieldData "TimeValue" (s),
@@ -39,6 +42,7 @@
 #include <vector>
 
 #include "io/snapshot_data.hpp"
+#include "tumble/analysis/coarse_grain.hpp"
 #include "tumble/sim/simulation.hpp"
 
 namespace tumble::io {
@@ -53,6 +57,9 @@ void write_vtp_contact_network(const std::filesystem::path& file, const Simulati
 
 // Writes the walls of a snapshot to `file` (.vtp), or tumble::Error.
 void write_vtp_walls(const std::filesystem::path& file, const SnapshotData& snapshot);
+
+// Writes coarse-grained fields to `file` (.vti), or tumble::Error.
+void write_vti_fields(const std::filesystem::path& file, const analysis::Fields& fields);
 
 // A ParaView collection file (.pvd) that indexes datasets by time. The
 // index is written at construction (empty) and rewritten completely at every

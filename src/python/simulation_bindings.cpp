@@ -20,6 +20,7 @@
 #include "io/output.hpp"
 #include "io/snapshot_data.hpp"
 #include "io/toml_reader.hpp"
+#include "tumble/analysis/simulation_fields.hpp"
 #include "tumble/sim/contact_network.hpp"
 #include "tumble/sim/health.hpp"
 #include "tumble/sim/simulation.hpp"
@@ -118,6 +119,26 @@ py::dict contact_records(const Simulation& sim) {
                     py::arg("torque_j") = array_of(torque_j, copy), py::arg("normal_force") = array_of(normal_force, copy),
                     py::arg("twisting_couple") = array_of(twisting_couple, copy), py::arg("slip") = array_of(slip, copy),
                     py::arg("angular_slip") = array_of(angular_slip, copy));
+}
+
+// The free grains and the recorded contacts of the last step
+// (analysis::grain_state) as tumble.coarse_grain takes them.
+py::dict grain_state(const Simulation& sim) {
+    const analysis::GrainState s = analysis::grain_state(sim);
+    std::vector<std::int64_t> i, j;
+    std::vector<Vec3> force, branch;
+    for (const analysis::CgContact& c : s.contacts) {
+        i.push_back(static_cast<std::int64_t>(c.i));
+        j.push_back(c.j == analysis::CgContact::wall ? -1 : static_cast<std::int64_t>(c.j));
+        force.push_back(c.force);
+        branch.push_back(c.branch);
+    }
+    const py::handle copy;
+    const py::dict contacts(py::arg("i") = array_of(i, copy), py::arg("j") = array_of(j, copy),
+                            py::arg("force") = array_of(force, copy), py::arg("branch") = array_of(branch, copy));
+    return py::dict(py::arg("positions") = array_of(s.position, copy),
+                    py::arg("velocities") = array_of(s.velocity, copy), py::arg("masses") = array_of(s.mass, copy),
+                    py::arg("radii") = array_of(s.radius, copy), py::arg("contacts") = contacts);
 }
 
 // Runs `sim` for `total` steps, asking until(sim) every check_every steps
@@ -381,6 +402,12 @@ the store to other memory).)");
              "k-th [[wall]]), normal (j to i), overlap (m), force "
              "(on i; j feels -force, N), torque_i, torque_j (N m), normal_force (N), twisting_couple (N m), slip, "
              "angular_slip (the history after the step)")
+        .def("grain_state", &grain_state,
+             "The free grains in the order of their ids and every contact of the last step, recorded "
+             "(set_contact_recording(True) before it), as tumble.coarse_grain takes them: a dict of positions, "
+             "velocities, masses, radii and contacts (i, j: the grains' rows, -1 for a wall or a wall sphere; "
+             "force on i, N; branch from j's centre or the contact point to i's centre, m), so that "
+             "tumble.coarse_grain(**sim.grain_state(), width=...) gives the fields of the state (docs/FIELDS.md)")
         .def(
             "set_motion",
             [](Simulation& s, std::size_t k, double angular_velocity, const std::array<double, 3>& axis_point,

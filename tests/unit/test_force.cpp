@@ -70,7 +70,8 @@ TEST_F(Force, EveryFileEachCommandWritesIsOnTheListItClears) {
     // files that need revolutions after the start-up are written too.
     for (const std::string& command :
          {"analyze --first-revolution 0 " + drum.string(), "analyze --so-far " + drum.string(), "plot " + drum.string(),
-          "render -q --width 16 " + drum.string(), "render -q --width 16 " + run.string()}) {
+          "render -q --width 16 " + drum.string(), "render -q --width 16 " + run.string(),
+          "fields -q --average xyz " + run.string()}) {
         r = tumble(command);
         ASSERT_EQ(r.exit_code, 0) << command << ": " << r.output;
     }

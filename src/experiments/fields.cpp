@@ -1,0 +1,209 @@
+// SPDX-License-Identifier: MIT
+#include "experiments/fields.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "experiments/limits.hpp"
+#include "io/checkpoint.hpp"
+#include "io/fields_output.hpp"
+#include "io/toml_reader.hpp"
+#include "tumble/core/error.hpp"
+
+namespace tumble::experiments {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool averaged(const FieldSettings& s, int axis) { return s.average.find("xyz"[axis]) != std::string::npos; }
+
+// More nodes than this are refused outright (the count must fit the
+// arithmetic long before any memory limit).
+constexpr double max_nodes = 1e12;
+
+}  // namespace
+
+std::string field_settings_problem(const FieldSettings& s) {
+    if (s.width && !(std::isfinite(*s.width) && *s.width > 0.0))
+        return fmt::format("width: the kernel's width must be a finite number > 0 m, got {}", *s.width);
+    if (s.cell && s.cells) return "cell, cells: give the cell size or the cell counts, not both";
+    if (s.cell && !(std::isfinite(*s.cell) && *s.cell > 0.0))
+        return fmt::format("cell: the cell size must be a finite number > 0 m, got {}", *s.cell);
+    for (std::size_t k = 0; k < s.average.size(); ++k)
+        if (std::string("xyz").find(s.average[k]) == std::string::npos || s.average.find(s.average[k]) != k)
+            return "average: the averaged axes are some of x, y and z, each once, got \"" + s.average + "\"";
+    const char* axes = "xyz";
+    for (int k = 0; k < 3; ++k) {
+        if (s.cells) {
+            const double n = (*s.cells)[static_cast<std::size_t>(k)];
+            if (!(n >= 1.0 && n <= max_nodes && n == std::floor(n)))
+                return fmt::format("cells: a whole number >= 1 along every axis, got {} along {}", n, axes[k]);
+            if (averaged(s, k) && n != 1.0)
+                return fmt::format("cells: the averaged axis {} has one cell, got {}", axes[k], n);
+        }
+        if (s.lo && !std::isfinite((*s.lo)[k]))
+            return fmt::format("lo: must be finite, got {} along {}", (*s.lo)[k], axes[k]);
+        if (s.hi && !std::isfinite((*s.hi)[k]))
+            return fmt::format("hi: must be finite, got {} along {}", (*s.hi)[k], axes[k]);
+        if (s.lo && s.hi && !((*s.hi)[k] > (*s.lo)[k]))
+            return fmt::format("hi: must be above lo along every axis, got hi {} <= lo {} along {}", (*s.hi)[k],
+                               (*s.lo)[k], axes[k]);
+    }
+    if (!(std::isfinite(s.max_memory_gib) && s.max_memory_gib >= 0.0))
+        return fmt::format("max_memory_gib: must be a finite number >= 0, got {}", s.max_memory_gib);
+    return {};
+}
+
+double field_memory_bytes(const FieldSettings& s, const analysis::CgGrid& g) {
+    return analysis::cg_memory_bytes(g.nodes()) + (s.vti ? io::fields_file_bytes(g.nodes()) : 0.0);
+}
+
+std::string grid_summary(const FieldSettings& s, const analysis::CgGrid& g) {
+    return fmt::format("{} x {} x {} nodes ({}), {:.3g} MiB", g.cells[0], g.cells[1], g.cells[2], g.nodes(),
+                       field_memory_bytes(s, g) / (1024.0 * 1024.0));
+}
+
+namespace {
+
+// The grid of settings whose lo, hi and width are known.
+analysis::CgSettings complete(const FieldSettings& s, const Vec3& lo, Vec3 hi, double width,
+                              const std::string& memory_option, const Domain* domain = nullptr) {
+    if (const std::string problem = field_settings_problem(s); !problem.empty()) throw Error(problem);
+    analysis::CgSettings out;
+    out.kernel = s.kernel;
+    out.width = width;
+    double nodes = 1.0;
+    std::array<double, 3> count{};
+    for (int k = 0; k < 3; ++k) {
+        const auto axis = static_cast<std::size_t>(k);
+        out.grid.averaged[axis] = averaged(s, k);
+        out.grid.periodic[axis] = out.grid.averaged[axis] && domain && domain->periodic[axis] &&
+                                  lo[k] == domain->lo[k] && hi[k] == domain->hi[k];
+        if (!(hi[k] > lo[k]))
+            throw Error(fmt::format("hi: must be above lo along every axis, got hi {} <= lo {} along {}", hi[k], lo[k],
+                                    "xyz"[k]));
+        if (out.grid.averaged[axis]) count[axis] = 1.0;
+        else if (s.cells) count[axis] = (*s.cells)[axis];
+        else {
+            const double cell = s.cell.value_or(width);
+            count[axis] = std::max(1.0, std::ceil((hi[k] - lo[k]) / cell * (1.0 - 1e-12)));
+            if (count[axis] <= max_nodes) hi[k] = lo[k] + count[axis] * cell;
+        }
+        nodes *= count[axis];
+    }
+    const std::string driver = fmt::format("a grid of {:g} x {:g} x {:g} nodes ({})", count[0], count[1], count[2],
+                                           s.cells ? "cells" : (s.cell ? "cell" : "cell = width"));
+    if (!(nodes <= max_nodes))
+        throw Error(fmt::format("{}: {}, more than any memory holds", s.cells ? "cells" : "cell", driver));
+    for (std::size_t k = 0; k < 3; ++k) out.grid.cells[k] = static_cast<std::size_t>(count[k]);
+    out.grid.lo = lo;
+    out.grid.hi = hi;
+    if (const std::string problem = analysis::cg_settings_problem(out); !problem.empty()) throw Error(problem);
+    check_memory({field_memory_bytes(s, out.grid), driver}, memory_limit_bytes(s.max_memory_gib), "fields", memory_option);
+    return out;
+}
+
+}  // namespace
+
+std::optional<analysis::CgSettings> grid_settings(const FieldSettings& s, const std::string& memory_option) {
+    if (const std::string problem = field_settings_problem(s); !problem.empty()) throw Error(problem);
+    if (!s.lo || !s.hi || !s.width) return std::nullopt;
+    return complete(s, *s.lo, *s.hi, *s.width, memory_option);
+}
+
+analysis::CgSettings grid_settings(const FieldSettings& s, const analysis::CgGrains& grains,
+                                   const std::string& memory_option, const Domain* domain) {
+    if (const std::string problem = field_settings_problem(s); !problem.empty()) throw Error(problem);
+    const std::size_t n = grains.position.size();
+    if (n == 0 && (!s.lo || !s.hi || !s.width))
+        throw Error("lo, hi, width: no grains to take them from; give them");
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+    double radii = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double R = grains.radius[i];
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], grains.position[i][k] - R);
+            hi[k] = std::max(hi[k], grains.position[i][k] + R);
+        }
+        radii += R;
+    }
+    for (int k = 0; k < 3; ++k)
+        if (domain && domain->periodic[static_cast<std::size_t>(k)] && averaged(s, k))
+            lo[k] = domain->lo[k], hi[k] = domain->hi[k];
+    return complete(s, s.lo.value_or(lo), s.hi.value_or(hi), s.width.value_or(radii / static_cast<double>(n)),
+                    memory_option, domain);
+}
+
+namespace {
+
+io::LoadedCheckpoint load_checkpoint(const fs::path& run_directory, const fs::path& file) {
+    const auto max_bytes = static_cast<std::uintmax_t>(memory_limit_bytes(0.0));
+    if (!file.empty()) {
+        std::error_code ec;
+        if (!fs::is_regular_file(file, ec)) throw Error("checkpoint: no such file: " + file.string());
+        io::LoadedCheckpoint loaded;
+        loaded.checkpoint = io::decode_checkpoint(io::read_text_file(file, max_bytes), file.string());
+        loaded.file = file;
+        return loaded;
+    }
+    return io::newest_checkpoint_kind(run_directory, max_bytes).ranks > 1
+               ? io::load_whole_checkpoint(run_directory, max_bytes)
+               : io::load_newest_checkpoint(run_directory, max_bytes);
+}
+
+}  // namespace
+
+RunFields run_fields(const RunFieldsOptions& o, const std::function<void(const std::string&)>& say) {
+    if (const std::string problem = field_settings_problem(o.settings); !problem.empty()) throw Error(problem);
+    if (o.samples < 1) throw Error(fmt::format("samples: at least 1, got {}", o.samples));
+    if (o.samples > 1 && !(std::isfinite(o.every) && o.every > 0.0))
+        throw Error(fmt::format("every: the time between samples must be a finite number > 0 s, got {}", o.every));
+    std::error_code ec;
+    if (!fs::is_directory(o.run_directory, ec))
+        throw Error("run directory: no such directory: " + o.run_directory.string());
+    // A grid given in full is checked, its memory too, before the checkpoint is read.
+    if (const auto early = grid_settings(o.settings, o.memory_option))
+        say("grid " + grid_summary(o.settings, early->grid));
+
+    io::LoadedCheckpoint loaded = load_checkpoint(o.run_directory, o.checkpoint);
+    say("states from " + loaded.file.string());
+    Simulation sim(std::move(loaded.checkpoint.scenario));
+    sim.restore(std::move(loaded.checkpoint.state));
+    const std::int64_t between = o.samples > 1 ? step_count(o.every, sim.dt(), "every") : 1;
+
+    RunFields out;
+    out.checkpoint = loaded.file;
+    std::optional<analysis::FieldAccumulator> sum;
+    for (int k = 0; k < o.samples; ++k) {
+        if (k > 0 && between > 1) {
+            sim.set_contact_recording(false);
+            sim.advance(between - 1);
+        }
+        sim.set_contact_recording(true);
+        sim.step();
+        const analysis::GrainState state = analysis::grain_state(sim);
+        if (!sum) {
+            const analysis::CgSettings settings =
+                grid_settings(o.settings, state.grains(), o.memory_option, &sim.scenario().domain);
+            if (!o.settings.lo || !o.settings.hi || !o.settings.width)
+                say("grid " + grid_summary(o.settings, settings.grid));
+            sum.emplace(settings);
+        }
+        const auto start = std::chrono::steady_clock::now();
+        sum->add(state.grains(), state.contacts);
+        out.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        out.times.push_back(state.time);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    out.fields = std::move(*sum).finish();
+    out.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+}  // namespace tumble::experiments

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: MIT
+// Coarse-grained fields of a run (tumble fields, tumble.fields in Python):
+// the settings as a user gives them, checked and turned into a grid, and the
+// time average over states taken from the run's checkpoint
+// (docs/FIELDS.md).
+//
+// Where the states come from: a run's snapshots hold the grains and the
+// normal force of each grain-grain contact, but not the tangential forces
+// nor the contacts with smooth walls, which the contact stress needs. The
+// fields are therefore taken from the run's newest checkpoint (or a chosen
+// one): its state is restored into the engine and continued in memory, and
+// each sample is one step taken with the contacts recorded, so every
+// contact force is the one the contact law gave (docs/FIELDS.md, "States").
+// Nothing is written into the run directory but the output folder.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "tumble/analysis/coarse_grain.hpp"
+#include "tumble/analysis/simulation_fields.hpp"
+#include "tumble/core/domain.hpp"
+
+namespace tumble::experiments {
+
+// The grid and kernel as given; an unset value takes its default from the
+// grains (grid_settings).
+struct FieldSettings {
+    std::optional<Vec3> lo, hi;   // m; default: the grains' extent, centres +- radius
+    std::optional<double> cell;   // m, cell size along every resolved axis (default: the width)
+    std::optional<std::array<double, 3>> cells;  // cells per axis (instead of cell); 1 on an averaged axis
+    std::string average;          // the averaged axes: "", "x", "yz", ...
+    analysis::CgKernel kernel = analysis::CgKernel::gaussian;
+    std::optional<double> width;  // m; default: the grains' mean radius
+    double max_memory_gib = 0.0;  // the limit (0: half the machine's memory)
+    bool vti = false;             // the fields will be written as .vti: its buffer counts too
+};
+
+// What is wrong with the settings on their own (before any grain is seen),
+// naming the key: "width: ...", "cell: ...", "cells: ...", "average: ...",
+// "hi: ..."; "" if nothing.
+std::string field_settings_problem(const FieldSettings& s);
+
+// The settings with their defaults from the grains, checked
+// (analysis::cg_settings_problem) and the memory of the grid against the
+// limit (limits.hpp, check_memory, naming `memory_option`): tumble::Error
+// with the reason otherwise. With `cell`, hi moves up to a whole number of
+// cells from lo. An averaged axis along which `domain` is periodic takes the
+// domain's extent by default, and is periodic (analysis::CgGrid) where its
+// lo and hi are the domain's.
+analysis::CgSettings grid_settings(const FieldSettings& s, const analysis::CgGrains& grains,
+                                   const std::string& memory_option, const Domain* domain = nullptr);
+// The same when nothing needs the grains (lo, hi, width and the cells all
+// given); none otherwise.
+std::optional<analysis::CgSettings> grid_settings(const FieldSettings& s, const std::string& memory_option);
+
+// The samples of a run directory: `samples` states `every` seconds of
+// simulated time apart, from the checkpoint (empty: the run's newest).
+struct RunFieldsOptions {
+    std::filesystem::path run_directory;
+    std::filesystem::path checkpoint;
+    int samples = 1;
+    double every = 0.01;  // s
+    FieldSettings settings;
+    std::string memory_option = "--max-memory GIB";
+};
+struct RunFields {
+    analysis::Fields fields;
+    std::filesystem::path checkpoint;  // the file the states came from
+    std::vector<double> times;         // s, of the samples
+    double seconds = 0.0;              // the coarse-graining's own time (wall clock), s
+};
+// `say` hears what is about to happen (the checkpoint, the grid and its
+// memory before it is allocated). tumble::Error naming the option or the
+// file for bad settings, a missing directory or checkpoint, before any step.
+RunFields run_fields(const RunFieldsOptions& options, const std::function<void(const std::string&)>& say);
+
+// The memory the fields of grid g need (analysis::cg_memory_bytes, and the
+// .vti file's buffer where s.vti), and the grid's size as said before it
+// is allocated: "NX x NY x NZ nodes (N), MEMORY".
+double field_memory_bytes(const FieldSettings& s, const analysis::CgGrid& g);
+std::string grid_summary(const FieldSettings& s, const analysis::CgGrid& g);
+
+}  // namespace tumble::experiments

@@ -1,0 +1,390 @@
+// SPDX-License-Identifier: MIT
+#include "tumble/analysis/coarse_grain.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+#include "tumble/core/constants.hpp"
+#include "tumble/core/error.hpp"
+#include "tumble/core/isa.hpp"
+
+namespace tumble::analysis {
+
+namespace {
+
+// The kernel reaches 3 widths: beyond, the Gaussian is below 1.1 % of its
+// peak (exp(-4.5)).
+constexpr double reach_in_widths = 3.0;
+
+// Doubles held per node: the accumulator's sums (mass, volume, mass x
+// diameter, momentum 3, kinetic 9, contact 9) and the sample's (mass,
+// momentum 3); finish() adds the velocity, the stress and six scalars.
+constexpr double doubles_per_node = 24 + 4 + 18;
+
+std::string number(double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+}
+
+// a += w t, component by component.
+void add_scaled(Tensor& a, double w, const Tensor& t) {
+    for (std::size_t k = 0; k < 9; ++k) a.c[k] += w * t.c[k];
+}
+
+// The dyad f (x) b: (a, b) = f_a b_b.
+Tensor dyad(const Vec3& f, const Vec3& b) {
+    Tensor t;
+    for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < 3; ++k) t.c[static_cast<std::size_t>(3 * a + k)] = f[a] * b[k];
+    return t;
+}
+
+// The kernel on the grid: W(r) = A f(|r|) for |r| < c = 3w, in the D axes
+// the grid resolves, times 1 / L_k for each averaged axis k (its extent).
+// A makes the integral of W over the D-ball of radius c exactly 1:
+//   Gaussian f = exp(-r^2 / 2w^2):
+//     D = 1: 1/A = sqrt(2 pi) w erf(3 / sqrt 2)
+//     D = 2: 1/A = 2 pi w^2 (1 - e^-4.5)
+//     D = 3: 1/A = 4 pi w^3 (sqrt(pi/2) erf(3 / sqrt 2) - 3 e^-4.5)
+//   Lucy f = (1 + 3u)(1 - u)^3 = 1 - 6u^2 + 8u^3 - 3u^4, u = r / c:
+//     D = 1: A = 5 / (4c);  D = 2: A = 5 / (pi c^2);  D = 3: A = 105 / (16 pi c^3)
+//   D = 0 (every axis averaged): A = 1.
+class GridKernel {
+public:
+    explicit GridKernel(const CgSettings& s) : g_(s.grid), kind_(s.kernel), w_(s.width) {
+        c_ = reach_in_widths * w_;
+        int D = 0;
+        double per_length = 1.0;
+        for (int k = 0; k < 3; ++k) {
+            if (g_.averaged[k]) per_length /= g_.hi[k] - g_.lo[k];
+            else ++D;
+        }
+        const double e = std::exp(-0.5 * reach_in_widths * reach_in_widths);
+        const double erf3 = std::erf(reach_in_widths / std::sqrt(2.0));
+        double A = 1.0;
+        if (kind_ == CgKernel::gaussian) {
+            if (D == 1) A = 1.0 / (std::sqrt(2.0 * pi) * w_ * erf3);
+            if (D == 2) A = 1.0 / (2.0 * pi * w_ * w_ * (1.0 - e));
+            if (D == 3) A = 1.0 / (4.0 * pi * w_ * w_ * w_ * (std::sqrt(0.5 * pi) * erf3 - reach_in_widths * e));
+        } else {
+            if (D == 1) A = 5.0 / (4.0 * c_);
+            if (D == 2) A = 5.0 / (pi * c_ * c_);
+            if (D == 3) A = 105.0 / (16.0 * pi * c_ * c_ * c_);
+        }
+        A_ = A * per_length;
+    }
+
+    // Calls add(node, W(node - x)) for every node where W is not zero, x in
+    // m, W in 1/m^D; nothing if x lies outside [lo, hi) along an averaged axis.
+    template <class Add>
+    void spread(const Vec3& x, Add&& add) {
+        std::array<std::size_t, 3> first{}, count{};
+        for (int k = 0; k < 3; ++k) {
+            std::vector<double>& d2 = d2_[k];
+            std::vector<double>& e = e_[k];
+            d2.clear(), e.clear();
+            if (g_.averaged[k]) {
+                double at = x[k];
+                if (g_.periodic[k]) {
+                    const double L = g_.hi[k] - g_.lo[k];
+                    at -= L * std::floor((at - g_.lo[k]) / L);
+                }
+                if (!(at >= g_.lo[k] && at < g_.hi[k])) return;
+                first[k] = 0, count[k] = 1;
+                d2.push_back(0.0), e.push_back(1.0);
+                continue;
+            }
+            // Nodes at lo + (a + 1/2) h within c of x.
+            const double h = g_.spacing(k);
+            const double from = std::ceil((x[k] - c_ - g_.lo[k]) / h - 0.5);
+            const double to = std::floor((x[k] + c_ - g_.lo[k]) / h - 0.5);
+            const double last = static_cast<double>(g_.cells[k] - 1);
+            if (!(to >= 0.0 && from <= last)) return;  // (also a non-finite x)
+            first[k] = static_cast<std::size_t>(std::max(from, 0.0));
+            count[k] = static_cast<std::size_t>(std::min(to, last)) + 1 - first[k];
+            for (std::size_t a = 0; a < count[k]; ++a) {
+                const double d = g_.lo[k] + (static_cast<double>(first[k] + a) + 0.5) * h - x[k];
+                d2.push_back(d * d);
+                e.push_back(kind_ == CgKernel::gaussian ? std::exp(-0.5 * d * d / (w_ * w_)) : 0.0);
+            }
+        }
+        const double c2 = c_ * c_;
+        for (std::size_t cz = 0; cz < count[2]; ++cz) {
+            for (std::size_t cy = 0; cy < count[1]; ++cy) {
+                const double r2_yz = d2_[2][cz] + d2_[1][cy];
+                if (r2_yz >= c2) continue;
+                const double e_yz = A_ * e_[2][cz] * e_[1][cy];
+                const std::size_t row = first[0] + g_.cells[0] * (first[1] + cy + g_.cells[1] * (first[2] + cz));
+                // The nodes of the row within c of x: |d_x| < sqrt(c^2 - r_yz^2).
+                std::size_t from = 0, to = count[0];
+                if (!g_.averaged[0]) {
+                    const double half = std::sqrt(c2 - r2_yz), h = g_.spacing(0), base = static_cast<double>(first[0]);
+                    from = static_cast<std::size_t>(
+                        std::clamp(std::ceil((x.x - half - g_.lo.x) / h - 0.5) - base, 0.0, static_cast<double>(to)));
+                    to = static_cast<std::size_t>(std::clamp(std::floor((x.x + half - g_.lo.x) / h - 0.5) - base + 1.0,
+                                                             static_cast<double>(from), static_cast<double>(to)));
+                }
+                for (std::size_t cx = from; cx < to; ++cx) {
+                    const double r2 = r2_yz + d2_[0][cx];
+                    if (r2 >= c2) continue;
+                    add(row + cx, kind_ == CgKernel::gaussian ? e_yz * e_[0][cx] : lucy(r2));
+                }
+            }
+        }
+    }
+
+private:
+    double lucy(double r2) const {
+        const double u = std::sqrt(r2) / c_, v = 1.0 - u;
+        return A_ * (1.0 + 3.0 * u) * v * v * v;
+    }
+
+    CgGrid g_;
+    CgKernel kind_;
+    double w_, c_, A_ = 1.0;
+    // Per axis, for the point at hand: each node's squared distance from it
+    // along the axis, and (Gaussian) exp(-d^2 / 2w^2).
+    std::array<std::vector<double>, 3> d2_, e_;
+};
+
+// The sample's velocity V = j / rho carried to x: multilinear interpolation
+// between the nodes around x along the resolved axes (x beyond the outer
+// nodes takes the outer ones), over the nodes that hold mass, their weights
+// renormalised. A linear V is reproduced exactly.
+Vec3 velocity_at(const CgGrid& g, const std::vector<double>& mass, const std::vector<Vec3>& momentum, const Vec3& x) {
+    std::array<std::size_t, 3> a0{}, a1{};
+    std::array<double, 3> t{};
+    for (int k = 0; k < 3; ++k) {
+        if (g.averaged[k] || g.cells[k] == 1) continue;
+        const double u = (x[k] - g.lo[k]) / g.spacing(k) - 0.5;
+        const double last = static_cast<double>(g.cells[k] - 1);
+        const double clamped = std::isfinite(u) ? std::clamp(u, 0.0, last) : 0.0;
+        a0[k] = static_cast<std::size_t>(std::min(std::floor(clamped), last - 1.0));
+        a1[k] = a0[k] + 1;
+        t[k] = clamped - static_cast<double>(a0[k]);
+    }
+    Vec3 sum;
+    double weights = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        double weight = 1.0;
+        std::array<std::size_t, 3> a{};
+        for (int k = 0; k < 3; ++k) {
+            const bool upper = (corner >> k) & 1;
+            if (upper && a1[k] == 0) weight = 0.0;  // an axis with one node: one corner
+            a[k] = upper ? a1[k] : a0[k];
+            weight *= upper ? t[k] : (a1[k] == 0 ? 1.0 : 1.0 - t[k]);
+        }
+        const std::size_t n = a[0] + g.cells[0] * (a[1] + g.cells[1] * a[2]);
+        if (weight == 0.0 || !(mass[n] > 0.0)) continue;
+        sum += (weight / mass[n]) * momentum[n];
+        weights += weight;
+    }
+    return weights > 0.0 ? (1.0 / weights) * sum : Vec3{};
+}
+
+}  // namespace
+
+Vec3 CgGrid::node(std::size_t a, std::size_t b, std::size_t c) const {
+    const std::array<std::size_t, 3> index{a, b, c};
+    Vec3 x;
+    for (int k = 0; k < 3; ++k) x[k] = lo[k] + (static_cast<double>(index[k]) + 0.5) * spacing(k);
+    return x;
+}
+
+std::string cg_settings_problem(const CgSettings& s) {
+    if (!(std::isfinite(s.width) && s.width > 0.0))
+        return "width: the kernel's width must be a finite number > 0 m, got " + number(s.width);
+    const char* axes = "xyz";
+    for (int k = 0; k < 3; ++k) {
+        const std::string axis(1, axes[k]);
+        if (!(std::isfinite(s.grid.lo[k]) && std::isfinite(s.grid.hi[k])))
+            return "lo, hi: must be finite, got " + number(s.grid.lo[k]) + " and " + number(s.grid.hi[k]) + " along " +
+                   axis;
+        if (!(s.grid.hi[k] > s.grid.lo[k]))
+            return "hi: must be above lo along every axis, got hi " + number(s.grid.hi[k]) + " <= lo " +
+                   number(s.grid.lo[k]) + " along " + axis;
+        if (s.grid.cells[k] < 1) return "cells: at least 1 along every axis, got 0 along " + axis;
+        if (s.grid.averaged[k] && s.grid.cells[k] != 1)
+            return "cells: an averaged axis has one cell, got " + std::to_string(s.grid.cells[k]) + " along " + axis;
+        if (s.grid.periodic[k] && !s.grid.averaged[k])
+            return "periodic: only an averaged axis can be periodic, not " + axis;
+    }
+    const double nodes = static_cast<double>(s.grid.cells[0]) * static_cast<double>(s.grid.cells[1]) *
+                         static_cast<double>(s.grid.cells[2]);
+    if (nodes > 1e12) return "cells: " + number(nodes) + " nodes, more than any memory holds";
+    return {};
+}
+
+double cg_memory_bytes(std::size_t nodes) { return doubles_per_node * 8.0 * static_cast<double>(nodes); }
+
+FieldAccumulator::FieldAccumulator(const CgSettings& settings) : s_(settings) {
+    if (const std::string problem = cg_settings_problem(settings); !problem.empty()) throw Error(problem);
+    const std::size_t n = s_.grid.nodes();
+    mass_.assign(n, 0.0), volume_.assign(n, 0.0), mass_diameter_.assign(n, 0.0);
+    momentum_.assign(n, Vec3{});
+    kinetic_.assign(n, Tensor{}), contact_.assign(n, Tensor{});
+    sample_mass_.assign(n, 0.0), sample_momentum_.assign(n, Vec3{});
+}
+
+void FieldAccumulator::add(const CgGrains& grains, std::span<const CgContact> contacts) {
+    const std::size_t N = grains.position.size();
+    if (grains.velocity.size() != N || grains.mass.size() != N || grains.radius.size() != N)
+        throw Error("coarse-graining: the grains' positions, velocities, masses and radii differ in number (" +
+                    std::to_string(N) + ", " + std::to_string(grains.velocity.size()) + ", " +
+                    std::to_string(grains.mass.size()) + ", " + std::to_string(grains.radius.size()) + ")");
+    const auto finite = [](const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    for (std::size_t i = 0; i < N; ++i)
+        if (!finite(grains.position[i]) || !finite(grains.velocity[i]) || !(grains.mass[i] >= 0.0) ||
+            !(grains.radius[i] >= 0.0) || !std::isfinite(grains.mass[i]) || !std::isfinite(grains.radius[i]))
+            throw Error("coarse-graining: grain " + std::to_string(i) +
+                        " has a position, velocity, mass or radius that is not finite, or a negative mass or radius");
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+        const CgContact& c = contacts[k];
+        if (c.i >= N || (c.j != CgContact::wall && c.j >= N))
+            throw Error("coarse-graining: contact " + std::to_string(k) + " names a grain beyond the " +
+                        std::to_string(N) + " given");
+        if (!finite(c.force) || !finite(c.branch))
+            throw Error("coarse-graining: contact " + std::to_string(k) + " has a force or branch that is not finite");
+    }
+    GridKernel W(s_);
+    std::fill(sample_mass_.begin(), sample_mass_.end(), 0.0);
+    std::fill(sample_momentum_.begin(), sample_momentum_.end(), Vec3{});
+
+    // The passes over the grains and contacts run on the processor's widest
+    // vectors (core/isa.hpp): the same numbers on every level.
+    run_for_isa([&] {
+        // Mass, volume and momentum: rho(r) = sum_i m_i W(r - r_i) and so on.
+        for (std::size_t i = 0; i < N; ++i) {
+            const double m = grains.mass[i], R = grains.radius[i];
+            const double V = 4.0 / 3.0 * pi * R * R * R;
+            const Vec3 p = m * grains.velocity[i];
+            W.spread(grains.position[i], [&](std::size_t n, double w) {
+                sample_mass_[n] += m * w;
+                volume_[n] += V * w;
+                mass_diameter_[n] += 2.0 * R * m * w;
+                sample_momentum_[n] += w * p;
+            });
+        }
+        for (std::size_t n = 0; n < mass_.size(); ++n) mass_[n] += sample_mass_[n], momentum_[n] += sample_momentum_[n];
+
+        // The contact stress, sigma_c(r) = sum_contacts f (x) b psi(r), where
+        // psi(r) = int_0^1 W(r - r_i + s b) ds is the kernel along the branch
+        // from r_i (s = 0) to r_i - b (s = 1). Its divergence is
+        // f (W(r - r_i + b) - W(r - r_i)), so that the contacts' sum balances
+        // each grain's contact force: div sigma = rho g at rest, exactly up to
+        // the quadrature. Quadrature: the composite Simpson rule with M panels
+        // of length |b| / M <= w (M = ceil(|b| / w)), points s_q = q / 2M, q =
+        // 0 .. 2M, weights (1, 4, 2, 4, ..., 4, 1) / 6M; its error is at most
+        // 3 (|b| / 2M)^4 / 180 w^4, about 0.1 % of the Gaussian's peak. The points at
+        // s = 0 (at r_i) and s = 1 at the centre of j go with the grains' own
+        // sums below; the others, and a wall's contact point, are spread here.
+        std::vector<Tensor> at_grain(N);
+        for (const CgContact& c : contacts) {
+            const double length = norm(c.branch);
+            const double panels = std::max(1.0, std::ceil(length / s_.width));
+            const Tensor fb = dyad(c.force, c.branch);
+            const double end_weight = 1.0 / (6.0 * panels);
+            add_scaled(at_grain[c.i], end_weight, fb);
+            const Vec3 other_end = grains.position[c.i] - c.branch;
+            const bool at_j = c.j != CgContact::wall && norm(other_end - grains.position[c.j]) <= 1e-9 * length;
+            if (at_j) add_scaled(at_grain[c.j], end_weight, fb);
+            const auto points = static_cast<std::size_t>(2.0 * panels);
+            for (std::size_t q = 1; q <= points; ++q) {
+                if (q == points && at_j) break;
+                const double weight = (q == points ? 1.0 : (q % 2 == 1 ? 4.0 : 2.0)) * end_weight;
+                const Vec3 x = grains.position[c.i] - (static_cast<double>(q) / static_cast<double>(points)) * c.branch;
+                W.spread(x, [&](std::size_t n, double w) { add_scaled(contact_[n], weight * w, fb); });
+            }
+        }
+
+        // The kinetic stress, sum_i m_i v'_i (x) v'_i W(r - r_i) with the
+        // fluctuation v'_i = v_i - V(r_i) from the sample's velocity field, and
+        // the contacts' ends at the grains.
+        for (std::size_t i = 0; i < N; ++i) {
+            const Vec3 u = grains.velocity[i] - velocity_at(s_.grid, sample_mass_, sample_momentum_, grains.position[i]);
+            const Tensor k = dyad(grains.mass[i] * u, u);
+            const Tensor& t = at_grain[i];
+            W.spread(grains.position[i], [&](std::size_t n, double w) {
+                add_scaled(kinetic_[n], w, k);
+                add_scaled(contact_[n], w, t);
+            });
+        }
+    });
+    ++samples_;
+}
+
+Fields FieldAccumulator::finish() && {
+    const std::size_t n = mass_.size();
+    const CgGrid& g = s_.grid;
+    Fields f;
+    f.grid = g;
+    f.samples = samples_;
+    sample_mass_ = {}, sample_momentum_ = {};
+    // The sums over the samples become their means.
+    const double per_sample = samples_ > 0 ? 1.0 / static_cast<double>(samples_) : 0.0;
+    f.density = std::move(mass_), f.solid_fraction = std::move(volume_), f.diameter = std::move(mass_diameter_);
+    f.momentum = std::move(momentum_), f.kinetic_stress = std::move(kinetic_), f.contact_stress = std::move(contact_);
+    f.velocity.resize(n), f.stress.resize(n), f.pressure.resize(n), f.shear_stress.resize(n);
+    f.temperature.resize(n), f.shear_rate.resize(n), f.inertial_number.resize(n), f.friction.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const double mass = f.density[k];
+        f.diameter[k] = mass > 0.0 ? f.diameter[k] / mass : 0.0;
+        f.velocity[k] = mass > 0.0 ? (1.0 / mass) * f.momentum[k] : Vec3{};
+        f.density[k] *= per_sample;
+        f.solid_fraction[k] *= per_sample;
+        f.momentum[k] *= per_sample;
+        for (double& c : f.kinetic_stress[k].c) c *= per_sample;
+        for (double& c : f.contact_stress[k].c) c *= per_sample;
+        add_scaled(f.stress[k], 1.0, f.kinetic_stress[k]);
+        add_scaled(f.stress[k], 1.0, f.contact_stress[k]);
+        f.temperature[k] = mass > 0.0 ? f.kinetic_stress[k].trace() / (3.0 * f.density[k]) : 0.0;
+        const Tensor& s = f.stress[k];
+        const double p = s.trace() / 3.0;
+        const double dxx = s(0, 0) - p, dyy = s(1, 1) - p, dzz = s(2, 2) - p;
+        const double sxy = 0.5 * (s(0, 1) + s(1, 0)), sxz = 0.5 * (s(0, 2) + s(2, 0)), syz = 0.5 * (s(1, 2) + s(2, 1));
+        f.pressure[k] = p;
+        f.shear_stress[k] = std::sqrt(0.5 * (dxx * dxx + dyy * dyy + dzz * dzz) + sxy * sxy + sxz * sxz + syz * syz);
+    }
+    // The strain rate from the velocity gradient G_kl = dV_l / dx_k.
+    const std::array<std::size_t, 3> stride{1, g.cells[0], g.cells[0] * g.cells[1]};
+    for (std::size_t c = 0; c < g.cells[2]; ++c)
+        for (std::size_t b = 0; b < g.cells[1]; ++b)
+            for (std::size_t a = 0; a < g.cells[0]; ++a) {
+                const std::array<std::size_t, 3> at{a, b, c};
+                const std::size_t k = a + stride[1] * b + stride[2] * c;
+                std::array<Vec3, 3> G{};
+                for (int axis = 0; axis < 3; ++axis) {
+                    const std::size_t cells = g.cells[axis];
+                    if (g.averaged[axis] || cells < 2) continue;
+                    const std::size_t lower = at[axis] > 0 ? k - stride[axis] : k;
+                    const std::size_t upper = at[axis] + 1 < cells ? k + stride[axis] : k;
+                    const double span = g.spacing(axis) * static_cast<double>((upper - lower) / stride[axis]);
+                    G[axis] = (1.0 / span) * (f.velocity[upper] - f.velocity[lower]);
+                }
+                // D = (G + G^T) / 2, its deviatoric part D', gamma_dot = sqrt(2 D':D').
+                const double tr = (G[0].x + G[1].y + G[2].z) / 3.0;
+                const double dxx = G[0].x - tr, dyy = G[1].y - tr, dzz = G[2].z - tr;
+                const double dxy = 0.5 * (G[0].y + G[1].x), dxz = 0.5 * (G[0].z + G[2].x), dyz = 0.5 * (G[1].z + G[2].y);
+                const double gamma_dot =
+                    std::sqrt(2.0 * (dxx * dxx + dyy * dyy + dzz * dzz + 2.0 * (dxy * dxy + dxz * dxz + dyz * dyz)));
+                f.shear_rate[k] = gamma_dot;
+                const double p = f.pressure[k];
+                if (p > 0.0 && f.solid_fraction[k] > 0.0) {
+                    const double grain_density = f.density[k] / f.solid_fraction[k];
+                    f.inertial_number[k] = gamma_dot * f.diameter[k] / std::sqrt(p / grain_density);
+                    f.friction[k] = f.shear_stress[k] / p;
+                }
+            }
+    return f;
+}
+
+Fields coarse_grain(const CgSettings& settings, const CgGrains& grains, std::span<const CgContact> contacts) {
+    FieldAccumulator sum(settings);
+    sum.add(grains, contacts);
+    return std::move(sum).finish();
+}
+
+}  // namespace tumble::analysis

@@ -1,0 +1,133 @@
+# SPDX-License-Identifier: MIT
+"""Coarse-grained fields from Python (docs/FIELDS.md): tumble.coarse_grain
+of arrays, tumble.fields of a run directory, and the refusal of bad
+settings naming them."""
+
+import subprocess
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import tumble
+
+
+def lattice(n, a):
+    """The sites of an n^3 simple cubic lattice of spacing a, N x 3."""
+    k = np.arange(n) * a
+    return np.stack(np.meshgrid(k, k, k, indexing="ij"), -1).reshape(-1, 3)
+
+
+def test_a_lattice_from_arrays_has_its_solid_fraction():
+    a = 1e-3
+    x = lattice(12, a)
+    n = len(x)
+    f = tumble.coarse_grain(x, np.zeros((n, 3)), np.full(n, 1e-6), np.full(n, a / 2), lo=[4 * a] * 3,
+                            hi=[7 * a] * 3, cell=a, kernel="lucy", width=a)
+    assert f["solid_fraction"].shape == (3, 3, 3)
+    assert f["velocity"].shape == (3, 3, 3, 3)
+    assert f["stress"].shape == (3, 3, 3, 3, 3)
+    assert np.allclose(f["x"], [4.5e-3, 5.5e-3, 6.5e-3])
+    assert f["samples"] == 1
+    np.testing.assert_allclose(f["solid_fraction"], np.pi / 6, rtol=3e-3)  # tests/unit/test_coarse_grain.cpp
+
+
+def test_a_contact_from_arrays_carries_its_force_times_its_branch():
+    x = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, -1e-3]])
+    contacts = dict(i=np.array([0]), j=np.array([1]), force=np.array([[0.0, 0.0, 2.0]]),
+                    branch=np.array([[0.0, 0.0, 1e-3]]))
+    f = tumble.coarse_grain(x, np.zeros((2, 3)), np.full(2, 1e-6), np.full(2, 5e-4), contacts,
+                            lo=[-2e-3, -2e-3, -2.6e-3], hi=[2e-3, 2e-3, 1.6e-3], cell=1e-4, width=5e-4, kernel="lucy")
+    cell = 1e-4 ** 3
+    total = f["contact_stress"].sum(axis=(0, 1, 2)) * cell
+    np.testing.assert_allclose(total[2, 2], 2e-3, rtol=1e-3)
+    assert abs(total[0, 0]) < 1e-12 and abs(total[0, 2]) < 1e-12
+    assert f["pressure"].max() > 0.0  # compression is positive
+
+
+def test_bad_settings_and_arrays_are_refused_naming_them(tmp_path):
+    x = lattice(2, 1e-3)
+    v, m, R = np.zeros((8, 3)), np.ones(8), np.full(8, 5e-4)
+    with pytest.raises(tumble.Error, match="^width: "):
+        tumble.coarse_grain(x, v, m, R, width=0.0)
+    with pytest.raises(tumble.Error, match="^hi: must be above lo"):
+        tumble.coarse_grain(x, v, m, R, lo=[0, 0, 0], hi=[1, 0, 1])
+    with pytest.raises(tumble.Error, match="^average: "):
+        tumble.coarse_grain(x, v, m, R, average="zz")
+    with pytest.raises(tumble.Error, match="^kernel: "):
+        tumble.coarse_grain(x, v, m, R, kernel="box")
+    with pytest.raises(tumble.Error, match="^positions: "):
+        tumble.coarse_grain(np.zeros((8, 2)), v, m, R)
+    with pytest.raises(tumble.Error, match="^radii: "):
+        tumble.coarse_grain(x, v, m, np.ones(7))
+    with pytest.raises(tumble.Error, match="max_memory_gib"):
+        tumble.coarse_grain(x, v, m, R, lo=[0, 0, 0], hi=[1, 1, 1], cell=1e-3, width=1e-3, max_memory_gib=1)
+    with pytest.raises(tumble.Error, match="grain 0 has a position"):
+        tumble.coarse_grain(x, v, -m, R, lo=[0, 0, 0], hi=[1, 1, 1], width=0.5)
+    with pytest.raises(tumble.Error, match="names a grain beyond"):
+        tumble.coarse_grain(x, v, m, R, dict(i=[0], j=[9], force=[[0, 0, 1]], branch=[[0, 0, 1e-3]]))
+    with pytest.raises(tumble.Error, match="^run directory: no such directory"):
+        tumble.fields(tmp_path / "missing")
+    with pytest.raises(tumble.Error, match="^samples: "):
+        tumble.fields(tmp_path, samples=0)
+
+
+def test_fields_of_a_run_directory(tiny_drum):
+    directory, _ = tiny_drum
+    f = tumble.fields(directory, average="z", samples=2, every=0.005, kernel="lucy")
+    assert f["samples"] == 2
+    assert len(f["times"]) == 2 and f["times"][1] - f["times"][0] == pytest.approx(0.005, rel=0.01)
+    assert f["density"].shape[0] == 1  # z averaged
+    assert np.isfinite(f["stress"]).all() and f["solid_fraction"].max() > 0.1
+    assert str(f["checkpoint"]).endswith(".tck")
+
+
+def test_the_command_line_writes_what_python_computes(tiny_drum, tumble_binary, tmp_path):
+    """tumble fields: fields.csv (pandas) and fields.vti (VTK's own reader)
+    hold what tumble.fields returns for the same settings."""
+    directory, _ = tiny_drum
+    out = tmp_path / "fields"
+    settings = ["--average", "z", "--cell", "0.002", "--samples", "2", "--every", "0.005"]
+    done = subprocess.run([tumble_binary, "fields", str(directory), "-q", "-o", str(out)] + settings,
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    f = tumble.fields(directory, average="z", cell=0.002, samples=2, every=0.005)
+    table = pd.read_csv(out / "fields.csv", float_precision="round_trip")
+    assert len(table) == f["density"].size and (table["samples"] == 2).all()
+    np.testing.assert_array_equal(table["density"].to_numpy(), f["density"].ravel())
+    np.testing.assert_array_equal(table["stress_xz"].to_numpy(), f["stress"][..., 0, 2].ravel())
+    np.testing.assert_array_equal(table["velocity_y"].to_numpy(), f["velocity"][..., 1].ravel())
+    vtk = pytest.importorskip("vtkmodules.vtkIOXML")
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    reader = vtk.vtkXMLImageDataReader()
+    reader.SetFileName(str(out / "fields.vti"))
+    reader.Update()
+    image = reader.GetOutput()
+    assert image.GetDimensions() == tuple(f["density"].shape[::-1])
+    assert image.GetOrigin() == pytest.approx((f["x"][0], f["y"][0], f["z"][0]))
+    points = image.GetPointData()
+    np.testing.assert_array_equal(vtk_to_numpy(points.GetArray("pressure")), f["pressure"].ravel())
+    np.testing.assert_array_equal(vtk_to_numpy(points.GetArray("contact_stress")), f["contact_stress"].reshape(-1, 9))
+
+
+def test_the_fields_of_a_simulation_stepped_in_python():
+    """sim.grain_state() hands tumble.coarse_grain a state's grains and
+    contacts, the walls' too: the contact stress of 40 grains in a walled
+    box, integrated over the box, is the sum of f (x) b over the contacts."""
+    from test_simulation import SCENARIO
+    sim = tumble.Simulation(tumble.Scenario.from_toml(SCENARIO))
+    sim.run(duration=0.1)
+    sim.set_contact_recording(True)
+    sim.step()
+    state = sim.grain_state()
+    contacts = state["contacts"]
+    assert state["positions"].shape == (40, 3) and len(contacts["i"]) > 0
+    assert (contacts["j"] == -1).any()  # the box's walls
+    w = 0.0018
+    L = 0.052  # the box (5 cm) and the wall contacts' points on its faces, averaged over x and y
+    f = tumble.coarse_grain(**state, lo=[-L / 2, -L / 2, -3.5 * w], hi=[L / 2, L / 2, 0.05 + 3.5 * w],
+                            cell=w / 4, average="xy", width=w, kernel="lucy")
+    dz = f["z"][1] - f["z"][0]
+    integral = f["contact_stress"].sum(axis=(0, 1, 2)) * dz * L * L
+    expected = np.einsum("ka,kb->ab", contacts["force"], contacts["branch"])
+    np.testing.assert_allclose(integral, expected, rtol=1e-3, atol=1e-3 * np.abs(expected).max())
