@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# tumble against LAMMPS on the long flowing drum of issue 13
+# tumble against LAMMPS on the long flowing drum
 # (docs/BENCHMARKS.md, "LAMMPS on the same drum"). Run from the repository root:
 #
 #   bash bench/compare_drum.sh                  # 1 and 2 cores, 3 rounds, medians
