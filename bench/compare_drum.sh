@@ -149,7 +149,7 @@ read -r jiffies0 steal0 <<< "$(cpu_jiffies)"
 cpu=$(lscpu 2>/dev/null | sed -n 's/^Model name:[[:space:]]*//p' | head -1)
 family=$(lscpu 2>/dev/null | sed -n 's/^CPU family:[[:space:]]*//p' | head -1)
 model=$(lscpu 2>/dev/null | sed -n 's/^Model:[[:space:]]*//p' | head -1)
-echo "== tumble vs LAMMPS, the long flowing drum (issue 13)"
+echo "== tumble vs LAMMPS, the long flowing drum"
 echo "machine : ${cpu:-unknown CPU} (family ${family:-?} model ${model:-?}), $(nproc) logical cores, $(uname -sr)"
 echo "date    : $(date -u '+%Y-%m-%d %H:%M:%S UTC')   load average at start: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "lammps  : $(dpkg-query -W -f='${Package} ${Version}' lammps 2>/dev/null || echo "$lammps_bin")  deck: bench/peers/lammps_drum.in"
