@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Two builds of tumble against each other on the long flowing drum: is a
-# change faster, and does it give the same numbers? (docs/BENCHMARKS-LOG.md,
+# change faster, and does it give the same numbers? (studies/performance/LOG.md,
 # "Two builds in short alternated rounds"). Run from anywhere:
 #
 #   bash bench/compare_builds.sh OLD NEW                # 30 rounds, 1 thread

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# tumble against LAMMPS on the long flowing drum of issue 13
+# tumble against LAMMPS on the long flowing drum
 # (docs/BENCHMARKS.md, "LAMMPS on the same drum"). Run from the repository root:
 #
 #   bash bench/compare_drum.sh                  # 1 and 2 cores, 3 rounds, medians
@@ -106,7 +106,7 @@ python3 "$drum" data "$out/bed/snapshots/000000.csv" "$out/bed/drum.data" >&2
 # ------------------------------------------------------------------ runners
 # tumble's threads bound to cores, as mpirun binds the peers' ranks (OpenMPI
 # binds each of up to 2 ranks to a core by default): unbound, two threads ran
-# the long drum 1 to 3.5 % slower on an Intel Xeon (docs/BENCHMARKS-LOG.md,
+# the long drum 1 to 3.5 % slower on an Intel Xeon (studies/performance/LOG.md,
 # "Threads bound to cores"). OMP_PROC_BIND=false measures them unbound.
 bind=(env "OMP_PROC_BIND=${OMP_PROC_BIND:-close}" "OMP_PLACES=${OMP_PLACES:-cores}")
 dt="" skin=""  # tumble's step and neighbour skin, from its first run
@@ -149,7 +149,7 @@ read -r jiffies0 steal0 <<< "$(cpu_jiffies)"
 cpu=$(lscpu 2>/dev/null | sed -n 's/^Model name:[[:space:]]*//p' | head -1)
 family=$(lscpu 2>/dev/null | sed -n 's/^CPU family:[[:space:]]*//p' | head -1)
 model=$(lscpu 2>/dev/null | sed -n 's/^Model:[[:space:]]*//p' | head -1)
-echo "== tumble vs LAMMPS, the long flowing drum (issue 13)"
+echo "== tumble vs LAMMPS, the long flowing drum"
 echo "machine : ${cpu:-unknown CPU} (family ${family:-?} model ${model:-?}), $(nproc) logical cores, $(uname -sr)"
 echo "date    : $(date -u '+%Y-%m-%d %H:%M:%S UTC')   load average at start: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "lammps  : $(dpkg-query -W -f='${Package} ${Version}' lammps 2>/dev/null || echo "$lammps_bin")  deck: bench/peers/lammps_drum.in"

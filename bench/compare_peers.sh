@@ -120,7 +120,7 @@ results="$out/results.jsonl"
 # ------------------------------------------------------------------ runners
 # tumble's threads bound to cores, as mpirun binds the peers' ranks (OpenMPI
 # binds each of up to 2 ranks to a core by default): unbound, two threads ran
-# the long drum 1 to 3.5 % slower on an Intel Xeon (docs/BENCHMARKS-LOG.md,
+# the long drum 1 to 3.5 % slower on an Intel Xeon (studies/performance/LOG.md,
 # "Threads bound to cores"). OMP_PROC_BIND=false measures them unbound.
 bind=(env "OMP_PROC_BIND=${OMP_PROC_BIND:-close}" "OMP_PLACES=${OMP_PLACES:-cores}")
 run_tumble() {  # size round threads

@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(g++ cmake make pkg-config libtomlplusplus-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev python3 python3-vtk9 python3-matplotlib python3-numpy openmpi-bin libopenmpi-dev libpng-dev ffmpeg
           pybind11-dev python3-pybind11 python3-dev python3-pytest python3-pandas
-          nlohmann-json3-dev zlib1g-dev "$@")
+          nlohmann-json3-dev zlib1g-dev mkdocs "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -684,7 +684,7 @@ def _band_rows(path):
 
 
 def fig_bands(run, w):
-    """Axial bands (docs/BANDS.md): the kymograph C(z, N) with the merges, the radial
+    """Axial bands (docs/BAND-ANALYSIS.md): the kymograph C(z, N) with the merges, the radial
     core per slice (phi in the inner minus the outer third about the bed's centre)
     against z and N, the band count against log N, the dominant wavelength, the
     contrast, the radial core of the whole bed per sample and per block of N, the
@@ -815,7 +815,7 @@ def fig_bands(run, w):
 
 def _plot_edge_blur(ax, path, small, large):
     """D of the start's boundaries per block of N at u = 0.25, 0.5, 0.75
-    (band_edges.csv; docs/BANDS.md, Boltzmann-Matano): one colour per
+    (band_edges.csv; docs/BAND-ANALYSIS.md, Boltzmann-Matano): one colour per
     composition, one marker per boundary. A constant D is Fickian blur."""
     ax.set_xlabel("revolutions N (block means)")
     ax.set_ylabel("D (m$^2$ per revolution)")

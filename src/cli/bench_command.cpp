@@ -223,7 +223,7 @@ int long_drum_bench(const BenchOptions& options) {
     // none) and the tangential spring held at the friction limit (shear =
     // spring: tangential mindlin; the twisting couple held at its limit, as
     // twisting marshall), at the bed's step, so that the two codes do the
-    // same work on the same bed (docs/BENCHMARKS-LOG.md, "The same law in both
+    // same work on the same bed (studies/performance/LOG.md, "The same law in both
     // codes").
     const bool peer_law = options.law == "peer";
     std::optional<Simulation> shared;

@@ -240,10 +240,10 @@ int main(int argc, char** argv) {
     std::optional<double> until_band_change;
     drum_cmd->add_option("--until-band-change", until_band_change,
                          "End the rotation early once the band count has differed from the start's for this many "
-                         "revolutions (a prepared start's bands merged or dissolved; docs/BANDS.md; default 0: off)");
+                         "revolutions (a prepared start's bands merged or dissolved; docs/BAND-ANALYSIS.md; default 0: off)");
     drum_cmd->add_option("--samples", samples, "Samples per revolution (default 20)");
     drum_cmd->add_option("--bins", bins, "Axial bins of the concentration profile (default 12)");
-    drum_cmd->add_option("--band-bins", band_bins, "Axial bins of the band profile (default 0: L / 4 mm; docs/BANDS.md)");
+    drum_cmd->add_option("--band-bins", band_bins, "Axial bins of the band profile (default 0: L / 4 mm; docs/BAND-ANALYSIS.md)");
     drum_cmd->add_option("--snapshots", snapshots, "Particle snapshots per revolution (default 8; 0: none)");
     drum_cmd->add_option("--length", length, "Inner length of the drum, m (default 0.12)");
     drum_cmd->add_option("--diameter", diameter, "Inner diameter of the drum, m (default 0.08)");
@@ -401,9 +401,9 @@ int main(int argc, char** argv) {
     bool so_far = false;
     analyze_cmd->add_flag("--so-far", so_far,
                           "The bands of the revolutions written so far, of a run stopped, unfinished or going on, into "
-                          "DIR/so_far/ (docs/BANDS.md); the run's own files untouched")
+                          "DIR/so_far/ (docs/BAND-ANALYSIS.md); the run's own files untouched")
         ->excludes(first_revolution_opt);
-    // The band segmentation's thresholds (analysis::BandOptions; docs/BANDS.md);
+    // The band segmentation's thresholds (analysis::BandOptions; docs/BAND-ANALYSIS.md);
     // checked, naming the option, before anything is read.
     tumble::analysis::BandOptions band_options;
     analyze_cmd->add_option("--band-z-enter", band_options.z_enter,

@@ -55,7 +55,7 @@ std::vector<io::DrumComponent> components_of(const ParticleStore& p, const std::
 }
 
 // Band samples (band_profile.csv) per revolution, at most: 4 keep the file
-// of a 500-revolution drum of 160 bins to about 9 MB (docs/BANDS.md), and
+// of a 500-revolution drum of 160 bins to about 9 MB (docs/BAND-ANALYSIS.md), and
 // resolve bands that live for tens of revolutions.
 constexpr int band_samples_per_revolution = 4;
 

@@ -18,7 +18,7 @@ namespace tumble::experiments {
 // scenario (Simulation). A flowing bed rebuilds its list often (every 25
 // steps of the long drum at 0.2 R); at 0.3 R it rebuilds less often for
 // more candidate pairs, and runs 4 % faster on 1 and 2 threads; 0.35 R is
-// no faster (docs/BENCHMARKS-LOG.md, "The drum's own skin").
+// no faster (studies/performance/LOG.md, "The drum's own skin").
 inline constexpr double drum_skin_per_radius = 0.3;
 
 // The drum of the settings: build_drum_scenario() with the settings' walls,

@@ -21,7 +21,7 @@ int resolve_threads(int requested);
 // "none" (OpenMP's default: threads may move between cores) or the policy,
 // "close", "spread", "master" or "true". For benchmark reports: two threads
 // bound to two cores ran the long drum 1 to 3.5 % faster than unbound ones on
-// an Intel Xeon (docs/BENCHMARKS-LOG.md "Threads bound to cores").
+// an Intel Xeon (studies/performance/LOG.md "Threads bound to cores").
 std::string thread_binding();
 
 }  // namespace tumble::experiments

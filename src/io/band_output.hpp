@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The band files of a drum run directory (docs/BANDS.md):
+// The band files of a drum run directory (docs/BAND-ANALYSIS.md):
 //   band_profile.csv    written during the rotation: per band sample (4 per
 //                       revolution and the last), five rows, one per
 //                       quantity, each with one column per axial bin

@@ -48,12 +48,12 @@ struct DrumSettings {
     double revolutions = 12.0;         // after the bed has settled (the MSD's D needs 5 blocks of 2 after N = 1)
     // If > 0: end the rotation early, once the band count has differed from
     // its value at the start for this many revolutions
-    // (analysis::band_count_changed; docs/BANDS.md): a prepared start's
+    // (analysis::band_count_changed; docs/BAND-ANALYSIS.md): a prepared start's
     // bands merged, lost an end band or dissolved. 0: every revolution.
     double until_band_change = 0.0;
     int samples_per_revolution = 20;
     int profile_bins = 12;
-    int band_bins = 0;                 // axial bins of the band profile (docs/BANDS.md); 0: L / 4 mm
+    int band_bins = 0;                 // axial bins of the band profile (docs/BAND-ANALYSIS.md); 0: L / 4 mm
     int snapshots_per_revolution = 8;  // per-particle snapshots (snapshots/NNNNNN.csv, 000000 at N = 0;
                                        // the grains' axial MSD needs them); 0: none
     double settle_speed = 0.01;        // m/s: settled when the rms grain speed is below this

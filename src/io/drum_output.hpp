@@ -155,7 +155,7 @@ struct AnalyzeOptions {
     // spins up and reaches its steady flow within the first revolution at
     // the default speed; more at high speed).
     double first_revolution = 1.0;
-    // The thresholds of the band segmentation (docs/BANDS.md; tumble analyze
+    // The thresholds of the band segmentation (docs/BAND-ANALYSIS.md; tumble analyze
     // --band-z-enter ...), checked by analysis::check_band_options.
     analysis::BandOptions bands;
 };

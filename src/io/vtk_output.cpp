@@ -133,7 +133,7 @@ private:
             appended_.resize(at + packed);
             // zlib's fastest level: the particles' doubles barely compress
             // at any level, and the default one took 2 % of a drum run for
-            // 1 % smaller files (docs/BENCHMARKS-LOG.md, "Time by phase").
+            // 1 % smaller files (studies/performance/LOG.md, "Time by phase").
             if (compress2(reinterpret_cast<Bytef*>(&appended_[at]), &packed,
                           reinterpret_cast<const Bytef*>(block.data()), static_cast<uLong>(block.size()),
                           Z_BEST_SPEED) != Z_OK)

@@ -169,7 +169,7 @@ void bind_drum(py::module_& m) {
         py::arg("band_min_contrast_leave") = band_defaults.min_contrast_leave,
         py::arg("band_smoothing") = band_defaults.smoothing, py::arg("band_min_width") = band_defaults.min_width,
         "Analyses a finished drum run again (summary.json, summary.txt), with the band thresholds of tumble analyze's "
-        "--band-* options (docs/BANDS.md); returns the summary text");
+        "--band-* options (docs/BAND-ANALYSIS.md); returns the summary text");
 }
 
 }  // namespace tumble::python

@@ -9,7 +9,7 @@ analysis (N, kind, and the start band it took away: its species and width,
 from the band edges of drum_run.toml), and the bands at the end. Where a
 band vanished, its fading time over the square of its width, in
 revolutions per cm^2: a diffusive fading time grows as the width squared
-(docs/BANDS.md, "Five bands with large ends").
+(studies/bands/LOG.md, "Five bands with large ends").
 
     python3 studies/bands/events.py
     python3 studies/bands/events.py --runs B_k5_small_seed1 B_k5_large_seed1

@@ -5,7 +5,7 @@
 For each A run of runs.txt, its band analysis: bands.json of a finished run
 (out/NAME), else that of `tumble analyze --so-far` (out/NAME/so_far; made
 first with --analyze). One table per speed, one row per block of N (the
-analysis' octaves, 4-8, 8-16, ..., docs/BANDS.md) and run: the share of small
+analysis' octaves, 4-8, 8-16, ..., docs/BAND-ANALYSIS.md) and run: the share of small
 grains in the 2 cm next to each cap and in the bed's radial core, each as
 phi - phi0 with its 95 % block interval (the revolution means as a
 correlated series; "-" where the block holds fewer than 3 independent
@@ -14,7 +14,7 @@ seeds both reach: whether their intervals overlap.
 
 Two seeds are two samples: their spread is shown, never turned into an
 interval (a Student's t with one degree of freedom is 12.7 times the
-spread; docs/BANDS.md says what two seeds can and cannot tell).
+spread; docs/BAND-ANALYSIS.md says what two seeds can and cannot tell).
 
     python3 studies/bands/experiment_a.py --analyze   # analyze --so-far each unfinished run, then the tables
     python3 studies/bands/experiment_a.py             # from the bands.json already written

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""The band study's figures across runs (docs/BANDS.md, "Experiment A complete").
+"""The band study's figures across runs (studies/bands/LOG.md, "Experiment A complete").
 
 Each run's own figure (fig_bands.png of `tumble analyze`) shows one run;
 these put the runs of an experiment side by side:

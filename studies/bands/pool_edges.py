@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """The boundaries' blur pooled over the finished runs of the band study.
 
-For experiment B's question (docs/BANDS.md, "How fast the start's boundaries
+For experiment B's question (docs/BAND-ANALYSIS.md, "How fast the start's boundaries
 blur"): do small grains enter a band of large grains faster than large
 grains enter a band of small ones, D(0.25) > D(0.75)? Each finished run's
 bands.json (in out/NAME, else in kept/NAME.tar.gz) gives D per boundary at

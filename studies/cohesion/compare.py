@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """The cohesion control: the paper's W = 0.2 J/m^2 against W = 0, per run
-and pooled over the seeds (docs/BANDS.md, "Cohesion").
+and pooled over the seeds (studies/bands/LOG.md, "Cohesion").
 
 For each finished run (out/NAME, else the copy kept in results/NAME): the
 radial core, phi_core - phi_periphery (the small grains' volume fraction in

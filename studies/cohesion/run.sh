@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# The cohesion control of the band study (docs/BANDS.md, "Cohesion"):
+# The cohesion control of the band study (studies/bands/LOG.md, "Cohesion"):
 # the paper's grains with the paper's surface energy W = 0.2 J/m^2 and
 # without attraction (W = 0), the rest of the law the same, in a short
 # drum with a periodic axis (the paper's 8 cm cross-section, 16 cm long,
@@ -11,7 +11,7 @@
 #
 #   bash studies/cohesion/run.sh            # the runs not finished, one after the other, into studies/cohesion/out/
 #   TUMBLE=/path/to/tumble bash studies/cohesion/run.sh
-#   python3 studies/cohesion/compare.py     # the table (docs/BANDS.md, "Cohesion")
+#   python3 studies/cohesion/compare.py     # the table (studies/bands/LOG.md, "Cohesion")
 #
 # Each finished run's settings, series and analysis (not its snapshots or
 # checkpoints) are copied to results/NAME, which git keeps.

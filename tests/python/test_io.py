@@ -30,7 +30,7 @@ def test_drum_run_directory(tiny_drum):
 def test_band_files_of_a_run(tiny_drum):
     directory, _ = tiny_drum
     run = tumble.io.Run(directory)
-    # A drum 3 cm long: 8 band bins of about 4 mm (docs/BANDS.md).
+    # A drum 3 cm long: 8 band bins of about 4 mm (docs/BAND-ANALYSIS.md).
     assert run.info["band_bins"] == 8
     N, phi = run.band_profile()
     assert phi.shape == (len(N), 8) and N[0] == 0.0 and len(N) >= 2

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The band analysis end to end (docs/BANDS.md): a small two-component drum
+// The band analysis end to end (docs/BAND-ANALYSIS.md): a small two-component drum
 // writes band_profile.csv during the rotation, and its analysis the band
 // counts (bands.csv, bands.json, summary.json) and the kymograph;
 // `tumble analyze` recomputes them byte for byte; a bad --band-bins is

@@ -97,7 +97,7 @@ class Run:
         quantity small_fraction (phi, the kymograph C(z, N)), grains,
         small_grains, bed_core_fraction or bed_periphery_fraction (phi in the
         inner and outer third about the bed's centre) per axial bin
-        (docs/BANDS.md); bin b is centred at z = -L/2 + (b + 1/2) L / bins.
+        (docs/BAND-ANALYSIS.md); bin b is centred at z = -L/2 + (b + 1/2) L / bins.
         Samples written by an earlier tumble have core_fraction and
         wall_fraction instead, ranked from the drum axis: each quantity has
         the samples that hold it."""
@@ -123,7 +123,7 @@ class Run:
     @property
     def band_edges(self):
         """band_edges.csv: per boundary of the start and block of 10 revolutions, the Matano plane and the
-        interdiffusion D at three compositions, D_u25, D_u50, D_u75 (docs/BANDS.md, Boltzmann-Matano)."""
+        interdiffusion D at three compositions, D_u25, D_u50, D_u75 (docs/BAND-ANALYSIS.md, Boltzmann-Matano)."""
         return self.table("band_edges.csv")
 
     @property

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Axial bands of a two-species drum (issue 16; docs/BANDS.md): the
+// Axial bands of a two-species drum (issue 16; docs/BAND-ANALYSIS.md): the
 // composition along the axis sampled over the rotation, C(z, N) (the
 // "kymograph" of band studies), and what is read from it: the bands, their
 // number, edges, contrast and the species at the ends, the dominant
@@ -88,7 +88,7 @@ struct BandSample {
 // drum, two or three grains) and lie a grain apart otherwise; the axis is
 // 0.6 R (24 mm, three large grains) from the centroid, and the grains
 // nearest it are those of the free surface, the periphery of the flow
-// (docs/BANDS.md). The centroid needs no velocities and no surface fit.
+// (docs/BAND-ANALYSIS.md). The centroid needs no velocities and no surface fit.
 // It is pooled over the whole drum, not taken per bin: the ~40 grains of a
 // bin would place it only to about 2.5 mm (the bed's spread over
 // sqrt(40)), half a small grain; the price is the bed's tilt within a grain
@@ -188,7 +188,7 @@ BandHistory analyze_band_field(const BandField& field, const BandOptions& option
 // samples, the last sample back at the start's count, or a change younger
 // than `hold`). A merge, an end band lost, bands dissolving or (from a mixed
 // start) banding beginning all count. What `tumble drum --until-band-change
-// HOLD` ends a run on (docs/BANDS.md); the counts are those of
+// HOLD` ends a run on (docs/BAND-ANALYSIS.md); the counts are those of
 // analyze_band_field, whose hysteresis makes each sample's count depend on
 // the earlier samples only, so the run sees the counts its analysis reports.
 double band_count_changed(const BandHistory& history, double hold);

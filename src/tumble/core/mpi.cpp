@@ -57,7 +57,7 @@ Session::Session(int& argc, char**& argv) {
     // OpenMPI's shared-memory transport sends a message above its eager
     // limit (4 kB) by a rendezvous and a copy by the kernel: a ghost update
     // of the long drum on 2 ranks (18.6 kB each way) took 22 to 26 us a step
-    // (median), 13 to 17 us with the limit at 64 kB (docs/BENCHMARKS-LOG.md,
+    // (median), 13 to 17 us with the limit at 64 kB (studies/performance/LOG.md,
     // "MPI"). Raised unless the user set it (mpirun --mca sets the same
     // variables); other MPI libraries ignore them.
     setenv("OMPI_MCA_btl_vader_eager_limit", "65536", 0);

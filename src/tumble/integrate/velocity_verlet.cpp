@@ -76,7 +76,7 @@ std::size_t kick_range(IndexRange r, const std::int32_t* __restrict motion, cons
 // r has motion k, as the drum's wall spheres) there is no choice to make:
 // GCC then runs the loop on several particles per instruction, which it
 // does not with the choice (the loads it would mask), nor without the
-// motion copied (docs/BENCHMARKS-LOG.md, "The wall's motion on several spheres
+// motion copied (studies/performance/LOG.md, "The wall's motion on several spheres
 // per instruction, the pairs apart zeroed without a look"). With Check,
 // returns how many of them are now farther than sqrt(limit2) from at_build.
 template <bool All, bool Check>

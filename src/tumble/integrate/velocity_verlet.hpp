@@ -28,7 +28,7 @@ namespace tumble {
 // anew (neighbor/verlet_list.hpp, needs_rebuild()). The loops that move the
 // particles count those gone farther as they move them: a pass of its own
 // over every particle after them cost 2 % of a step on the long drum
-// (docs/BENCHMARKS-LOG.md, "The list's check in the integrator's pass").
+// (studies/performance/LOG.md, "The list's check in the integrator's pass").
 // Without positions (at_build null) nothing is counted.
 struct DisplacementLimit {
     const Vec3* at_build = nullptr;  // per array index, m

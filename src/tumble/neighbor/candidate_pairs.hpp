@@ -67,7 +67,7 @@ private:
     // parts' vectors sharing a line (96 bytes each) had the threads take
     // it from each other at every pair found, which made the search 1.5
     // times slower per thread on two threads than on one
-    // (docs/BENCHMARKS-LOG.md, "The search's parts on one cache line").
+    // (studies/performance/LOG.md, "The search's parts on one cache line").
     struct alignas(64) Part {
         std::vector<std::uint32_t> first, second;
         std::vector<std::uint8_t> image;

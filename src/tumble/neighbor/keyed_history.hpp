@@ -40,7 +40,7 @@ inline std::vector<KeyedHistory> keyed_histories(const ParticleStore& p, const P
 // out, the others keep their order. A table of these is read in the order of
 // a list found on p (by first index, which is spatial once p is sorted),
 // where one keyed by global ids is read at random: the lookups of a rebuild
-// across ranks took 19 ns a pair that way (docs/BENCHMARKS-LOG.md, "Time by
+// across ranks took 19 ns a pair that way (studies/performance/LOG.md, "Time by
 // phase").
 inline std::vector<KeyedHistory> keyed_by_place(const std::vector<KeyedHistory>& records, const ParticleStore& p,
                                                 std::size_t ids) {

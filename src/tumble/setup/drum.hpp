@@ -265,7 +265,7 @@ std::optional<DrumFillProblem> drum_fill_problem(const DrumGeometry& g, const st
 // K equal widths; for 3 bands, small at the ends, 1/4, 1/2, 1/4. (Equal
 // widths with an odd K put twice the grain volume per length into the
 // middle species' bands, and the bed levels itself by an axial flow in the
-// first ten revolutions: docs/BANDS.md.)
+// first ten revolutions: docs/BAND-ANALYSIS.md.)
 std::vector<double> band_widths(const DrumFill& fill);
 
 // The bands of an arrangement along z, left to right, as boundaries z_0 =

@@ -110,7 +110,7 @@ inline void copy_inputs(const ParticleStore& p, const PairList& pairs, std::size
 // Pass 1: pairs [k, end) of the list into the block until it is full; the
 // pairs found apart drop their history. Returns where it stopped.
 //
-// Two ways, the same result (docs/BENCHMARKS-LOG.md "The gather in two sweeps,
+// Two ways, the same result (studies/performance/LOG.md "The gather in two sweeps,
 // the scatter without a branch"):
 //   Branch: a pair apart is passed over by a branch, a touching one copied
 //     in at once. Best where the branch predicts well: where (nearly)
@@ -159,7 +159,7 @@ inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std:
     if constexpr (!Branch) {
         // One contact at a time: GCC 12 runs this loop on two contacts per
         // instruction, loading each lane on its own and keeping the arrays'
-        // addresses on the stack, which is slower (docs/BENCHMARKS-LOG.md, "The
+        // addresses on the stack, which is slower (studies/performance/LOG.md, "The
         // kicks in one pass, the gather's copy one contact at a time").
         // The empty asm hides how l runs, so the loop is not vectorised
         // (GCC 12 has no pragma for that).
@@ -170,7 +170,7 @@ inline std::size_t gather_contacts(const ParticleStore& p, PairList& pairs, std:
         // The pairs apart: every one's history zeroed, without reading it
         // first (rarely is there one to drop: the contacts that ended this
         // step); the stores cost less than the loads and the test
-        // (docs/BENCHMARKS-LOG.md, "The wall's motion on several spheres per
+        // (studies/performance/LOG.md, "The wall's motion on several spheres per
         // instruction, the pairs apart zeroed without a look").
         for (std::size_t a = 0; a < apart; ++a) pairs.set_history(b.apart[a], ContactHistory{});
     }

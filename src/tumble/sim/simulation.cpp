@@ -239,7 +239,7 @@ std::size_t Simulation::kinematic_split() const { return kinematic_begin_ >= fre
 // range). Each thread moves the wall spheres from the first its part of
 // the pairs touches (wall_from_), so that its pairs read wall spheres it
 // moved itself, and kicks the share of the grains that evens out the
-// phase (docs/BENCHMARKS-LOG.md, "Where two threads lose their tenth" and "The
+// phase (studies/performance/LOG.md, "Where two threads lose their tenth" and "The
 // wall moved by the thread that reads it").
 std::array<IndexRange, 2> Simulation::own_parts(const Team& team, int c) const {
     const std::size_t split = kinematic_split();
@@ -267,7 +267,7 @@ std::size_t Simulation::free_boundary(int c, int chunks, std::size_t split) cons
     // The wall spheres' shares are uneven (wall_from_): the free particles
     // even out the whole, a wall sphere moved costing wall_weight (on the
     // long drum moving the 5,229 wall spheres takes as long as kicking the
-    // 6,481 grains twice: docs/BENCHMARKS-LOG.md, "The wall moved by the
+    // 6,481 grains twice: studies/performance/LOG.md, "The wall moved by the
     // thread that reads it").
     constexpr double wall_weight = 1.0;
     const double total = cost(split) + wall_weight * static_cast<double>(owned_ - split);
