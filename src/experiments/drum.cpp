@@ -587,12 +587,13 @@ void require_drum_run(const std::string& directory, const std::string& command) 
 
 std::string analyze_drum(const std::string& directory, const io::AnalyzeOptions& options) {
     analysis::check_band_options(options.bands);
-    // A scenario's run, or no run at all, first (a drum stopped while it
-    // settled has no drum_run.toml yet: it is unfinished, below).
+    // No run at all, then (once the run is this process's to read) a
+    // scenario's run; a drum stopped while it settled has no drum_run.toml
+    // yet: it is unfinished, below.
     const fs::path dir(directory);
-    if (!fs::exists(dir / "drum_run.toml") && (fs::exists(dir / "run.json") || !fs::is_directory(dir)))
-        require_drum_run(directory, "analyze");
+    if (!fs::is_directory(dir)) require_drum_run(directory, "analyze");
     const io::RunLock lock(directory);
+    if (!fs::exists(dir / "drum_run.toml") && fs::exists(dir / "run.json")) require_drum_run(directory, "analyze");
     // A stopped or interrupted run: its series end early, and a summary of
     // them would look like that of a finished run (tumble sweep takes it so).
     if (io::resumable(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0))))

@@ -129,7 +129,7 @@ TEST_F(BandRun, SmallDrumWritesTheKymographAndBandCounts) {
                                 std::pair{",bed_periphery_fraction,", ",wall_fraction,"}})
             old.replace(old.find(from), std::string(from).size(), to);
     write("drum/band_profile.csv", old);
-    const auto mixed = tumble_run("analyze " + out.string());
+    const auto mixed = tumble_run("analyze --band-report " + out.string());
     ASSERT_EQ(mixed.exit_code, 0) << mixed.output;
     EXPECT_NE(mixed.output.find("2 of the " + std::to_string(samples) + " samples of band_profile.csv were measured "
                                 "from the drum axis"),
