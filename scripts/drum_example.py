@@ -26,7 +26,7 @@ import subprocess
 import sys
 import tempfile
 
-SOURCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+SOURCE = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 DOC = os.path.join(SOURCE, 'docs', 'DRUM.md')
 BEGIN, END = "<!-- drum-example: begin -->", "<!-- drum-example: end -->"
 COMMAND = ["drum", "--out", "drum-out", "--force", "--progress-every", "0"]

@@ -6,4 +6,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh tumble
-exec build/tumble drum --out drum-out --force "$@"
+exec build/tumble drum --force "$@"  # into drum-out/, tumble drum's default, unless --out says otherwise

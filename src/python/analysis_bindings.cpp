@@ -66,7 +66,10 @@ void bind_analysis(py::module_& m) {
             options.first_revolution = first_revolution;
             const double used = block.value_or(io::drum_msd_block(frames, info, options));
             const analysis::MsdEstimate e = io::drum_msd(frames, info, component, options, block.value_or(0.0));
-            const auto value = [](const io::Json& j) { return j.is_null() ? py::object(py::none()) : py::cast(j.get<double>()); };
+            // A D as summary.json has it: None where it is null there.
+            const auto value = [](const io::Json& j) {
+                return j.is_null() ? py::object(py::none()) : py::cast(j.get<double>());
+            };
             return py::dict(py::arg("D") = value(io::determined_value(e.D, e.determined)),
                             py::arg("D_best_estimate") = value(io::best_estimate(e.D, e.determined)),
                             py::arg("D_lo") = e.interval.lo, py::arg("D_hi") = e.interval.hi,
