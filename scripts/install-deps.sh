@@ -10,16 +10,22 @@ for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if [ ${#missing[@]} -gt 0 ]; then
-  # apt-get's messages go to a log, shown if it fails; the screen says what is happening.
+  # apt-get's messages go to a log, shown if it fails; the screen says, a
+  # line per phase, what is happening and how long it took.
   log=$(mktemp /tmp/tumble-install-deps.XXXXXX.log)
-  echo "tumble: installing ${#missing[@]} Debian packages with apt-get (a few minutes; log: $log): ${missing[*]}" >&2
   if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
-  if ! { $SUDO apt-get update -q && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q \
-           --no-install-recommends "${missing[@]}"; } >"$log" 2>&1; then
+  start=$SECONDS
+  fail() {
     tail -n 20 "$log" >&2
     echo "tumble: apt-get failed (above: the end of $log)" >&2
     exit 1
-  fi
-  echo "tumble: installed the packages" >&2
+  }
+  echo "tumble: ${#missing[@]} Debian packages are missing: ${missing[*]}" >&2
+  echo "tumble: apt-get update: reading the package lists (log: $log)" >&2
+  $SUDO apt-get update -q >"$log" 2>&1 || fail
+  echo "tumble: apt-get install: downloading and setting up the ${#missing[@]} packages and what they need" \
+       "(on a fresh Debian 12 several hundred packages: minutes, more on a slow network; log: $log)" >&2
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}" >>"$log" 2>&1 || fail
+  echo "tumble: installed the packages in $(( (SECONDS - start) / 60 )) min $(( (SECONDS - start) % 60 )) s" >&2
   rm -f "$log"
 fi

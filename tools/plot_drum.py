@@ -275,6 +275,12 @@ class Run:
     def __init__(self, directory):
         if not os.path.isdir(directory):
             raise InputError(f"run directory not found: {directory}")
+        if not os.path.isfile(os.path.join(directory, "drum_run.toml")) and \
+                os.path.isfile(os.path.join(directory, "run.json")):
+            raise InputError(f"{directory} is a run of a scenario (tumble run: it has run.json), not of tumble drum; "
+                             "the figures are drawn from a drum run directory (it has drum_run.toml). A scenario "
+                             "run's files are read as they are: time_series.csv and snapshots/*.csv with numpy or "
+                             "pandas, particles.pvd in ParaView, and tumble render DIR draws a movie")
         self.dir = directory
         self.config = read_toml(self.path("drum_run.toml"))
         self.series = read_csv(self.path("drum_series.csv"))
@@ -864,11 +870,21 @@ def _plot_blocks(ax, blocks, key, colour, marker, label, shift=0.0):
     return True
 
 
+def bands_reported(run):
+    """Whether the run's summary reports bands (a banded start, a watch on the band count, bands that formed);
+    a summary from before it said so: yes."""
+    bands = (run.summary or {}).get("bands") or {}
+    return bands.get("reported", True)
+
+
 def do_run(args):
     run = Run(args.dir)
     w = Writer(args.out or os.path.join(args.dir, "figures"))
-    for make in (fig_setup, fig_z, fig_profiles, fig_energy, fig_depth, fig_msd, fig_collapse, fig_bed_structure,
-                 fig_bands):
+    makers = [fig_setup, fig_z, fig_profiles, fig_energy, fig_depth, fig_msd, fig_collapse, fig_bed_structure]
+    # The band figure for a run with bands, or when asked (--band-report).
+    if args.band_report or bands_reported(run):
+        makers.append(fig_bands)
+    for make in makers:
         make(run, w)
     return w
 
@@ -1130,6 +1146,8 @@ def main(argv=None):
     p = sub.add_parser("run", help="figures of one drum run directory")
     p.add_argument("dir")
     p.add_argument("--out", help="figure directory (default DIR/figures)")
+    p.add_argument("--band-report", action="store_true",
+                   help="draw fig_bands even for a run without bands (default: only when the summary reports bands)")
     p = sub.add_parser("sweep", help="figures of a sweep table (tools/README.md)")
     p.add_argument("table")
     p.add_argument("--out", help="figure directory (default: figures/ beside the table)")

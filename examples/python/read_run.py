@@ -18,9 +18,13 @@ print(run.snapshot(-1).describe().loc[["mean", "std"], ["x", "y", "z", "vx", "vy
 for k, component in enumerate(run.components):
     N, z = run.mean_z(k)
     hogg = run.fit_hogg(k, first_revolution=0.0)
-    msd = run.msd(k, first_revolution=0.0, block=0.2)
+    # The run's own D (summary.txt's headline): the same estimator and lag window.
+    msd = run.msd(k)
+    if msd["determined"]:
+        msd_text = f"MSD D = {msd['D']:.3g} m^2/rev, 95 % [{msd['D_lo']:.3g}, {msd['D_hi']:.3g}]"
+    else:
+        msd_text = f"MSD D not determined: {msd['note']}"
     print(f"{component['name']}: <z> from {z[0] * 1e3:+.2f} to {z[-1] * 1e3:+.2f} mm; "
-          f"Hogg D = {hogg['D']:.3g} m^2/rev ({'determined' if hogg['determined'] else hogg['note']}); "
-          f"MSD D = {msd['D']:.3g} m^2/rev ({'determined' if msd['determined'] else msd['note']})")
+          f"Hogg D = {hogg['D']:.3g} m^2/rev ({'determined' if hogg['determined'] else hogg['note']}); {msd_text}")
 summary = run.summary
 print("summary.json keys:", ", ".join(sorted(summary)))

@@ -87,8 +87,11 @@ int analyze_command(const std::string& directory, const io::AnalyzeOptions& opti
 // The figures (tools/plot_drum.py MODE INPUTS... [--out OUT]); mode "run"
 // (a drum run directory), "compare" (several) or "sweep" (a sweep table).
 // Returns the script's exit code (2: bad input, 3: no python3/matplotlib).
+// A directory of "run" or "compare" that is not a drum run's is refused
+// first (experiments::require_drum_run). band_report: the band figure even
+// for a run without bands.
 int plot_command(const std::string& mode, const std::vector<std::string>& inputs, const std::string& out,
-                 bool quiet = false);
+                 bool quiet = false, bool band_report = false);
 
 struct RenderOptions {
     std::string directory;     // a run directory of tumble drum or tumble run

@@ -16,8 +16,8 @@ namespace {
 int with_figures(const experiments::DrumOutcome& outcome, bool quiet) {
     if (outcome.exit_code == 0 && outcome.plot && mpi::rank() == 0 &&
         plot_command("run", {outcome.directory.string()}, "", quiet) != 0)
-        fmt::print(stderr, "tumble drum: warning: the figures could not be drawn (tumble plot {})\n",
-                   outcome.directory.string());
+        fmt::print(stderr, "tumble drum: warning: the figures could not be drawn ({} plot {})\n",
+                   experiments::program_name(), outcome.directory.string());
     return outcome.exit_code;
 }
 

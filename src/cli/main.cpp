@@ -142,6 +142,8 @@ int main(int argc, char** argv) {
     // no message and the file cut; ignored, the write fails with EFBIG and
     // its writer names the file and the reason ("File too large").
     std::signal(SIGXFSZ, SIG_IGN);
+    // The messages that suggest a command name the program as it was invoked.
+    if (argc > 0 && argv[0] != nullptr) tumble::experiments::set_program_name(argv[0]);
     CLI::App app{"tumble: discrete-element simulation of visco-elastic spheres (Kohring's contact model)"};
     app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
     app.require_subcommand(1);
@@ -417,6 +419,11 @@ int main(int argc, char** argv) {
     analyze_cmd->add_option("--band-smoothing", band_options.smoothing,
                             "Bins of the running mean that decides the sign of the deviation (default 3)");
     analyze_cmd->add_option("--band-min-width", band_options.min_width, "A band's least width in bins (default 2)");
+    bool analyze_band_report = false;
+    analyze_cmd->add_flag("--band-report", analyze_band_report,
+                          "Print the band analysis even for a run without bands (by default only a banded start, "
+                          "--until-band-change, or bands that formed during the run print it; its files are written "
+                          "either way)");
 
     std::vector<std::string> plot_inputs;
     std::string plot_out;
@@ -425,6 +432,10 @@ int main(int argc, char** argv) {
     plot_cmd->add_option("directories", plot_inputs, "Drum run directories (several with --compare)")->required();
     plot_cmd->add_flag("--compare", plot_compare, "Overlay <z>(N) of several runs (the paper's figs. 2 and 4)");
     plot_cmd->add_option("-o,--out", plot_out, "Where the figures go (default DIR/figures)");
+    bool plot_band_report = false;
+    plot_cmd->add_flag("--band-report", plot_band_report,
+                       "Draw the band figure (fig_bands) even for a run without bands (by default only for a run "
+                       "whose summary reports bands)");
 
     RenderOptions render;
     CLI::App* render_cmd = app.add_subcommand(
@@ -531,9 +542,10 @@ int main(int argc, char** argv) {
                 std::replace(option.begin(), option.end(), '_', '-');
                 return option;
             });
-            return analyze_command(analyze_dir, {first_revolution, band_options}, so_far);
+            return analyze_command(analyze_dir, {first_revolution, band_options, analyze_band_report}, so_far);
         }
-        if (plot_cmd->parsed()) return plot_command(plot_compare ? "compare" : "run", plot_inputs, plot_out);
+        if (plot_cmd->parsed())
+            return plot_command(plot_compare ? "compare" : "run", plot_inputs, plot_out, false, plot_band_report);
         if (sweep_cmd->parsed()) return sweep_command(sweep);
         if (fields_cmd->parsed()) {
             FieldSettings& f = fields.run.settings;

@@ -30,9 +30,13 @@ std::string plot_script() {
 
 }  // namespace
 
-int plot_command(const std::string& mode, const std::vector<std::string>& inputs, const std::string& out, bool quiet) {
+int plot_command(const std::string& mode, const std::vector<std::string>& inputs, const std::string& out, bool quiet,
+                 bool band_report) {
+    if (mode == "run" || mode == "compare")
+        for (const std::string& directory : inputs) experiments::require_drum_run(directory, "plot");
     std::vector<std::string> arguments{"python3", plot_script(), mode};
     arguments.insert(arguments.end(), inputs.begin(), inputs.end());
+    if (band_report && mode == "run") arguments.push_back("--band-report");
     if (!out.empty()) {
         arguments.push_back("--out");
         arguments.push_back(out);

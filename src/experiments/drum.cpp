@@ -570,24 +570,47 @@ DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool qui
     return loop.run(checkpoint.record.numbers("snapshot_times"));
 }
 
+void require_drum_run(const std::string& directory, const std::string& command) {
+    const fs::path dir(directory);
+    std::error_code ec;
+    if (fs::exists(dir / "drum_run.toml", ec)) return;
+    const std::string what = program_name() + " " + command + " takes the directory of a " + program_name() +
+                             " drum run (it has drum_run.toml)";
+    if (!fs::is_directory(dir, ec)) throw Error(directory + ": no such directory; " + what);
+    if (fs::exists(dir / "run.json", ec))
+        throw Error(directory + " is a run of a scenario (" + program_name() + " run: it has run.json), not of " +
+                    program_name() + " drum; " + what + ". A scenario run's files are read as they are: "
+                    "time_series.csv and snapshots/*.csv with numpy or pandas (tumble.io.Run in Python), "
+                    "particles.pvd in ParaView, and " + program_name() + " render " + directory + " draws a movie");
+    throw Error(directory + ": not a drum run, or one stopped before its rotation began (no drum_run.toml); " + what);
+}
+
 std::string analyze_drum(const std::string& directory, const io::AnalyzeOptions& options) {
     analysis::check_band_options(options.bands);
+    // No run at all, then (once the run is this process's to read) a
+    // scenario's run; a drum stopped while it settled has no drum_run.toml
+    // yet: it is unfinished, below.
+    const fs::path dir(directory);
+    if (!fs::is_directory(dir)) require_drum_run(directory, "analyze");
     const io::RunLock lock(directory);
+    if (!fs::exists(dir / "drum_run.toml") && fs::exists(dir / "run.json")) require_drum_run(directory, "analyze");
     // A stopped or interrupted run: its series end early, and a summary of
     // them would look like that of a finished run (tumble sweep takes it so).
     if (io::resumable(directory, static_cast<std::uintmax_t>(memory_limit_bytes(0.0))))
-        throw Error(directory + ": the run is unfinished (its newest checkpoint is not at its end); finish it with "
-                                "tumble resume " + directory + ", which analyses it");
+        throw Error(directory + ": the run is unfinished (its newest checkpoint is not at its end); finish it with " +
+                                program_name() + " resume " + directory + ", which analyses it");
     // One stopped before its first checkpoint has none to say so: then only
     // its summary says that it finished.
     if (io::checkpoint_files(directory).empty() && !fs::exists(fs::path(directory) / "summary.json"))
         throw Error(directory + ": the run is unfinished (no checkpoint and no summary.json: it stopped before its "
                                 "first checkpoint); run it again");
+    require_drum_run(directory, "analyze");
     return io::analyze_drum_run(directory, options);
 }
 
 std::string analyze_bands_so_far(const std::string& directory, const analysis::BandOptions& options) {
     analysis::check_band_options(options);
+    require_drum_run(directory, "analyze --so-far");
     // The run may be going on (its process holds the run's lock): then what
     // it is writing is left out. One --so-far at a time: the lock of so_far/.
     const std::optional<io::RunLock> run = io::RunLock::if_free(directory);

@@ -67,6 +67,11 @@ DrumOutcome run_drum(const DrumRunOptions& options);
 DrumOutcome resume_drum(io::Checkpoint checkpoint, const std::filesystem::path& directory, bool quiet,
                         double progress_every = default_progress_every, double revolutions = 0.0);
 
+// Throws tumble::Error unless `directory` holds a drum run (drum_run.toml),
+// saying what `command` (e.g. "analyze") takes instead: for a run of tumble
+// run (run.json), that its files are read as they are.
+void require_drum_run(const std::string& directory, const std::string& command);
+
 // The analysis of a finished run directory again (summary.json,
 // summary.txt), returned as text; options: the start-up left out of the
 // fits, the band thresholds. Refuses bad band thresholds (before anything

@@ -71,6 +71,19 @@ Checkpointer::Due Checkpointer::due(std::int64_t step, std::int64_t steps_done) 
     return policy_.every_minutes > 0.0 && minutes >= policy_.every_minutes ? Due::yes : Due::no;
 }
 
+namespace {
+std::string& program_name_storage() {
+    static std::string name = "tumble";
+    return name;
+}
+}  // namespace
+
+void set_program_name(std::string name) {
+    if (!name.empty()) program_name_storage() = std::move(name);
+}
+
+const std::string& program_name() { return program_name_storage(); }
+
 void Checkpointer::write(const Simulation& sim, const io::Checkpoint& checkpoint) {
     check_health(sim);
     const io::CheckpointRank who = checkpoint_rank(sim);
@@ -84,9 +97,9 @@ void Checkpointer::write(const Simulation& sim, const io::Checkpoint& checkpoint
 
 int Checkpointer::stopped(std::int64_t step) const {
     if (mpi::rank() == 0)  // shared among ranks, every rank stops at the same step
-        fmt::print(stderr, "tumble: {} at step {}; checkpoint written. Continue with: tumble resume {}\n",
+        fmt::print(stderr, "tumble: {} at step {}; checkpoint written. Continue with: {} resume {}\n",
                stop_signalled() ? "stopped by a signal" : "stopped as asked (--stop-at-step)", step,
-               directory_.string());
+               program_name(), directory_.string());
     return exit_stopped;
 }
 
@@ -107,8 +120,8 @@ Simulation restore_simulation(io::Checkpoint& checkpoint, const std::filesystem:
     const std::int64_t ranks = checkpoint.record.has("ranks") ? checkpoint.record.integer("ranks") : 1;
     if (ranks != mpi::size() && ranks != 1)
         throw Error(checkpoint.record.source + ": written by a run on " + std::to_string(ranks) +
-                    " ranks; resume it on as many (mpirun -np " + std::to_string(ranks) +
-                    " tumble resume; a run on several ranks goes on only on as many, a run on one on any number)");
+                    " ranks; resume it on as many (mpirun -np " + std::to_string(ranks) + " " + program_name() +
+                    " resume; a run on several ranks goes on only on as many, a run on one on any number)");
     Simulation sim(std::move(checkpoint.scenario), static_cast<int>(checkpoint.record.integer("threads")),
                    mpi::size() > 1 ? Ranks::world : Ranks::one);
     sim.restore(std::move(checkpoint.state));

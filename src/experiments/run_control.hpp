@@ -32,6 +32,12 @@ struct CheckpointPolicy {
     std::int64_t stop_at_step = 0;  // write a checkpoint and stop at this step of the simulation; 0: never
 };
 
+// The program as the user invoked it (argv[0]: build/tumble until it is
+// installed, tumble once on the PATH), for the commands that messages
+// suggest ("continue with: build/tumble resume DIR"); "tumble" until set.
+void set_program_name(std::string name);
+const std::string& program_name();
+
 // The run became unphysical; what() is the diagnostic (main exits with exit_blew_up).
 class BlewUp : public Error {
 public:

@@ -249,8 +249,8 @@ SweepOutcome run_sweep(const SweepRunOptions& o) {
     }
     if (stop_signalled()) {
         fmt::print(stderr, "{}tumble sweep: stopped by a signal; the running points wrote checkpoints. Continue "
-                           "with the same command: tumble sweep {} -o {}\n",
-                   who, o.sweep_file, dir.string());
+                           "with the same command: {} sweep {} -o {}\n",
+                   who, program_name(), o.sweep_file, dir.string());
         outcome.stopped = true;
         outcome.exit_code = exit_stopped;
         return outcome;

@@ -305,9 +305,10 @@ Json band_json(const analysis::Band& b, const std::string& rich, const std::stri
 void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInfo& info, std::ostringstream& text,
                       Json& summary, const analysis::BandOptions& options,
                       const std::vector<analysis::GrainFrame>& frames, const analysis::MsdEstimate* small_msd,
-                      bool growing) {
+                      BandReport report, bool growing) {
     if (info.band_bins <= 0 || !fs::exists(dir / "band_profile.csv")) {
-        text << "  bands: not measured (no band_profile.csv: a run of tumble before the band analysis)\n";
+        if (report == BandReport::always)
+            text << "  bands: not measured (no band_profile.csv: a run of tumble before the band analysis)\n";
         return;
     }
     const BandRecord record = read_band_profile(dir / "band_profile.csv", info, growing);
@@ -385,7 +386,13 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
                               {"z", e.z}, {"before", static_cast<std::int64_t>(e.before)},
                               {"after", static_cast<std::int64_t>(e.after)}});
     }
+    // Whether the band lines go into the text: see BandReport.
+    const std::size_t at_start = samples ? h.samples.front().bands.size() : 0;
+    const bool banded = info.arrangement == "bands" || info.arrangement == "boundaries" ||
+                        info.until_band_change > 0.0 || std::isfinite(onset) || most > at_start;
+    const bool reported = report == BandReport::always || banded;
     Json bands{{"species", small},
+               {"reported", reported},
                {"other", large},
                {"bins", info.band_bins},
                {"bin_width", info.inner_length / info.band_bins},
@@ -439,66 +446,69 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
     write_json_file(out / "bands.json", bands);
     summary["bands"] = bands;
 
-    text << fmt::format("  bands of {} (fraction phi by volume in {} bins of {:.3g} mm, {} samples; band_profile.csv, "
+    std::ostringstream lines;
+    lines << fmt::format("  bands of {} (fraction phi by volume in {} bins of {:.3g} mm, {} samples; band_profile.csv, "
                         "bands.csv, bands.json, kymograph.png):\n",
                         small, info.band_bins, 1e3 * info.inner_length / info.band_bins, samples);
-    if (samples == 0) return;
-    const analysis::BandProfile& first = h.samples.front();
-    const analysis::BandProfile& last = h.samples.back();
-    const auto describe = [&](const analysis::BandProfile& p) {
-        if (p.bands.empty())
-            return fmt::format("no bands (contrast, mean |phi - phi0|, {:.3f})", p.contrast);
-        std::string s = fmt::format("{} bands (", p.bands.size());
-        for (std::size_t i = 0; i < p.bands.size(); ++i) {
-            if (i) s += ' ';
-            s += p.bands[i].rich ? 'S' : 'L';
-        }
-        s += fmt::format("; S: rich in {}), band contrast {:.3f}", small, p.band_contrast);
-        if (field.periodic) return s + " (periodic axis: no end bands)";
-        return s + fmt::format(", ends {} {:.2f} / {} {:.2f}", p.bands.front().rich ? small : large,
-                               p.bands.front().small_fraction, p.bands.back().rich ? small : large,
-                               p.bands.back().small_fraction);
-    };
-    text << fmt::format("    N = {:.3g}: {}\n    N = {:.3g}: {}; dominant wavelength {:.3g} m ({:.0f} % of the "
-                        "power)\n",
-                        first.revolutions, describe(first), last.revolutions, describe(last),
-                        last.dominant_wavelength, 100.0 * last.dominant_share);
-    if (most == 0)
-        text << fmt::format("    no bands at any sample (a band needs a mean deviation of {:.3g} standard errors of a "
-                            "random mix and {:.3g} in phi)\n",
-                            options.z_enter, options.min_contrast);
-    else
-        text << fmt::format("    at most {} bands; {} events ({} merges; bands.json){}\n", most, h.events.size(), merges,
-                            std::isfinite(onset) ? fmt::format("; bands appear in the mixed bed at N = {:.3g}", onset)
-                                                 : std::string());
-    text << fmt::format("    radial core (phi in the inner and outer third about the bed's centre): {:.3f}, {:.3f} "
-                        "at N = {:.3g} ({:.3f}, {:.3f} at N = {:.3g})\n",
-                        core.back(), periphery.back(), last.revolutions, core.front(), periphery.front(),
-                        first.revolutions);
-    if (record.axis_samples > 0)
-        text << fmt::format("    radial core: {} of the {} samples of band_profile.csv were measured from the drum "
-                            "axis by an earlier tumble (rows core_fraction, wall_fraction) and are left out "
-                            "(NaN)\n",
-                            record.axis_samples, samples);
-    if (!field.periodic) {  // the layers next to the caps, over the last block of N
-        const analysis::EndLayers layers = analysis::end_layers(field, layer_bins);
-        const auto left = analysis::difference_blocks(field.revolutions, layers.left, layers.mean);
-        const auto right = analysis::difference_blocks(field.revolutions, layers.right, layers.mean);
-        // A block worth fewer than 3 independent revolutions has no interval (NaN bounds).
-        auto with_interval = [](const analysis::DifferenceBlock& b) {
-            return std::isfinite(b.interval.lo) && std::isfinite(b.interval.hi)
-                       ? fmt::format("{:+.3f} [{:+.3f}, {:+.3f}]", b.difference, b.interval.lo, b.interval.hi)
-                       : fmt::format("{:+.3f} (no interval: fewer than 3 independent revolutions)", b.difference);
+    if (samples > 0) {
+        const analysis::BandProfile& first = h.samples.front();
+        const analysis::BandProfile& last = h.samples.back();
+        const auto describe = [&](const analysis::BandProfile& p) {
+            if (p.bands.empty())
+                return fmt::format("no bands (contrast, mean |phi - phi0|, {:.3f})", p.contrast);
+            std::string s = fmt::format("{} bands (", p.bands.size());
+            for (std::size_t i = 0; i < p.bands.size(); ++i) {
+                if (i) s += ' ';
+                s += p.bands[i].rich ? 'S' : 'L';
+            }
+            s += fmt::format("; S: rich in {}), band contrast {:.3f}", small, p.band_contrast);
+            if (field.periodic) return s + " (periodic axis: no end bands)";
+            return s + fmt::format(", ends {} {:.2f} / {} {:.2f}", p.bands.front().rich ? small : large,
+                                   p.bands.front().small_fraction, p.bands.back().rich ? small : large,
+                                   p.bands.back().small_fraction);
         };
-        if (!left.empty() && !right.empty())
-            text << fmt::format("    end layers ({:.3g} cm at each cap), phi - phi0 over N = {:.3g} to {:.3g}: left "
-                                "{}, right {} (95 %, revolution means correlated over {:.2g} and {:.2g} revolutions; "
-                                "bands.json end_layers)\n",
-                                100.0 * layer_width, left.back().from, last.revolutions, with_interval(left.back()),
-                                with_interval(right.back()), left.back().correlation, right.back().correlation);
+        lines << fmt::format("    N = {:.3g}: {}\n    N = {:.3g}: {}; dominant wavelength {:.3g} m ({:.0f} % of the "
+                            "power)\n",
+                            first.revolutions, describe(first), last.revolutions, describe(last),
+                            last.dominant_wavelength, 100.0 * last.dominant_share);
+        if (most == 0)
+            lines << fmt::format("    no bands at any sample (a band needs a mean deviation of {:.3g} standard errors of a "
+                                "random mix and {:.3g} in phi)\n",
+                                options.z_enter, options.min_contrast);
+        else
+            lines << fmt::format("    at most {} bands; {} events ({} merges; bands.json){}\n", most, h.events.size(), merges,
+                                std::isfinite(onset) ? fmt::format("; bands appear in the mixed bed at N = {:.3g}", onset)
+                                                     : std::string());
+        lines << fmt::format("    radial core (phi in the inner and outer third about the bed's centre): {:.3f}, {:.3f} "
+                            "at N = {:.3g} ({:.3f}, {:.3f} at N = {:.3g})\n",
+                            core.back(), periphery.back(), last.revolutions, core.front(), periphery.front(),
+                            first.revolutions);
+        if (record.axis_samples > 0)
+            lines << fmt::format("    radial core: {} of the {} samples of band_profile.csv were measured from the drum "
+                                "axis by an earlier tumble (rows core_fraction, wall_fraction) and are left out "
+                                "(NaN)\n",
+                                record.axis_samples, samples);
+        if (!field.periodic) {  // the layers next to the caps, over the last block of N
+            const analysis::EndLayers layers = analysis::end_layers(field, layer_bins);
+            const auto left = analysis::difference_blocks(field.revolutions, layers.left, layers.mean);
+            const auto right = analysis::difference_blocks(field.revolutions, layers.right, layers.mean);
+            // A block worth fewer than 3 independent revolutions has no interval (NaN bounds).
+            auto with_interval = [](const analysis::DifferenceBlock& b) {
+                return std::isfinite(b.interval.lo) && std::isfinite(b.interval.hi)
+                           ? fmt::format("{:+.3f} [{:+.3f}, {:+.3f}]", b.difference, b.interval.lo, b.interval.hi)
+                           : fmt::format("{:+.3f} (no interval: fewer than 3 independent revolutions)", b.difference);
+            };
+            if (!left.empty() && !right.empty())
+                lines << fmt::format("    end layers ({:.3g} cm at each cap), phi - phi0 over N = {:.3g} to {:.3g}: left "
+                                    "{}, right {} (95 %, revolution means correlated over {:.2g} and {:.2g} revolutions; "
+                                    "bands.json end_layers)\n",
+                                    100.0 * layer_width, left.back().from, last.revolutions, with_interval(left.back()),
+                                    with_interval(right.back()), left.back().correlation, right.back().correlation);
+        }
+        lines << "    " << describe_crossing(crossing, small_msd, small, large) << "\n";
+        lines << "    " << describe_edges(edges, small_msd, small, large) << "\n";
     }
-    text << "    " << describe_crossing(crossing, small_msd, small, large) << "\n";
-    text << "    " << describe_edges(edges, small_msd, small, large) << "\n";
+    if (reported) text << lines.str();
 }
 
 
@@ -518,7 +528,7 @@ std::string analyze_bands_so_far(const fs::path& dir, const analysis::BandOption
     const SnapshotCoverage coverage = snapshot_coverage(frames);
     text << coverage.describe();
     summary["snapshots"] = coverage.json();
-    analyze_band_run(dir, out, info, text, summary, options, frames, nullptr, running);
+    analyze_band_run(dir, out, info, text, summary, options, frames, nullptr, BandReport::always, running);
     write_file_atomically(out / "summary.txt", text.str());
     return text.str();
 }

@@ -69,10 +69,20 @@ BandRecord read_band_profile(const std::filesystem::path& file, const DrumRunInf
 // inner bands of large grains is counted (analysis/band_crossing.hpp);
 // small_msd: the small grains' D from their MSD, to compare it with
 // (nullptr: not compared).
+// report: when its lines go into `text` (the files are written either way).
+// bands.json and summary.json's "bands" say whether they did ("reported"),
+// which tumble plot follows for the band figure.
+enum class BandReport {
+    always,       // tumble analyze --bands, --so-far
+    when_banded,  // a run with bands: a banded start (bands, boundaries), a watch
+                  // on the band count (--until-band-change), bands that formed
+                  // in the bed (an onset), or more bands than at the start
+};
 void analyze_band_run(const std::filesystem::path& directory, const std::filesystem::path& out,
                       const DrumRunInfo& info, std::ostringstream& text, Json& summary,
                       const analysis::BandOptions& options, const std::vector<analysis::GrainFrame>& frames,
-                      const analysis::MsdEstimate* small_msd, bool growing = false);
+                      const analysis::MsdEstimate* small_msd, BandReport report = BandReport::always,
+                      bool growing = false);
 
 // The band analysis of the revolutions written so far, of a run stopped or
 // still going on (a long band study looked at between sittings, or while

@@ -417,20 +417,6 @@ std::vector<analysis::GrainFrame> steady_frames(const std::vector<analysis::Grai
     return out;
 }
 
-// Per component, the MSD's blocks (none without two frames after the start-up).
-std::vector<analysis::MsdBlocks> axial_msd_of_run(const std::vector<analysis::GrainFrame>& frames,
-                                                  const DrumRunInfo& info, const AnalyzeOptions& options) {
-    const std::vector<analysis::GrainFrame> steady = steady_frames(frames, options.first_revolution);
-    std::vector<analysis::MsdBlocks> out;
-    if (steady.size() < 3) return out;
-    const analysis::MsdOptions o = msd_options_of_run(frames, info, options);
-    for (std::size_t c = 0; c < info.components.size(); ++c)
-        out.push_back(analysis::axial_msd_blocks(
-            analysis::axial_tracks(steady, static_cast<std::int32_t>(c), info.periodic_axis ? info.inner_length : 0.0),
-            o));
-    return out;
-}
-
 // axial_msd.csv: the MSD against lag from one snapshot spacing to 4
 // revolutions (or the rotation after the start-up), every window pooled.
 void write_axial_msd(const fs::path& file, const std::vector<analysis::GrainFrame>& frames, const DrumRunInfo& info,
@@ -483,7 +469,8 @@ std::string describe_hogg(const analysis::HoggFit& f) {
 
 // The 95 % interval of a Hogg fit: +-1.96 standard errors.
 Json hogg_json(const analysis::HoggFit& f, double first_revolution) {
-    return Json{{"D", f.D},
+    return Json{{"D", determined_value(f.D, f.determined)},
+                {"D_best_estimate", best_estimate(f.D, f.determined)},
                 {"D_stderr", f.D_stderr},
                 {"D_lo", f.D - 1.96 * f.D_stderr},
                 {"D_hi", f.D + 1.96 * f.D_stderr},
@@ -589,6 +576,32 @@ void analyze_bed_structure(const fs::path& dir, const std::vector<analysis::Grai
 
 }  // namespace
 
+double drum_msd_block(const std::vector<analysis::GrainFrame>& frames, const DrumRunInfo& info,
+                      const AnalyzeOptions& options) {
+    return msd_options_of_run(frames, info, options).block;
+}
+
+analysis::MsdEstimate drum_msd(const std::vector<analysis::GrainFrame>& frames, const DrumRunInfo& info,
+                               std::size_t component, const AnalyzeOptions& options, double block) {
+    if (component >= info.components.size())
+        throw Error("component " + std::to_string(component) + ": the run has " +
+                    std::to_string(info.components.size()) + " components");
+    const std::vector<analysis::GrainFrame> steady = steady_frames(frames, options.first_revolution);
+    if (steady.size() < 3) {
+        analysis::MsdEstimate none;
+        none.note = "fewer than three particle snapshots after the start-up (N >= " +
+                    fmt::format("{:.3g}", options.first_revolution) + "; tumble drum --snapshots, --revolutions)";
+        return none;
+    }
+    analysis::MsdOptions o = msd_options_of_run(frames, info, options);
+    if (block > 0.0) o.block = block;
+    const analysis::MsdBlocks blocks = analysis::axial_msd_blocks(
+        analysis::axial_tracks(steady, static_cast<std::int32_t>(component),
+                               info.periodic_axis ? info.inner_length : 0.0),
+        o);
+    return analysis::estimate_axial_diffusion({blocks}, o);
+}
+
 std::string hogg_not_applicable(const DrumRunInfo& info) {
     if (info.periodic_axis) return "not applicable on a periodic axis";
     if (info.arrangement != "halves") return "not applicable to a start other than halves (" + info.arrangement + ")";
@@ -608,6 +621,10 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     text << fmt::format("  mode {}, omega {:.4g} rad/s ({:.3g} rpm, Froude {:.3g}), {:.4g} revolutions\n", info.mode,
                         info.omega, info.omega * 60.0 / (2.0 * tumble::pi), info.froude,
                         series.revolutions.empty() ? 0.0 : series.revolutions.back());
+    // The headline D of each component goes here, after the first two lines;
+    // the details of every estimator under a heading after the set-up.
+    const std::size_t headline_at = static_cast<std::size_t>(text.tellp());
+    std::ostringstream headline;
     if (info.band_change_since >= 0.0)
         text << fmt::format("  ended early (--until-band-change {:.3g}): {} bands at the start, another count from "
                             "N = {:.4g} on, {} at the end ({:.4g} revolutions asked)\n",
@@ -655,8 +672,7 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     const std::vector<analysis::GrainFrame> frames = read_rotation_frames(dir, info);
     const SnapshotCoverage coverage = snapshot_coverage(frames);
     text << coverage.describe();
-    const std::vector<analysis::MsdBlocks> msd_blocks = axial_msd_of_run(frames, info, options);
-    const analysis::MsdOptions msd_opts = msd_options_of_run(frames, info, options);
+    const std::size_t details_at = static_cast<std::size_t>(text.tellp());
     write_axial_msd(dir / "axial_msd.csv", frames, info, options);
 
     Json components_json = Json::array();
@@ -681,19 +697,19 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                                 info.arrangement, z.empty() ? 0.0 : comp.start_side * z.front());  // unmirrored
 
         // The grains' axial MSD: the headline D.
-        msd.push_back(msd_blocks.empty() ? analysis::MsdEstimate{}
-                                         : analysis::estimate_axial_diffusion({msd_blocks[c]}, msd_opts));
+        msd.push_back(drum_msd(frames, info, c, options));
         analysis::MsdEstimate& m = msd.back();
-        if (msd_blocks.empty())
-            m.note = "fewer than three particle snapshots after the start-up (N >= " +
-                     fmt::format("{:.3g}", options.first_revolution) + "; tumble drum --snapshots, --revolutions)";
-        if (m.determined)
-            text << fmt::format("    D = {:.3e} m^2/rev, 95 % interval [{:.3e}, {:.3e}] (grains' axial MSD, lags "
-                                "{:.3g}-{:.3g} rev, {} blocks)\n",
-                                m.D, m.interval.lo, m.interval.hi, m.fit_lo, m.fit_hi, m.blocks);
-        else
-            text << fmt::format("    D (grains' axial MSD) not determined: {}{}\n", m.note,
-                                std::isfinite(m.D) ? fmt::format(" (best estimate {:.3e} m^2/rev)", m.D) : "");
+        if (m.determined) {
+            headline << fmt::format("    {}: D = {:.3e} m^2/rev, 95 % interval [{:.3e}, {:.3e}]", comp.name, m.D,
+                                    m.interval.lo, m.interval.hi);
+            text << fmt::format("    grains' axial MSD (the D above): lags {:.3g}-{:.3g} rev, {} blocks of {:.3g} "
+                                "rev\n",
+                                m.fit_lo, m.fit_hi, m.blocks, drum_msd_block(frames, info, options));
+        } else {
+            headline << fmt::format("    {}: D not determined: {}{}", comp.name, m.note,
+                                    std::isfinite(m.D) ? fmt::format(" (best estimate {:.3e} m^2/rev)", m.D) : "");
+            text << "    grains' axial MSD: D not determined (above)\n";
+        }
 
         // Hogg with the amplitude free and the start-up left out.
         const analysis::HoggFit hogg =
@@ -724,6 +740,15 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
                                     meaning);
             }
         }
+        // What the headline D does not cover: a component's centre moving by
+        // more than its grains' diffusion (then its Hogg D below is no
+        // diffusion coefficient).
+        if (verdict == "convecting")
+            headline << "; its <z> falls faster than this D explains (convecting: the Hogg D below is no diffusion "
+                        "coefficient)";
+        else if (verdict == "segregating")
+            headline << "; its <z> moves back toward its own end (segregating)";
+        headline << "\n";
 
         const analysis::DiffusionFit fit = analysis::fit_diffusion(N.empty() ? std::vector<double>{0.0} : N,
                                                                    z.empty() ? std::vector<double>{0.0} : z, L);
@@ -736,22 +761,33 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
             else  // said, as the other estimators say it (summary.json has the best estimate and the note)
                 text << "D not determined: " << fit.note << "\n";
         }
+        // In summary.json a D (or drift) that is not determined is null; the
+        // old estimator's only where the Hogg solution applies.
+        const bool drifted = verdict != "undetermined";
+        const bool pinned = fit.determined && hogg_not_applicable(info).empty();
         components_json.push_back(Json{{"name", comp.name},
                                        {"grains", static_cast<std::int64_t>(comp.grains)},
                                        {"mass", comp.mass},
                                        {"start_side", comp.start_side},
-                                       {"msd", msd_json(m)},
+                                       {"msd",
+                                        [&] {
+                                            Json j = msd_json(m);
+                                            j["first_revolution"] = options.first_revolution;
+                                            j["block"] = drum_msd_block(frames, info, options);
+                                            return j;
+                                        }()},
                                        {"hogg_free", hogg_json(hogg, options.first_revolution)},
-                                       {"drift", Json{{"velocity", drift.drift},
-                                                      {"velocity_stderr", drift.drift_stderr},
-                                                      {"D_held", m.D},
+                                       {"drift", Json{{"velocity", determined_value(drift.drift, drifted)},
+                                                      {"velocity_stderr", determined_value(drift.drift_stderr, drifted)},
+                                                      {"D_held", determined_value(m.D, drifted)},
                                                       {"verdict", verdict}}},
-                                       {"D", fit.D},
+                                       {"D", determined_value(fit.D, pinned)},
+                                       {"D_best_estimate", best_estimate(fit.D, pinned)},
                                        {"D_stderr", fit.D_stderr},
                                        {"D_one_term", fit.one_term_D},
                                        {"D_one_term_stderr", fit.one_term_D_stderr},
-                                       {"determined", fit.determined},
-                                       {"note", fit.note},
+                                       {"determined", pinned},
+                                       {"note", hogg_not_applicable(info).empty() ? fit.note : hogg_not_applicable(info)},
                                        {"residual_rms", fit.residual_rms},
                                        {"points", static_cast<std::int64_t>(fit.points)}});
     }
@@ -1000,17 +1036,41 @@ std::string analyze_drum_run(const fs::path& dir, const AnalyzeOptions& options)
     }
 
     analyze_bed_structure(dir, frames, info, options, text, summary);
-    analyze_band_run(dir, dir, info, text, summary, options.bands, frames, msd.size() > 1 ? &msd[1] : nullptr);
+    analyze_band_run(dir, dir, info, text, summary, options.bands, frames, msd.size() > 1 ? &msd[1] : nullptr,
+                     options.band_report ? BandReport::always : BandReport::when_banded);
 
     // summary.json last: its presence marks a finished run (tumble sweep).
     // An undefined number (NaN) is null in it (json.hpp).
-    write_file_atomically(dir / "summary.txt", text.str());
+    // The headline first: one D per component and what it is; then the
+    // set-up; then every estimator and measurement under a heading.
+    const std::string all = text.str();
+    const std::string summary_text =
+        all.substr(0, headline_at) +
+        "  D, how fast each component's grains spread along the axis (their axial mean squared displacement grows "
+        "by 2 D per revolution; from the particle snapshots after N = " +
+        fmt::format("{:.3g}", options.first_revolution) + "):\n" + headline.str() +
+        all.substr(headline_at, details_at - headline_at) + "\nother estimators and measurements:\n" +
+        all.substr(details_at);
+    write_file_atomically(dir / "summary.txt", summary_text);
     write_json_file(dir / "summary.json", summary);
-    return text.str();
+    return summary_text;
+}
+
+Json determined_value(double D, bool determined) {
+    return determined && std::isfinite(D) ? Json(D) : Json(nullptr);
+}
+
+Json best_estimate(double D, bool determined) {
+    return !determined && std::isfinite(D) ? Json(D) : Json(nullptr);
 }
 
 Json estimate_json(double D, const analysis::Interval& interval, bool determined, const std::string& note) {
-    return Json{{"D", D}, {"D_lo", interval.lo}, {"D_hi", interval.hi}, {"determined", determined}, {"note", note}};
+    return Json{{"D", determined_value(D, determined)},
+                {"D_best_estimate", best_estimate(D, determined)},
+                {"D_lo", interval.lo},
+                {"D_hi", interval.hi},
+                {"determined", determined},
+                {"note", note}};
 }
 
 Json msd_json(const analysis::MsdEstimate& m) {

@@ -158,6 +158,9 @@ struct AnalyzeOptions {
     // The thresholds of the band segmentation (docs/BAND-ANALYSIS.md; tumble analyze
     // --band-z-enter ...), checked by analysis::check_band_options.
     analysis::BandOptions bands;
+    // The band analysis in the text even for a run without bands (tumble
+    // analyze --band-report); otherwise only for one with bands (BandReport).
+    bool band_report = false;
 };
 
 // Fits D per component (grains' axial MSD, free-amplitude Hogg, drift), the
@@ -166,8 +169,26 @@ struct AnalyzeOptions {
 // and returns the text.
 std::string analyze_drum_run(const std::filesystem::path& directory, const AnalyzeOptions& options = {});
 
-// An estimate of D (m^2/rev) in summary.json and bands.json: D, D_lo and
-// D_hi (its 95 % interval), determined, note.
+// The grains' axial MSD D of one component of a drum run, the one estimator
+// behind summary.json's "msd" and summary.txt's headline D (and Python's
+// Run.msd): the particle snapshots from options.first_revolution on, in
+// blocks of a fifth of that span, 2 to 4 revolutions in whole snapshot
+// spacings; block > 0 asks for blocks of that many revolutions instead.
+// `frames` are the run's rotation frames (read_rotation_frames).
+analysis::MsdEstimate drum_msd(const std::vector<analysis::GrainFrame>& frames, const DrumRunInfo& info,
+                               std::size_t component, const AnalyzeOptions& options = {}, double block = 0.0);
+// The block length drum_msd uses by default, revolutions (0: too few frames).
+double drum_msd_block(const std::vector<analysis::GrainFrame>& frames, const DrumRunInfo& info,
+                      const AnalyzeOptions& options = {});
+
+// A D in summary.json: the number when determined, else null; and the best
+// estimate of one not determined (null when determined or when there is none).
+Json determined_value(double D, bool determined);
+Json best_estimate(double D, bool determined);
+
+// An estimate of D (m^2/rev) in summary.json and bands.json: D (null when not
+// determined), D_best_estimate (the estimator's value when not determined),
+// D_lo and D_hi (its 95 % interval), determined, note.
 Json estimate_json(double D, const analysis::Interval& interval, bool determined, const std::string& note);
 
 // The grains' axial MSD estimate: estimate_json and the lags fitted, the blocks.

@@ -406,8 +406,10 @@ PointResult point_result_from_summary(const SweepPoint& p, const std::string& te
         for (const Json& c : *comps) {
             const std::string name = name_of(c);
             if (name.empty()) throw Error(source + ": a component without a name");
-            PointResult::Component k{num(c, "D"), num(c, "D_stderr"), num(c, "D_one_term"), is_true(c, "determined"),
-                                     nan};
+            // D where determined, else its best estimate (null D; a summary
+            // written before held the best estimate in D itself).
+            const double D = std::isfinite(num(c, "D")) ? num(c, "D") : num(c, "D_best_estimate");
+            PointResult::Component k{D, num(c, "D_stderr"), num(c, "D_one_term"), is_true(c, "determined"), nan};
             // The estimators of issue 14, where determined.
             if (const auto m = c.find("msd"); m != c.end() && is_true(*m, "determined"))
                 k.msd_D = num(*m, "D"), k.msd_lo = num(*m, "D_lo"), k.msd_hi = num(*m, "D_hi");

@@ -131,6 +131,34 @@ void bind_analysis(py::module_& m) {
         "in m (continuous in time), caps at +-half_length; D in m^2/rev with its 95 % bootstrap interval");
 
     m.def(
+        "drum_msd",
+        [](const fs::path& directory, std::size_t component, double first_revolution, std::optional<double> block) {
+            const io::DrumRunInfo info = io::read_drum_run_info(directory / "drum_run.toml");
+            const std::vector<analysis::GrainFrame> frames = io::read_rotation_frames(directory, info);
+            io::AnalyzeOptions options;
+            options.first_revolution = first_revolution;
+            const double used = block.value_or(io::drum_msd_block(frames, info, options));
+            const analysis::MsdEstimate e = io::drum_msd(frames, info, component, options, block.value_or(0.0));
+            // A D as summary.json has it: None where it is null there.
+            const auto value = [](const io::Json& j) {
+                return j.is_null() ? py::object(py::none()) : py::cast(j.get<double>());
+            };
+            return py::dict(py::arg("D") = value(io::determined_value(e.D, e.determined)),
+                            py::arg("D_best_estimate") = value(io::best_estimate(e.D, e.determined)),
+                            py::arg("D_lo") = e.interval.lo, py::arg("D_hi") = e.interval.hi,
+                            py::arg("interval") = std::array<double, 2>{e.interval.lo, e.interval.hi},
+                            py::arg("determined") = e.determined, py::arg("note") = e.note,
+                            py::arg("fit_lag_lo") = e.fit_lo, py::arg("fit_lag_hi") = e.fit_hi,
+                            py::arg("blocks") = e.blocks, py::arg("block") = used,
+                            py::arg("first_revolution") = first_revolution, py::arg("lag") = e.lag,
+                            py::arg("msd") = e.msd);
+        },
+        py::arg("directory"), py::arg("component"), py::arg("first_revolution") = 1.0, py::arg("block") = py::none(),
+        "D of a drum run's component from its grains' axial MSD, by the estimator and lag window of its "
+        "summary.json's \"msd\" and summary.txt's headline D (io/drum_output.hpp, drum_msd); block: revolutions "
+        "per block (None: the run's own, as the summary's)");
+
+    m.def(
         "hogg_not_applicable",
         [](const fs::path& directory) {
             return io::hogg_not_applicable(io::read_drum_run_info(directory / "drum_run.toml"));

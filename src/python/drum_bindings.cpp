@@ -141,7 +141,7 @@ void bind_drum(py::module_& m) {
             const experiments::DrumOutcome outcome = run_stoppable(
                 [&] { return experiments::run_drum(o); },
                 [](const experiments::DrumOutcome& stopped) {
-                    return "the drum run stopped with a checkpoint; continue with: tumble resume " +
+                    return "the drum run stopped with a checkpoint; continue with: " + experiments::program_name() + " resume " +
                            stopped.directory.string();
                 });
             return py::make_tuple(outcome.exit_code, outcome.directory);

@@ -13,6 +13,8 @@ PYBIND11_MODULE(_core, m) {
     // there is one); a run that became unphysical (the diagnostic).
     const auto& error = py::register_exception<tumble::Error>(m, "Error", PyExc_RuntimeError);
     py::register_exception<tumble::experiments::BlewUp>(m, "BlewUp", error.ptr());
+    m.def("set_program_name", &tumble::experiments::set_program_name, py::arg("name"),
+          "The tumble program that messages name in the commands they suggest (tumble resume DIR)");
     bind_scenario(m);
     bind_simulation(m);
     bind_drum(m);

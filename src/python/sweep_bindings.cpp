@@ -51,7 +51,7 @@ void bind_sweep(py::module_& m) {
                 [&] { return experiments::run_sweep(o); },
                 [&](const experiments::SweepOutcome& stopped) {
                     return "the sweep stopped; its running points wrote checkpoints; continue with the same call, "
-                           "or: tumble sweep " + sweep_file + " -o " + stopped.directory.string();
+                           "or: " + experiments::program_name() + " sweep " + sweep_file + " -o " + stopped.directory.string();
                 });
             return py::dict(py::arg("directory") = outcome.directory, py::arg("points") = outcome.points,
                             py::arg("with_results") = outcome.with_results, py::arg("failed") = outcome.failed,

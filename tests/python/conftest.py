@@ -31,3 +31,10 @@ def tiny_drum(tmp_path_factory):
     samples = []
     directory = tumble.run_drum(out=tmp_path_factory.mktemp("drum") / "run", on_sample=samples.append, **TINY_DRUM)
     return directory, samples
+
+
+@pytest.fixture(scope="session")
+def short_drum(tmp_path_factory):
+    """A finished drum run of the tiny drum turned 2.5 revolutions: long
+    enough for a block of the grains' MSD with the start-up left in."""
+    return tumble.run_drum(out=tmp_path_factory.mktemp("drum") / "short", **dict(TINY_DRUM, revolutions=2.5))

@@ -42,6 +42,9 @@ def test_installed_plot_runs_the_installed_script(prefix, tmp_path):
     original = script.read_text()
     try:
         script.write_text("import pathlib, sys\npathlib.Path('mark').write_text(' '.join(sys.argv[1:]))\n")
+        # tumble plot refuses a directory that is not a drum run's before it starts the script.
+        (tmp_path / "some-run").mkdir()
+        (tmp_path / "some-run" / "drum_run.toml").write_text("")
         subprocess.run([str(prefix / "bin" / "tumble"), "plot", "some-run"], cwd=tmp_path, check=True)
         assert (tmp_path / "mark").read_text() == "run some-run"
     finally:

@@ -2,6 +2,7 @@
 """Run directories read into numpy and pandas, and the analysis of
 src/tumble/analysis called on what was read."""
 
+import math
 import shutil
 
 import numpy as np
@@ -75,6 +76,44 @@ def test_tracks_hogg_and_msd_of_a_run(tiny_drum):
     assert fit["points"] == len(N) and not fit["determined"]  # too few samples: the fit says so
     msd = run.msd(1, first_revolution=0.0, block=0.2)
     assert set(msd) >= {"D", "interval", "lag", "msd", "determined", "note"} and not msd["determined"]
+    assert msd["D"] is None and msd["block"] == 0.2  # not determined: None, as summary.json's null
+
+
+def _same(a, b):
+    """Equal, NaN (Python) and None (JSON null) alike where a number is undefined."""
+    undefined = (lambda v: v is None or (isinstance(v, float) and math.isnan(v)))
+    return (undefined(a) and undefined(b)) or a == b
+
+
+def test_msd_of_a_run_is_the_summarys_D(short_drum, tmp_path):
+    # One estimator, one answer: Run.msd(k) is summary.json's "msd" and
+    # summary.txt's headline D, number for number (the same function, lags
+    # and blocks), also after the run is analysed again with another start-up.
+    copy = tmp_path / "run"
+    shutil.copytree(short_drum, copy)
+    for first in (None, 0.0):
+        if first is not None:
+            tumble.analyze_drum(str(copy), first_revolution=first)
+        run = tumble.io.Run(copy)
+        text = (copy / "summary.txt").read_text()
+        headline = text.split("\n  shear model")[0]
+        for k, component in enumerate(run.components):
+            msd, kept = run.msd(k), run.summary["components"][k]["msd"]
+            for key in ("D", "D_best_estimate", "D_lo", "D_hi", "determined", "note", "fit_lag_lo", "fit_lag_hi",
+                        "blocks", "block", "first_revolution"):
+                assert _same(msd[key], kept[key]), (first, k, key, msd[key], kept[key])
+            assert _same(msd["interval"][0], kept["D_lo"]) and _same(msd["interval"][1], kept["D_hi"])
+            name = component["name"]
+            if msd["determined"]:
+                assert f"    {name}: D = {msd['D']:.3e} m^2/rev, 95 % interval [" in headline
+            else:
+                assert msd["D"] is None and kept["D"] is None
+                assert f"    {name}: D not determined: {msd['note']}" in headline
+                if msd["D_best_estimate"] is not None:
+                    assert f"(best estimate {msd['D_best_estimate']:.3e} m^2/rev)" in headline
+        # With the start-up left in, the rotation holds a block: a D to compare, not only two Nones.
+        if first == 0.0:
+            assert all(run.msd(k)["D_best_estimate"] is not None or run.msd(k)["determined"] for k in range(2))
 
 
 def test_hogg_fit_refuses_a_start_other_than_halves(tiny_drum, tmp_path):

@@ -59,6 +59,16 @@ TEST_F(BandRun, SmallDrumWritesTheKymographAndBandCounts) {
     const tumble::io::Json summary = tumble::io::parse_json(read_file(out / "summary.json"));
     ASSERT_TRUE(summary.contains("bands"));
     EXPECT_EQ(summary["bands"]["samples"], samples);
+    // The halves start's two halves only mix: no bands beyond the start's,
+    // so the run's summary has no band lines and plot no band figure (the
+    // band files are written all the same); tumble analyze --band-report
+    // prints them.
+    EXPECT_FALSE(summary["bands"]["reported"].get<bool>());
+    EXPECT_EQ(read_file(out / "summary.txt").find("bands of"), std::string::npos);
+    const auto report = tumble_run("analyze --band-report " + out.string());
+    ASSERT_EQ(report.exit_code, 0) << report.output;
+    EXPECT_NE(report.output.find("bands of material-2"), std::string::npos) << report.output;
+    EXPECT_TRUE(tumble::io::parse_json(read_file(out / "summary.json"))["bands"]["reported"].get<bool>());
     // One revolution is one block of the end layers, too short for an
     // interval: summary.txt says so instead of printing NaN bounds.
     const std::string text = read_file(out / "summary.txt");
@@ -89,7 +99,7 @@ TEST_F(BandRun, SmallDrumWritesTheKymographAndBandCounts) {
     const std::string json = read_file(out / "bands.json"), csv = read_file(out / "bands.csv");
     fs::remove(out / "bands.json");
     fs::remove(out / "kymograph.png");
-    const auto again = tumble_run("analyze " + out.string());
+    const auto again = tumble_run("analyze --band-report " + out.string());
     ASSERT_EQ(again.exit_code, 0) << again.output;
     EXPECT_EQ(read_file(out / "bands.json"), json);
     EXPECT_EQ(read_file(out / "bands.csv"), csv);
@@ -119,7 +129,7 @@ TEST_F(BandRun, SmallDrumWritesTheKymographAndBandCounts) {
                                 std::pair{",bed_periphery_fraction,", ",wall_fraction,"}})
             old.replace(old.find(from), std::string(from).size(), to);
     write("drum/band_profile.csv", old);
-    const auto mixed = tumble_run("analyze " + out.string());
+    const auto mixed = tumble_run("analyze --band-report " + out.string());
     ASSERT_EQ(mixed.exit_code, 0) << mixed.output;
     EXPECT_NE(mixed.output.find("2 of the " + std::to_string(samples) + " samples of band_profile.csv were measured "
                                 "from the drum axis"),

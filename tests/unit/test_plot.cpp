@@ -95,6 +95,13 @@ TEST_F(Plot, RunDirectoryGivesTheRunFigures) {
         EXPECT_NE(result.output.find((figures / (std::string(name) + ".png")).string()),
                   std::string::npos) << "the list of files written names " << name;
     }
+    // A halves start whose halves only mix has no bands: no band figure
+    // unless asked for (--band-report; `tumble plot --band-report`).
+    EXPECT_FALSE(fs::exists(figures / "fig_bands.png")) << result.output;
+    const fs::path with_bands = dir_ / "with_bands";
+    const Result asked = plot(python_, "run " + quoted(run) + " --band-report --out " + quoted(with_bands));
+    ASSERT_EQ(asked.exit_code, 0) << asked.output;
+    expect_figure(with_bands, "fig_bands");
     // Without the snapshots the set-up and depth figures are skipped with a
     // note, not a crash.
     fs::remove_all(run / "snapshots");

@@ -88,7 +88,9 @@ TEST_F(Resume, StoppedAtAnyStepAndResumedGivesTheSameBytes) {
         const fs::path out = dir_ / (std::string("stop-") + step);
         const auto stopped = tumble_run(small_drum + " --revolutions 0.2 --out " + out.string() + " --stop-at-step " + step);
         ASSERT_EQ(stopped.exit_code, 4) << stopped.output;
-        EXPECT_NE(stopped.output.find("tumble resume " + out.string()), std::string::npos) << stopped.output;
+        // The hint names the program as it was invoked (here TUMBLE_BINARY's path).
+        EXPECT_NE(stopped.output.find(std::string(TUMBLE_BINARY) + " resume " + out.string()), std::string::npos)
+            << stopped.output;
         const auto resumed = tumble_run("resume -q " + out.string());
         ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
         expect_same_output(full, out);
@@ -182,7 +184,7 @@ TEST_F(Resume, SigintAndSigtermWriteACheckpointAndSayHowToGoOn) {
         EXPECT_EQ(exit_code(child), 4);
         const std::string log = read_file(dir_ / "child.log");
         EXPECT_NE(log.find("stopped by a signal"), std::string::npos) << log;
-        EXPECT_NE(log.find("tumble resume " + out.string()), std::string::npos) << log;
+        EXPECT_NE(log.find(std::string(TUMBLE_BINARY) + " resume " + out.string()), std::string::npos) << log;
         const auto resumed = tumble_run("resume -q " + out.string());
         ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
         expect_same_output(full, out);

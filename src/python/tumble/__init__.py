@@ -189,6 +189,18 @@ def find_tumble_binary():
                             + " (set TUMBLE_BINARY, or pass tumble_binary)")
 
 
+def _name_the_program():
+    """Messages that suggest a command (continue with: PROGRAM resume DIR)
+    name this package's tumble program where there is one."""
+    try:
+        _core.set_program_name(os.fspath(find_tumble_binary()))
+    except FileNotFoundError:
+        pass
+
+
+_name_the_program()
+
+
 def sweep_points(sweep_file, out=None):
     """The points of a sweep file (docs/SWEEP.md) in plan order, each a dict:
     name, mode, omega (rad/s), seed, directory (under `out`, default the

@@ -13,7 +13,6 @@ tumble wrote them; comment lines (#) are skipped.
 """
 
 import json
-import math
 import pathlib
 import re
 import tomllib
@@ -187,11 +186,23 @@ class Run:
         revolutions, z = _core.drum_tracks(self.directory, component)
         return np.asarray(revolutions), np.asarray(z)
 
-    def msd(self, component, first_revolution=1.0, block=2.0):
-        """D of a drum component from its grains' axial MSD (tumble.axial_msd)
-        over the snapshots from first_revolution, blocks of `block` revolutions."""
-        revolutions, z = self.tracks(component)
-        keep = revolutions >= first_revolution - 1e-9
-        info = self.info
-        half_length = math.inf if info["periodic_axis"] else 0.5 * info["inner_length"]
-        return _core.axial_msd(revolutions[keep], z[keep], block=block, half_length=half_length)
+    def msd(self, component, first_revolution=None, block=None):
+        """D of a drum component from its grains' axial MSD: the estimator,
+        lag window and blocks of the run's summary (summary.json's "msd",
+        summary.txt's headline D), so the same number with its 95 %
+        interval. A dict: D (None when not determined), D_best_estimate
+        (the value of one not determined), D_lo, D_hi and interval (its 95 %
+        interval), determined, note, fit_lag_lo and fit_lag_hi (the lags
+        fitted), blocks, block (revolutions per block), first_revolution,
+        lag and msd (the pooled MSD against lag, revolutions and m^2).
+        first_revolution: the start-up left out (None: the summary's, else
+        1); block: revolutions per block (None: the run's own choice)."""
+        if first_revolution is None:
+            summary = self.directory / "summary.json"
+            msd = {}
+            if summary.exists():
+                components = self.summary.get("components") or []
+                if component < len(components):
+                    msd = components[component].get("msd") or {}
+            first_revolution = msd.get("first_revolution", 1.0)
+        return _core.drum_msd(self.directory, component, first_revolution=first_revolution, block=block)
