@@ -163,7 +163,7 @@ Simulation drum_bed(const io::DrumSettings& d, double turned, const fs::path& ca
     const double dt = assess_time_step(setup.scenario).dt;
     // The particle-walled bed keeps the name it had before smooth walls.
     const std::string walls =
-        d.geometry.walls == DrumWalls::particles ? std::string() : "-" + std::string(keyword_of(drum_wall_kinds, d.geometry.walls));
+        d.geometry.walls == DrumWalls::particles ? std::string() : fmt::format("-{}", keyword_of(drum_wall_kinds, d.geometry.walls));
     const std::string stem = fmt::format("long-drum{}-length{}-fill{}-seed{}-dt{:.6g}-skin{:.6g}", walls,
                                          d.geometry.length, d.fill_fraction, d.seed, dt, setup.scenario.neighbor.skin);
     auto settle = [&] {

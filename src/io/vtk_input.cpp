@@ -28,7 +28,8 @@ constexpr std::uintmax_t max_walls_file_bytes = std::uintmax_t{256} << 20;
 // The value of attribute `name` in the XML element `tag` (name="value"), or
 // empty if it has none.
 std::string_view attribute(std::string_view tag, std::string_view name) {
-    const std::string key = " " + std::string(name) + "=\"";
+    std::string key(" ");
+    key.append(name).append("=\"");
     const std::size_t at = tag.find(key);
     if (at == std::string_view::npos) return {};
     const std::size_t from = at + key.size(), to = tag.find('"', from);
