@@ -13,6 +13,7 @@
 #include <cstdio>
 
 #include "../physics/physics_helpers.hpp"
+#include "../physics/pour_scenario.hpp"
 #include "io/checkpoint.hpp"
 #include "io/config.hpp"
 #include "io/step_times.hpp"
@@ -138,31 +139,7 @@ TEST(Slabs, SmoothDrumAgreesWithOneProcess) {
 // sliced along its height, the first grains through the cuts by the end;
 // the same tolerances and reason as above.
 TEST(Slabs, APourAgreesWithOneProcess) {
-    const std::string text = R"(
-[simulation]
-duration = 0.1
-seed = 7
-gravity = [0.0, 0.0, -9.81]
-[time_step]
-reference_speed = 1.5
-[domain]
-lo = [-0.02, -0.02, 0.0]
-hi = [0.02, 0.02, 0.08]
-walls = [true, true, true]
-wall_material = "glass"
-[[material]]
-name = "glass"
-E = 5.0e6
-G = 2.0e6
-nu = 0.25
-xi = 20.0
-eta = 20.0
-rho = 2500.0
-radius = 2.0e-3
-[[pair]]
-materials = ["glass", "glass"]
-mu = 0.3
-W = 0.0
+    const std::string text = pour(R"(
 [[insert]]
 material = "glass"
 lo = [-0.02, -0.02, 0.06]
@@ -173,7 +150,7 @@ count = 60
 batch = 20
 every = 0.02
 velocity = [0.0, 0.0, -1.0]
-)";
+)");
     const tumble::Scenario s = tumble::io::parse_run_config(text, "pour.toml", ".").scenario;
     Simulation alone(s, 1), shared(s, 1, Ranks::world);
     const std::int64_t steps = static_cast<std::int64_t>(std::ceil(0.07 / alone.dt()));

@@ -15,66 +15,14 @@
 #include "io/checkpoint.hpp"
 #include "io/config.hpp"
 #include "physics_helpers.hpp"
+#include "pour_scenario.hpp"
 #include "tumble/sim/simulation.hpp"
 
 namespace physics_test {
 namespace {
 
-// A closed box 40 x 40 x 80 mm of steel; soft glass beads of radius 1.5 to
-// 2 mm poured from the top 20 mm, 20 at a time every 0.02 s from 0.01 s.
-std::string pour(const std::string& insert, const std::string& walls = "[true, true, true]") {
-    return R"(
-[simulation]
-duration = 0.1
-seed = 7
-gravity = [0.0, 0.0, -9.81]
-
-[time_step]
-reference_speed = 1.5
-
-[domain]
-lo = [-0.02, -0.02, 0.0]
-hi = [0.02, 0.02, 0.08]
-walls = )" + walls + R"(
-wall_material = "steel"
-
-[[material]]
-name = "glass"
-E = 5.0e6
-G = 2.0e6
-nu = 0.25
-xi = 20.0
-eta = 20.0
-rho = 2500.0
-radius = 2.0e-3
-
-[[material]]
-name = "steel"
-E = 1.0e7
-G = 4.0e6
-nu = 0.3
-xi = 20.0
-eta = 20.0
-rho = 7800.0
-radius = 2.0e-3
-
-[[pair]]
-materials = ["glass", "glass"]
-mu = 0.3
-W = 0.0
-
-[[pair]]
-materials = ["glass", "steel"]
-mu = 0.4
-W = 0.0
-
-[[pair]]
-materials = ["steel", "steel"]
-mu = 0.4
-W = 0.0
-)" + insert;
-}
-
+// Beads of radius 1.5 to 2 mm poured from the top 20 mm, 20 at a time
+// every 0.02 s from 0.01 s.
 const std::string batches = R"(
 [[insert]]
 material = "glass"
