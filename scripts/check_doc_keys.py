@@ -32,12 +32,13 @@ def drum_keys(source):
 def main():
     root = Path(sys.argv[1] if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent)
     missing = []
-    scenario = (root / "docs/SCENARIO.md").read_text()
+    docs = root / "docs"
+    scenario = docs.joinpath('SCENARIO.md').read_text()
     for key in sorted(scenario_keys((root / "src/io/config.cpp").read_text())):
         forms = (f"`{key}`", f'"{key}"', f"{key} =", f"`[{key}]`", f"`[[{key}]]`")  # a key, a kind, a table
         if not any(form in scenario for form in forms):
             missing.append(f"docs/SCENARIO.md: no entry for the scenario key {key}")
-    drum = (root / "docs/DRUM.md").read_text()
+    drum = docs.joinpath('DRUM.md').read_text()
     for section, key in sorted(drum_keys((root / "src/io/drum_config.cpp").read_text())):
         entry = f"`[{section}] {key}`"
         if section == "materials":  # one row names the four roles
