@@ -573,9 +573,7 @@ private:
     Insertion read_insertion(const toml::table& t, const std::string& p, std::size_t k) const {
         r_.only_keys(t, p, {"material", "lo", "hi", "count", "batch", "every", "start", "radius", "radius_min",
                             "radius_max", "velocity", "tag"});
-        BlockDefaults d;
-        if (const toml::node* n = t.get("material")) d.material = material_index(*n, join(p, "material"));
-        d.radius = r_.number(t, p, "radius", Bound::positive);
+        const BlockDefaults d = read_block_defaults(t, p);  // of its keys: material, radius, velocity, tag
         const RandomRegion g = read_random_region(t, p, d);
         Insertion q;
         q.lo = g.lo;
@@ -592,10 +590,8 @@ private:
         q.start = r_.number(t, p, "start", Bound::non_negative, 0.0);
         if (q.batch < q.count) q.every = r_.required_number(t, p, "every", Bound::positive);
         else q.every = r_.number(t, p, "every", Bound::positive, 1.0);  // one batch: no interval needed
-        q.velocity = r_.vec3(t, p, "velocity").value_or(Vec3{});
-        if (const toml::node* n = t.get("tag"))
-            q.tag = static_cast<std::int32_t>(r_.integer(*n, join(p, "tag"), std::numeric_limits<std::int32_t>::min(),
-                                                         std::numeric_limits<std::int32_t>::max()));
+        q.velocity = d.velocity.value_or(Vec3{});
+        q.tag = d.tag;
         const Domain& box = s_const().domain;
         for (int a = 0; a < 3; ++a) {
             if (q.hi[a] - q.lo[a] < 2.0 * q.radius_max)

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <sstream>
 #include <tuple>
@@ -402,7 +401,6 @@ void Simulation::insert_due() {
         // the region (across a periodic axis, its image nearest the region).
         const double reach = in.radius_max + scenario_.largest_radius();
         const Domain& box = scenario_.domain;
-        mpi::Bytes mine;
         const auto image = [&](Vec3 x) {
             for (int a = 0; a < 3; ++a)
                 if (box.periodic[a]) {
@@ -416,28 +414,20 @@ void Simulation::insert_due() {
                 if (x[a] < in.lo[a] - reach || x[a] > in.hi[a] + reach) return false;
             return true;
         };
-        const auto put = [&](std::int64_t id, const Vec3& x, double r) {
-            const char* b[3] = {reinterpret_cast<const char*>(&id), reinterpret_cast<const char*>(&x),
-                                reinterpret_cast<const char*>(&r)};
-            mine.insert(mine.end(), b[0], b[0] + sizeof id);
-            mine.insert(mine.end(), b[1], b[1] + sizeof x);
-            mine.insert(mine.end(), b[2], b[2] + sizeof r);
-        };
-        for (std::size_t i = 0; i < owned_; ++i)
-            if (const Vec3 x = image(particles_.position[i]); near(x)) put(particles_.id[i], x, particles_.radius[i]);
-        std::vector<std::pair<std::int64_t, ParticleSpec>> found;
-        constexpr std::size_t record = sizeof(std::int64_t) + sizeof(Vec3) + sizeof(double);
-        for (const mpi::Bytes& part : slabs_ ? mpi::all_gather(mine) : std::vector<mpi::Bytes>{mine})
-            for (std::size_t at_byte = 0; at_byte + record <= part.size(); at_byte += record) {
-                std::pair<std::int64_t, ParticleSpec> f;
-                std::memcpy(&f.first, part.data() + at_byte, sizeof f.first);
-                std::memcpy(&f.second.position, part.data() + at_byte + sizeof f.first, sizeof(Vec3));
-                std::memcpy(&f.second.radius, part.data() + at_byte + sizeof f.first + sizeof(Vec3), sizeof(double));
-                found.push_back(f);
-            }
-        std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        // Shared among ranks, every rank's (their order does not matter: a
+        // place is free or not whatever the order of the spheres around it).
+        const auto picked = [&](std::size_t i) { return near(image(particles_.position[i])); };
         std::vector<ParticleSpec> existing;
-        for (const auto& f : found) existing.push_back(f.second);
+        const auto add = [&](const ParticleStore& q, std::size_t i) {
+            existing.push_back({image(q.position[i]), {}, {}, q.radius[i]});
+        };
+        if (slabs_) {
+            const ParticleStore around = slabs_->gather_own(particles_, owned_, picked, Slabs::Everywhere::yes);
+            for (std::size_t i = 0; i < around.size(); ++i) add(around, i);
+        } else {
+            for (std::size_t i = 0; i < owned_; ++i)
+                if (picked(i)) add(particles_, i);
+        }
         for (const ParticleSpec& p : poured)  // this step's earlier batches
             if (near(image(p.position))) existing.push_back({image(p.position), {}, {}, p.radius});
         ClearOfWalls clear;

@@ -336,11 +336,13 @@ bool Slabs::rebalance(const ParticleStore& p, std::size_t owned, const PairList&
     return moved;
 }
 
-ParticleStore Slabs::gather_own(const ParticleStore& p, std::size_t owned) const {
+ParticleStore Slabs::gather_own(const ParticleStore& p, std::size_t owned, const std::function<bool(std::size_t)>& which,
+                                Everywhere everywhere) const {
     mpi::Bytes mine;
-    for (std::size_t i = 0; i < owned; ++i) put_particle(mine, p, i);
+    for (std::size_t i = 0; i < owned; ++i)
+        if (!which || which(i)) put_particle(mine, p, i);
     ParticleStore all;
-    for (const mpi::Bytes& part : mpi::gather(mine)) {
+    for (const mpi::Bytes& part : everywhere == Everywhere::yes ? mpi::all_gather(mine) : mpi::gather(mine)) {
         Reader r(part);
         while (!r.done()) get_particle(r, all);
     }

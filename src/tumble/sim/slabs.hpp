@@ -20,6 +20,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "tumble/contact/history.hpp"
@@ -100,7 +101,12 @@ public:
 
     // Collective: the own spheres of every rank (the first `owned` of each
     // store), on rank 0 in the order of their global ids; empty elsewhere.
-    ParticleStore gather_own(const ParticleStore& p, std::size_t owned) const;
+    // With `which`, only the spheres it picks (by index in the store), and
+    // with Everywhere::yes on every rank.
+    enum class Everywhere { no, yes };
+    ParticleStore gather_own(const ParticleStore& p, std::size_t owned,
+                             const std::function<bool(std::size_t)>& which = {},
+                             Everywhere everywhere = Everywhere::no) const;
 
     SlabState state() const { return state_; }
     void restore(SlabState state) { state_ = std::move(state); }

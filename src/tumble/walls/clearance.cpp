@@ -65,16 +65,13 @@ double WallDistances::distance(std::size_t k, const Vec3& x) const {
     return within == w.inside ? d : -std::min(d, reach_);
 }
 
-bool WallDistances::clear(const Vec3& x, double r) const {
-    for (std::size_t k = 0; k < walls_.size(); ++k)
-        if (distance(k, x) < r) return false;
-    return true;
-}
+bool WallDistances::clear(const Vec3& x, double r) const { return clear(x, r, {}); }
 
 bool WallDistances::clear(const Vec3& x, double r, const std::vector<MotionNow>& now) const {
     for (std::size_t k = 0; k < walls_.size(); ++k) {
         const std::int32_t m = walls_[k].motion;  // x in the wall's frame at the start of its motion
-        if (distance(k, m < 0 ? x : to_start_frame(&now.at(static_cast<std::size_t>(m)), x)) < r) return false;
+        const bool moved = m >= 0 && !now.empty();
+        if (distance(k, moved ? to_start_frame(&now.at(static_cast<std::size_t>(m)), x) : x) < r) return false;
     }
     return true;
 }

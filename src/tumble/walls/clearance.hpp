@@ -36,7 +36,8 @@ public:
     // on the grains' side of each and touching none.
     bool clear(const Vec3& x, double r) const;
     // The same with the walls where their motions have carried them (now:
-    // per motion of the scenario, where it is; a wall without one at rest).
+    // per motion of the scenario, where it is; a wall without one at rest;
+    // empty: every wall at the start of its motion, as above).
     bool clear(const Vec3& x, double r, const std::vector<MotionNow>& now) const;
 
 private:
