@@ -328,14 +328,20 @@ TEST(MeshDrum, LiftersCarryGrainsOverTheTop) {
 }
 
 // The walls' contacts go through the law in blocks, over the wall list
-// while the walls stay put (sim/wall_loop.hpp); recorded contacts go one at
-// a time through the scalar law. The two give the same run to the bit: the
-// smooth drum turning (the list), the same drum with a translation of its
-// walls too small to see (the scan of every sphere and wall), and a run
-// captured half-way with the list in use and restored.
+// while the walls stay put (sim/wall_loop.hpp), and a mesh's over the list
+// of the faces near each sphere; recorded contacts go one at a time through
+// the scalar law, a mesh's faces from its facet grid. The two give the same
+// run to the bit: the smooth drum turning (the list), the same drum with a
+// translation of its walls too small to see (the scan of every sphere and
+// wall), the drum on a mantle of triangles (its face lists made anew
+// whenever the turn has carried the mesh near half the skin, many times
+// between rebuilds at 8 rad/s), and a run captured half-way with the lists
+// in use and restored.
 TEST(WallLoop, BlocksAndTheListAreTheScalarLawToTheBit) {
-    auto drum = [](double creep) {
-        DrumSetup setup = build_drum_scenario(smooth_geometry(), "two-component", 300, 5);
+    auto drum = [](DrumWalls walls, double creep) {
+        DrumGeometry g = smooth_geometry();
+        g.walls = walls;
+        DrumSetup setup = build_drum_scenario(g, "two-component", 300, 5);
         Simulation sim(setup.scenario);
         sim.advance(std::llround(0.1 / sim.dt()));  // falling and landing
         sim.set_motion(0, RigidMotion{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, 8.0, {0.0, 0.0, creep}});
@@ -354,23 +360,25 @@ TEST(WallLoop, BlocksAndTheListAreTheScalarLawToTheBit) {
         }
     };
     const std::int64_t steps = 3000;  // 0.08 s, some 20 rebuilds of the list
-    for (const double creep : {0.0, 1e-9}) {
-        Simulation fast = drum(creep), scalar = drum(creep);
-        scalar.set_contact_recording(true);
-        fast.advance(steps);
-        scalar.advance(steps);
-        same(fast, scalar);
-        std::size_t touching = 0;
-        for (const ContactRecord& r : scalar.contact_records()) touching += r.id_j < 0;
-        EXPECT_GT(touching, 50u) << "creep " << creep;  // the bed lies on the mantle
+    for (const DrumWalls walls : {DrumWalls::smooth, DrumWalls::mesh}) {
+        for (const double creep : {0.0, 1e-9}) {
+            Simulation fast = drum(walls, creep), scalar = drum(walls, creep);
+            scalar.set_contact_recording(true);
+            fast.advance(steps);
+            scalar.advance(steps);
+            same(fast, scalar);
+            std::size_t touching = 0;
+            for (const ContactRecord& r : scalar.contact_records()) touching += r.id_j < 0;
+            EXPECT_GT(touching, 50u) << "creep " << creep;  // the bed lies on the mantle
+        }
+        Simulation whole = drum(walls, 0.0), first = drum(walls, 0.0);
+        whole.advance(steps);
+        first.advance(steps / 2);
+        Simulation second(first.scenario());
+        second.restore(first.capture());
+        second.advance(steps - steps / 2);
+        same(whole, second);
     }
-    Simulation whole = drum(0.0), first = drum(0.0);
-    whole.advance(steps);
-    first.advance(steps / 2);
-    Simulation second(first.scenario());
-    second.restore(first.capture());
-    second.advance(steps - steps / 2);
-    same(whole, second);
 }
 
 }  // namespace

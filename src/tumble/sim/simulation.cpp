@@ -106,7 +106,9 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
         // Cells of the largest radius plus the skin: fewer faces to test near
         // a wall than in cells of the neighbour list's size (the long drum on
         // its mantle in facets: 13 % faster; half that size gains nothing).
-        FacetGrid grid(facet_cell(mesh, std::max(reach + skin, 1e-6), reach), reach);
+        // Each cell lists the faces within that reach too, for the list of the
+        // faces near each sphere (MeshList).
+        FacetGrid grid(facet_cell(mesh, std::max(reach + skin, 1e-6), reach + skin), reach + skin);
         grid.rebuild(topology);
         mesh_walls_.push_back({std::move(topology), std::move(grid)});
         wall_slots_ += mesh_wall_slots;
@@ -137,7 +139,7 @@ Simulation::Simulation(Scenario scenario, int threads, Ranks ranks) : scenario_(
     run_in_team(chunks(), [&](Team& team) {
         rebuild(team);
         locate_kinds(team);
-        compute_forces(team, Sums::all, motions_now(time_), [](int, IndexRange) {});
+        compute_forces(team, Sums::all, time_, motions_now(time_), [](int, IndexRange) {});
     });
     note_build(time_);
 }
@@ -154,6 +156,7 @@ void Simulation::rebuild(Team& team, bool keep_histories) {
     // histories go back (by chunk 0): its places are about to change.
     team.each([&](int c) {
         if (c == 0 && wall_list_.valid) flush_wall_list();
+        if (c == 0) mesh_list_.valid = false;
         const IndexRange r = team.range(c, chunk_force_.size());
         const auto from = static_cast<std::ptrdiff_t>(r.begin), to = static_cast<std::ptrdiff_t>(r.end);
         std::fill(chunk_force_.begin() + from, chunk_force_.begin() + to, Vec3{});
@@ -335,7 +338,7 @@ void Simulation::step(Team& team, std::int64_t next, bool drifted, After after) 
     }
     const DisplacementLimit since_this_build = limit();  // the list's positions may have changed with a rebuild
     const Sums sums = after == After::stop ? Sums::all : Sums::free;
-    compute_forces(team, sums, now, [&](int c, IndexRange r) {  // F(t + dt), with v(t + dt/2) and v(t + dt) predicted
+    compute_forces(team, sums, time, now, [&](int c, IndexRange r) {  // F(t + dt), with v(t + dt/2) and v(t + dt) predicted
         if (after == After::step)  // v(t + dt/2) -> v(t + dt) -> v(t + 3dt/2), x(t + dt) -> x(t + 2dt); F = 0
             drifted_far_[static_cast<std::size_t>(c)] +=
                 kick_kick_drift(p, scenario_.gravity, half_dt, dt_, free_part(r), since_this_build);
@@ -536,7 +539,7 @@ void add_and_clear(double* __restrict sum, double* __restrict part, std::size_t 
 // between calls every particle's forces are complete (a user reads the
 // load on each wall sphere), as are those from the set-up.
 template <class Then>
-void Simulation::compute_forces(Team& team, Sums sums, const std::vector<MotionNow>& now, Then&& then) {
+void Simulation::compute_forces(Team& team, Sums sums, double time, const std::vector<MotionNow>& now, Then&& then) {
     ParticleStore& p = particles_;
     std::vector<PlacedWall> walls;  // where the motions have carried them
     for (const Wall& w : walls_) walls.push_back(place_wall(w, w.motion >= 0 ? &now[static_cast<std::size_t>(w.motion)] : nullptr));
@@ -552,6 +555,7 @@ void Simulation::compute_forces(Team& team, Sums sums, const std::vector<MotionN
             for (const PlacedWall& w : walls) put = put && (w.wall->shape == WallShape::mesh || stays_put(*w.wall, w.now));
             if (put && !wall_list_.valid) build_wall_list(walls);
             if (!put && wall_list_.valid) flush_wall_list();
+            if (!recording_ && !mesh_walls_.empty() && !mesh_list_holds(time)) build_mesh_list(walls, time);
         }
         const IndexRange range = team.range(c, pairs.size());
         const auto part = static_cast<std::size_t>(c);
@@ -621,18 +625,68 @@ void Simulation::clear_chunk_sums(IndexRange r) {
 void Simulation::add_wall_forces(IndexRange r, const std::vector<PlacedWall>& walls, int c) {
     ParticleStore& p = particles_;
     const std::size_t slots = wall_slots();
-    const auto each_mesh = [&](std::size_t i) {
-        for (std::size_t k = 0; k < walls.size(); ++k)
-            if (walls[k].wall->shape == WallShape::mesh) add_mesh_forces(i, k, walls[k], c);
+    std::array<MeshTouch, mesh_wall_slots> touches;
+    // f(i, k, touches, n) for the contacts of each free sphere of range q
+    // with each mesh wall: from the list where it is valid, else by the
+    // facet grid.
+    const auto each_mesh_contact = [&](IndexRange q, auto&& f) {
+        if (mesh_walls_.empty()) return;
+        const auto sphere_on = [&](std::size_t i, std::size_t k, std::span<const std::uint32_t> faces, const Vec3& x) {
+            f(i, k, touches, mesh_touches(i, k, walls[k], c, x, faces, touches));
+        };
+        if (!mesh_list_.valid) {
+            for (std::size_t i = q.begin; i < q.end; ++i)
+                for (std::size_t k = 0; k < walls.size() && !p.is_kinematic(i); ++k)
+                    if (walls[k].wall->shape == WallShape::mesh) {
+                        const Vec3 x = to_start_frame(walls[k].now, p.position[i]);
+                        sphere_on(i, k, mesh_walls_[mesh_wall_[k]].grid.candidates(x), x);
+                    }
+            return;
+        }
+        const MeshList& m = mesh_list_;  // the listed spheres of q
+        const auto first = std::lower_bound(m.sphere.begin(), m.sphere.end(), q.begin) - m.sphere.begin();
+        const auto last = std::lower_bound(m.sphere.begin() + first, m.sphere.end(), q.end) - m.sphere.begin();
+        for (auto e = static_cast<std::size_t>(first); e < static_cast<std::size_t>(last); ++e) {
+            // The records by global id lie all over the memory: those of the
+            // sphere a few entries on asked for now, on their way while
+            // this one's contacts are found.
+            if (constexpr std::size_t ahead = 4; e + ahead < static_cast<std::size_t>(last)) {
+                const std::size_t record =
+                    slots * static_cast<std::size_t>(p.id[m.sphere[e + ahead]]) + wall_slot_[m.wall[e + ahead]];
+                __builtin_prefetch(&wall_history_set_[record]);
+                __builtin_prefetch(&wall_feature_[record]);
+                __builtin_prefetch(&wall_history_[record]);
+            }
+            const std::size_t i = m.sphere[e], k = m.wall[e];
+            sphere_on(i, k, {m.faces.data() + m.start[e], m.faces.data() + m.start[e + 1]},
+                      to_start_frame(walls[k].now, p.position[i]));
+        }
     };
     if (!recording_) {
         WallLoad* loads = chunk_wall_load_.data() + static_cast<std::size_t>(c) * scenario_.walls.size();
         const WallLoop loop{p, walls, wall_slot_, wall_number_, slots, wall_history_, wall_history_set_, pair_table_, dt_, loads};
         WallList* list = wall_list_.valid ? &wall_list_ : nullptr;
-        run_for_isa([&] { add_wall_contacts(loop, list, r, scenario_.model); });
-        if (!mesh_walls_.empty())
-            for (std::size_t i = r.begin; i < r.end; ++i)
-                if (!p.is_kinematic(i)) each_mesh(i);
+        run_for_isa([&] {
+            with_wall_law(scenario_.model, [&](const auto& law) {
+                if (list)
+                    add_listed_wall_contacts(loop, *list, r, law);
+                else
+                    add_wall_contacts(loop, r, law);
+                // The meshes' contacts after all the analytic walls': each
+                // sphere's forces are added in the same order as one at a time.
+                WallContactBlock b;
+                each_mesh_contact(r, [&](std::size_t i, std::size_t k, const auto& touch, std::size_t n) {
+                    for (std::size_t j = 0; j < n; ++j) {
+                        // A face is flat, and an edge or a vertex touched by a
+                        // sphere is taken as flat too: R* = R.
+                        put_wall_lane(loop, b, i, k, touch[j].record, touch[j].n, touch[j].distance, p.radius[i],
+                                      touch[j].velocity, touch[j].angular_velocity);
+                        if (b.count == WallContactBlock::capacity) settle_wall_block(loop, b, wall_history_.data(), law);
+                    }
+                });
+                if (b.count > 0) settle_wall_block(loop, b, wall_history_.data(), law);
+            });
+        });
         return;
     }
     for (std::size_t i = r.begin; i < r.end; ++i) {
@@ -652,7 +706,11 @@ void Simulation::add_wall_forces(IndexRange r, const std::vector<PlacedWall>& wa
             add_wall_contact(i, k, walls[k], t.n, t.distance, wall_contact_radius(p.radius[i], t.curvature),
                              wall.velocity, wall.angular_velocity, history, c);
         }
-        each_mesh(i);
+        each_mesh_contact({i, i + 1}, [&](std::size_t, std::size_t k, const auto& touch, std::size_t n) {
+            for (std::size_t j = 0; j < n; ++j)
+                add_wall_contact(i, k, walls[k], touch[j].n, touch[j].distance, p.radius[i], touch[j].velocity,
+                                 touch[j].angular_velocity, wall_history_[touch[j].record], c);
+        });
     }
 }
 
@@ -686,7 +744,8 @@ void Simulation::add_wall_contact(std::size_t i, std::size_t k, const PlacedWall
 // most first: in a V of triangles a face's successor on its side shares an
 // edge with it, the other side's face a vertex at most), else a free slot
 // afresh. Slots no contact took are cleared.
-void Simulation::add_mesh_forces(std::size_t i, std::size_t k, const PlacedWall& wall, int c) {
+std::size_t Simulation::mesh_touches(std::size_t i, std::size_t k, const PlacedWall& wall, int c, const Vec3& x,
+                                     std::span<const std::uint32_t> faces, std::array<MeshTouch, mesh_wall_slots>& out) {
     constexpr std::size_t S = mesh_wall_slots, none = S;
     ParticleStore& p = particles_;
     const MeshWall& mesh = mesh_walls_[mesh_wall_[k]];
@@ -695,16 +754,14 @@ void Simulation::add_mesh_forces(std::size_t i, std::size_t k, const PlacedWall&
     std::uint32_t* feature = wall_feature_.data() + first;
     std::vector<MeshContact>& found = mesh_contacts_[static_cast<std::size_t>(c)];
     const double R = p.radius[i];
-    const Vec3 x = to_start_frame(wall.now, p.position[i]);
     // Most spheres touch no mesh and held no contact with it at the last
     // step: they end here, their slots' records (by global id, all over the
     // memory) unread. The byte of the first slot says whether any may hold
     // one (1 after a restore or a migration: any).
     std::uint8_t& held = wall_history_set_[first];
-    const std::span<const std::uint32_t> candidates = mesh.grid.candidates(x);
-    if (candidates.empty() && !held) return;
-    mesh_contacts(mesh.topology, x, R, candidates, found);
-    if (found.empty() && !held) return;
+    if (faces.empty() && !held) return 0;
+    mesh_contacts(mesh.topology, x, R, faces, found);
+    if (found.empty() && !held) return 0;
     held = found.empty() ? 0 : 1;
     if (found.size() > S) {  // the S deepest, otherwise in their order
         std::stable_sort(found.begin(), found.end(),
@@ -749,14 +806,13 @@ void Simulation::add_mesh_forces(std::size_t i, std::size_t k, const PlacedWall&
         for (std::size_t s = 0; s < S && slot_of[j] == none; ++s)  // a new contact: a free slot
             if (!taken[s]) slot_of[j] = s, taken[s] = true;
         feature[slot_of[j]] = code[j];
-        const Vec3 normal = to_lab_direction(wall.now, found[j].n);
-        const double distance = R - found[j].overlap;
-        Vec3 velocity, angular_velocity;
-        surface_motion(wall.now, p.position[i] - distance * normal, velocity, angular_velocity);
-        // A face is flat, and an edge or a vertex touched by a sphere is
-        // taken as flat too: R* = R.
-        add_wall_contact(i, k, wall, normal, distance, R, velocity, angular_velocity, history[slot_of[j]], c);
+        MeshTouch& t = out[j];
+        t.record = first + slot_of[j];
+        t.n = to_lab_direction(wall.now, found[j].n);
+        t.distance = R - found[j].overlap;
+        surface_motion(wall.now, p.position[i] - t.distance * t.n, t.velocity, t.angular_velocity);
     }
+    return n;
 }
 
 // The wall list (sim/wall_loop.hpp) of the own spheres where they are now:
@@ -803,6 +859,56 @@ void Simulation::flush_wall_list() {
         wall_history_set_[list.record[e]] = 1;
     }
     list = WallList{};
+}
+
+void Simulation::build_mesh_list(const std::vector<PlacedWall>& walls, double time) {
+    const ParticleStore& p = particles_;
+    MeshList& list = mesh_list_;
+    list.sphere.clear();
+    list.wall.clear();
+    list.start.assign(1, 0);
+    list.faces.clear();
+    list.reach.assign(walls.size(), 0.0);
+    list.time = time;
+    const Vec3* seen = neighbors_.positions_at_build(p.size());
+    list.valid = seen != nullptr;  // (none: the facet grid's path until the next rebuild)
+    if (!seen) return;
+    const double skin = neighbors_.skin();
+    for (std::size_t i = 0; i < owned_; ++i) {
+        if (p.is_kinematic(i)) continue;
+        for (std::size_t k = 0; k < walls.size(); ++k) {
+            if (walls[k].wall->shape != WallShape::mesh) continue;
+            const MeshWall& mesh = mesh_walls_[mesh_wall_[k]];
+            if (const MotionNow* now = walls[k].now)
+                list.reach[k] = std::max(list.reach[k], distance_from_axis(seen[i], now->axis_point, now->turn.u));
+            const Vec3 x = to_start_frame(walls[k].now, seen[i]);
+            faces_within(mesh.topology, x, p.radius[i] + skin, mesh.grid.candidates(x), list.faces);
+            if (list.faces.size() > list.start.back()) {
+                list.sphere.push_back(static_cast<std::uint32_t>(i));
+                list.wall.push_back(static_cast<std::uint32_t>(k));
+                list.start.push_back(static_cast<std::uint32_t>(list.faces.size()));
+                continue;
+            }
+            // Left out: no contact with this mesh until the list is made anew.
+            const std::size_t first = wall_slots() * static_cast<std::size_t>(p.id[i]) + wall_slot_[k];
+            if (!wall_history_set_[first]) continue;
+            std::fill_n(wall_history_.begin() + static_cast<std::ptrdiff_t>(first), mesh_wall_slots, ContactHistory{});
+            std::fill_n(wall_feature_.begin() + static_cast<std::ptrdiff_t>(first), mesh_wall_slots, 0u);
+            wall_history_set_[first] = 0;
+        }
+    }
+}
+
+bool Simulation::mesh_list_holds(double time) const {
+    if (!mesh_list_.valid) return false;
+    const double limit = 0.9 * std::sqrt(neighbors_.rebuild_limit2());  // of half the skin
+    for (std::size_t k = 0; k < walls_.size(); ++k) {
+        if (walls_[k].shape != WallShape::mesh || walls_[k].motion < 0) continue;
+        const RigidMotion& m = motions_[static_cast<std::size_t>(walls_[k].motion)].motion;
+        if (rigid_displacement_bound(m.velocity, m.angular_velocity, time - mesh_list_.time, mesh_list_.reach[k]) >= limit)
+            return false;
+    }
+    return true;
 }
 
 std::vector<WallLoad> Simulation::wall_loads() const {
@@ -909,6 +1015,7 @@ void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
     scenario_.motions[k] = motion;
     move_kinematic(particles_, motions_now(time_), {0, owned_});
     list_time_.reset();  // the motion's bound holds from now on, not from the build
+    mesh_list_.valid = false;
 }
 
 SimulationState Simulation::capture() const {
@@ -1026,6 +1133,7 @@ void Simulation::restore(SimulationState state) {
     wall_feature_ = std::move(state.wall_feature);
     wall_history_set_.assign(wall_history_.size(), 1);  // any record may be set
     wall_list_ = WallList{};  // found anew at the next step
+    mesh_list_ = MeshList{};
     motions_ = std::move(state.motions);
     inserted_ = std::move(state.inserted);
     for (std::size_t k = 0; k < motions_.size(); ++k) scenario_.motions[k] = motions_[k].motion;

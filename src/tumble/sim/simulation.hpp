@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -168,11 +169,22 @@ private:
     enum class Sums { free, all };
     // The forces at `time` (where `now` has the motions then).
     template <class Then>
-    void compute_forces(Team& team, Sums sums, const std::vector<MotionNow>& now, Then&& then);
+    void compute_forces(Team& team, Sums sums, double time, const std::vector<MotionNow>& now, Then&& then);
     void clear_chunk_sums(IndexRange r);
     void add_wall_forces(IndexRange r, const std::vector<PlacedWall>& walls, int c);
-    // The contacts of sphere i with mesh wall k (an index into walls_).
-    void add_mesh_forces(std::size_t i, std::size_t k, const PlacedWall& wall, int c);
+    // The contacts of sphere i with mesh wall k (an index into walls_),
+    // each matched with its history slot (the slots' features set, the
+    // slots no contact took cleared), into `out`; their number. From its
+    // centre x in the mesh's frame at the start of its motion and the faces
+    // it may touch (every one within its radius of x, and maybe more).
+    struct MeshTouch {
+        std::size_t record;              // the history's, in wall_history_
+        Vec3 n;                          // lab frame, unit, from the mesh to the centre
+        double distance;                 // of the centre from the mesh, m
+        Vec3 velocity, angular_velocity; // the mesh's surface motion at the contact
+    };
+    std::size_t mesh_touches(std::size_t i, std::size_t k, const PlacedWall& wall, int c, const Vec3& x,
+                             std::span<const std::uint32_t> faces, std::array<MeshTouch, mesh_wall_slots>& out);
     // One contact of sphere i with wall k: its geometry from the normal n
     // (lab frame, from the wall to the centre), the distance of the centre
     // from the wall, the Hertz radius and the wall's surface motion there.
@@ -282,7 +294,7 @@ private:
     std::vector<std::vector<MeshContact>> mesh_contacts_;
     // Per record of wall_history_: 0 where the record is zero (1: it may
     // not be); for a mesh wall the byte of its first slot speaks for all its
-    // slots (add_mesh_forces()). Derived, not state: restore() and
+    // slots (mesh_touches()). Derived, not state: restore() and
     // migrations set every byte.
     std::vector<std::uint8_t> wall_history_set_;
     // While every wall stays put, the pairs of a sphere and a wall that may
@@ -292,6 +304,29 @@ private:
     WallList wall_list_;
     void build_wall_list(const std::vector<PlacedWall>& walls);
     void flush_wall_list();
+    // Per free own sphere near a mesh wall, the faces it may touch until
+    // the list is found anew: those within its radius plus the skin of
+    // where the neighbour list saw it, in the mesh's frame when the list was
+    // made (`time`). The sphere stays within half the skin of that place
+    // (the neighbour list's rule), and while the mesh's motion carries
+    // none of the own spheres' places (within `reach` of its axis) farther
+    // than 0.9 of the other half, no face left out comes within the
+    // sphere's radius (mesh_list_holds()). The spheres left out held no
+    // mesh contact once it was made, and are not looked at. Entry e: sphere
+    // sphere[e] (its place in the store, in increasing order) against
+    // wall[e], its faces faces[start[e]] to faces[start[e + 1] - 1].
+    // Found anew at a rebuild (the store re-sorted), a restore or a new
+    // motion; not made where the contacts are recorded (the facet grid's
+    // path is then taken, with the same contacts).
+    struct MeshList {
+        bool valid = false;
+        double time = 0.0;          // s
+        std::vector<double> reach;  // per wall of walls_ (0 unless a moving mesh), m
+        std::vector<std::uint32_t> sphere, wall, start{0}, faces;
+    };
+    MeshList mesh_list_;
+    void build_mesh_list(const std::vector<PlacedWall>& walls, double time);
+    bool mesh_list_holds(double time) const;
     std::vector<WallLoad> chunk_wall_load_;
     // Shared among ranks: the slabs, the spheres this rank owns (the first
     // owned_ of the store; all of them on one rank), the keyed histories of

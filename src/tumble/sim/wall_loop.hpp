@@ -165,6 +165,31 @@ void settle_wall_block(const WallLoop& w, WallContactBlock& b, ContactHistory* h
     b.count = 0;
 }
 
+// A contact of sphere i with wall k into the next lane of the block: n (lab
+// frame, unit, from the wall to the centre), the centre's distance from the
+// wall (m), the Hertz radius R* (m), the wall's surface velocity and
+// angular velocity at the contact, and where its history is (an index into
+// the histories the block is settled with).
+inline void put_wall_lane(const WallLoop& w, WallContactBlock& b, std::size_t i, std::size_t k, std::size_t history,
+                          const Vec3& n, double distance, double R_star, const Vec3& v_wall, const Vec3& omega_wall) {
+    const ParticleStore& p = w.p;
+    const std::size_t l = b.count++;
+    b.particle[l] = static_cast<std::uint32_t>(i);
+    b.wall[l] = static_cast<std::uint32_t>(k);
+    b.record[l] = history;
+    b.pair_type[l] = w.table.index(p.material[i], w.walls[k].wall->material);
+    b.n.set(l, n);
+    b.distance[l] = distance;
+    b.R_i[l] = p.radius[i];
+    b.R_star[l] = R_star;
+    b.v_i.set(l, p.velocity[i]);
+    b.kick_i.set(l, p.half_kick[i]);
+    b.omega_i.set(l, p.angular_velocity[i]);
+    b.v_wall.set(l, v_wall);
+    b.omega_wall.set(l, omega_wall);
+    b.inverse_mass[l] = p.inv_mass[i];
+}
+
 // Sphere i against wall k: whether they touch, and if they do, the contact
 // into the next lane of the block (its history at `history`, an index into
 // the histories the block is settled with). `x` is i's centre in the frame
@@ -182,26 +207,13 @@ inline bool wall_touches(const WallLoop& w, std::size_t i, std::size_t k, std::s
     const WallTouch in_wall_frame = wall_touch(*wall.wall, x);
     if (in_wall_frame.distance >= p.radius[i]) return false;
     const WallContact contact = wall_contact_of(wall, p.position[i], in_wall_frame);
-    const std::size_t l = b.count++;
-    b.particle[l] = static_cast<std::uint32_t>(i);
-    b.wall[l] = static_cast<std::uint32_t>(k);
-    b.record[l] = history;
-    b.pair_type[l] = w.table.index(p.material[i], wall.wall->material);
-    b.n.set(l, contact.touch.n);
-    b.distance[l] = contact.touch.distance;
-    b.R_i[l] = p.radius[i];
     if (p.radius[i] != b.last_R || contact.touch.curvature != b.last_curvature || b.last_R == 0.0) {
         b.last_R = p.radius[i];
         b.last_curvature = contact.touch.curvature;
         b.last_R_star = wall_contact_radius(p.radius[i], contact.touch.curvature);
     }
-    b.R_star[l] = b.last_R_star;
-    b.v_i.set(l, p.velocity[i]);
-    b.kick_i.set(l, p.half_kick[i]);
-    b.omega_i.set(l, p.angular_velocity[i]);
-    b.v_wall.set(l, contact.velocity);
-    b.omega_wall.set(l, contact.angular_velocity);
-    b.inverse_mass[l] = p.inv_mass[i];
+    put_wall_lane(w, b, i, k, history, contact.touch.n, contact.touch.distance, b.last_R_star, contact.velocity,
+                  contact.angular_velocity);
     return true;
 }
 
@@ -274,18 +286,15 @@ void add_listed_wall_contacts(const WallLoop& w, WallList& list, IndexRange r, c
     if (b.count > 0) settle_wall_block(w, b, list.history.data(), model);
 }
 
-// The same for a model given at run time, as add_contact_forces(): the
-// paper's model (every term on) to the vectorised law, any other to the law
-// with its switches.
-// `list`: the wall list where it is valid, else null.
-inline void add_wall_contacts(const WallLoop& w, WallList* list, IndexRange r, const ContactModel& model) {
+// f(law) with the law for a model given at run time, as
+// add_contact_forces(): the paper's model (every term on) as the vectorised
+// law's type, any other as the model with its switches.
+template <class F>
+void with_wall_law(const ContactModel& model, F&& f) {
     auto run = [&](auto all_terms_on) {
         all_terms_on.friction_normal = model.friction_normal;
         all_terms_on.slip_velocity_regularisation = model.slip_velocity_regularisation;
-        if (list)
-            add_listed_wall_contacts(w, *list, r, all_terms_on);
-        else
-            add_wall_contacts(w, r, all_terms_on);
+        f(all_terms_on);
     };
     if (model.all_terms_on() && model.shear == ShearModel::Paper)
         run(AllTermsOn<ShearModel::Paper>{});
@@ -293,10 +302,8 @@ inline void add_wall_contacts(const WallLoop& w, WallList* list, IndexRange r, c
         run(AllTermsOn<ShearModel::Coulomb>{});
     else if (model.all_terms_on() && model.shear == ShearModel::Spring)
         run(AllTermsOn<ShearModel::Spring>{});
-    else if (list)
-        add_listed_wall_contacts<ContactModel>(w, *list, r, model);
     else
-        add_wall_contacts<ContactModel>(w, r, model);
+        f(model);
 }
 
 }  // namespace tumble

@@ -414,7 +414,12 @@ void mesh_contacts(const MeshTopology& mesh, const Vec3& c, double R, std::span<
     bool near = false;  // a face's edges or corners within R: rule 5 may find a contact
     MeshContact k;
     for (std::uint32_t f : candidate_faces) {
-        const FaceTest t = test_face(mesh.face(f), c);
+        // A face whose plane lies R or more from c (by both tests below) gives
+        // nothing: most faces near a sphere, its sides' distances not worked out.
+        const FaceGeometry& g = mesh.face(f);
+        const double d = dot(c - g.corner[0], g.normal);
+        if (!(std::abs(d) < R) && !(d * d < R2)) continue;
+        const FaceTest t = test_face(g, c);
         // Rule 1: c projects into the face, its plane within R.
         if (t.s_max < 0.0) {
             if (std::abs(t.d) < R) {
@@ -461,6 +466,15 @@ void mesh_contacts(const MeshTopology& mesh, const Vec3& c, double R, std::span<
     out.resize(kept);
     // (Rule 5 looks for a face within R as the loop above: none, no contact.)
     if (out.empty() && near) add_nearest(mesh, c, R, candidate_faces, out);
+}
+
+void faces_within(const MeshTopology& mesh, const Vec3& c, double reach, std::span<const std::uint32_t> candidate_faces,
+                  std::vector<std::uint32_t>& out) {
+    for (std::uint32_t f : candidate_faces) {
+        const FaceTest t = test_face(mesh.face(f), c);
+        const double beyond = std::max(t.s_max, 0.0);  // m
+        if (t.d * t.d + beyond * beyond < reach * reach) out.push_back(f);
+    }
 }
 
 std::string closed_surface_problem(const MeshTopology& mesh) {

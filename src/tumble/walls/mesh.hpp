@@ -288,4 +288,14 @@ struct MeshContact {
 void mesh_contacts(const MeshTopology& mesh, const Vec3& centre, double radius,
                    std::span<const std::uint32_t> candidate_faces, std::vector<MeshContact>& out);
 
+// The faces of candidate_faces that may lie within `reach` of the centre,
+// appended to out in their order: those whose bound sqrt(d^2 + s^2), with
+// s = max(s_max, 0) the in-plane distance beyond the farthest side (never
+// more than the true distance: the header), is below reach. A sphere of
+// radius R whose centre stays within reach - R of `centre` can touch no
+// other face of the candidates (Simulation's list of the faces near each
+// sphere).
+void faces_within(const MeshTopology& mesh, const Vec3& centre, double reach,
+                  std::span<const std::uint32_t> candidate_faces, std::vector<std::uint32_t>& out);
+
 }  // namespace tumble
