@@ -311,7 +311,7 @@ class Run:
 
     def fit(self, index):
         """(D, D_stderr, amplitude) of the free-amplitude Hogg fit of a component from
-        summary.json (before issue 14: the pinned fit, amplitude L/4), or None where
+        summary.json (of an earlier tumble: the pinned fit, amplitude L/4), or None where
         D was not determined: an undetermined value is never drawn."""
         c = self.component_summary(index)
         if c is None:
@@ -962,7 +962,7 @@ def _plot_grouped(ax, x, values, colour, label, marker="o", lo=None, hi=None):
 
 def _d_columns(table, c):
     """D of a component and its 95 % interval per row, and which rows' D is not
-    determined: the grains' MSD estimate where the table has it (issue 14; empty
+    determined: the grains' MSD estimate where the table has it (empty
     where not determined), else the old pinned Hogg fit +- 1.96 standard errors
     (where `determined_` is false, D is only the best estimate)."""
     finished = np.array([s == "finished" for s in table["status"]]) if "status" in table \

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // tumble bench: the paper's dense periodic cube (docs/BENCHMARKS.md), or the
-// long flowing drum of issue 13 (docs/BENCHMARKS.md).
+// long flowing drum (docs/BENCHMARKS.md).
 #include <algorithm>
 #include <chrono>
 #include <cmath>

@@ -36,7 +36,7 @@ struct RunOptions {
 int run_command(const RunOptions& options);
 
 struct BenchOptions {
-    std::string bench_case = "cube";  // "cube" (the paper's benchmark) or "long-drum" (issue 13)
+    std::string bench_case = "cube";  // "cube" (the paper's benchmark) or "long-drum" (docs/BENCHMARKS.md)
     int size = 21;             // cube: lattice edge, 21 -> 9261 spheres (the paper's), 46 -> 97336
     std::optional<std::int64_t> steps;   // timed steps; default 2000 (cube), 10000 (long drum)
     std::optional<std::int64_t> warmup;  // untimed steps first; default 200 (cube), 2000 (long drum, turning)

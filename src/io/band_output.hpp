@@ -85,7 +85,7 @@ void analyze_band_run(const std::filesystem::path& directory, const std::filesys
                       bool growing = false);
 
 // The band analysis of the revolutions written so far, of a run stopped or
-// still going on (a long band study looked at between sittings, or while
+// still going on (a long band study looked at while it is stopped, or while
 // it runs): the files of analyze_band_run and summary.txt in DIR/so_far/,
 // the run's own files untouched (no summary.json: a sweep does not take the
 // run for finished). running: another process is writing the run, so its

@@ -410,7 +410,7 @@ PointResult point_result_from_summary(const SweepPoint& p, const std::string& te
             // written before held the best estimate in D itself).
             const double D = std::isfinite(num(c, "D")) ? num(c, "D") : num(c, "D_best_estimate");
             PointResult::Component k{D, num(c, "D_stderr"), num(c, "D_one_term"), is_true(c, "determined"), nan};
-            // The estimators of issue 14, where determined.
+            // The grains' MSD D and the free-amplitude Hogg D, where determined.
             if (const auto m = c.find("msd"); m != c.end() && is_true(*m, "determined"))
                 k.msd_D = num(*m, "D"), k.msd_lo = num(*m, "D_lo"), k.msd_hi = num(*m, "D_hi");
             if (const auto h = c.find("hogg_free"); h != c.end() && is_true(*h, "determined"))

@@ -157,7 +157,7 @@ struct PointResult {
     PointState state = PointState::pending;
     std::string note;  // why there are no numbers (failed, unreadable summary.json)
     // Per component name: D, D_stderr, D_one_term, determined (the pinned
-    // Hogg fit of tumble before issue 14), and the share of its axial <dz^2>
+    // Hogg fit of earlier versions of tumble), and the share of its axial <dz^2>
     // in the top grain layer, less than a mean grain diameter below the free
     // surface; the grains' MSD D with its 95 % interval and the
     // free-amplitude Hogg D with its interval, NaN where not determined

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The band study (issue 16; studies/bands/README.md): starts or continues
+# The band study (studies/bands/README.md): starts or continues
 # the runs of runs.txt, JOBS at a time (default 2), each on THREADS threads
 # (default 1), at low priority (nice 10). RUNS="NAME ..." picks runs (default:
 # every run of runs.txt, experiment B first: its runs are shorter and

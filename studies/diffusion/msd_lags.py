@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 14, item 7: does the grains' axial D depend on the lag? From the
+"""The diffusion study: does the grains' axial D depend on the lag? From the
 snapshots of the long runs (8 per revolution, 120 revolutions; run before
 keep.sh, which deletes them): the mean-squared axial displacement of the
 grains over lags of 1 to 64 revolutions (from N = 1), and the D that a

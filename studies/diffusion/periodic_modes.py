@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 14, item 7: does the drum without end caps mix its two halves
+"""The diffusion study: does the drum without end caps mix its two halves
 faster than its grains diffuse? On a periodic axis neither the Hogg fit nor
 the drift test applies (the mean of a wrapped coordinate follows no Hogg
 law), so this takes the first Fourier mode of each component's

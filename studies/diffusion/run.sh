@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 14, item 7: the diffusion study again (studies/diffusion/README.md).
+# The diffusion study: the paper's results regenerated (studies/diffusion/README.md).
 # Resumable across machines: the finished points kept in git
 # (kept/SWEEP/POINT.tar.gz) are unpacked where the sweeps look for them, then the
 # sweeps run their remaining points (JOBS at a time, default 2; an

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 14, item 7: the verdicts on the paper's four claims from the
+"""The diffusion study: the verdicts on the paper's four claims from the
 diffusion study (studies/diffusion/README.md). Reads the sweep tables
 out/SWEEP/sweep.csv (one row per seed) and the long runs' summary.json, and
 writes results.md beside this file. Run with /usr/bin/python3 (numpy, scipy).

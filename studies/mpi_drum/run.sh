@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 17: does sharing the drum among MPI ranks change its observables?
+# The MPI drum study: does sharing the drum among MPI ranks change its observables?
 # The paper's default drum (two components, 1000 grains, 5 rad/s, 6
 # revolutions after settling; cut along z, its longest axis, 12 cm against
 # 9 cm across, so grains cross the cut at the middle) for seeds 1-8

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 11, item 7: the three shear models at 5 rad/s, both modes, 3 seeds
+# The shear-model study: the three shear models at 5 rad/s, both modes, 3 seeds
 # (self-diffusion 10 revolutions, two-component 5). Resumable: run it again
 # and every sweep continues from its finished points and checkpoints. Then
 # `python3 studies/shear_models/table.py` prints the comparison table of

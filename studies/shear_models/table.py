@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 11, item 7: the comparison table of the three shear models.
+"""The shear-model study: the comparison table of the three shear models.
 
 Re-analyses every finished point with the current `build/tumble analyze`
 (the estimators of docs/DRUM.md), then prints, per mode and shear model,

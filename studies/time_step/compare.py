@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Issue 13: the drum's observables at the automatic step against a quarter
-of it (studies/time_step/run.sh). Per run: the dynamic angle of repose, the
+"""The time-step study: the drum's observables at the automatic step
+against a quarter of it (studies/time_step/run.sh). Per run: the dynamic angle of repose, the
 kinetic energy per grain of each material (mean over N >= 1) and each
 material's axial self-diffusion D from the grains' mean-squared displacement
 (summary.json). Seeds are the independent samples: mean, standard error
@@ -9,8 +9,8 @@ by Welch's test. Writes results.md beside this file; run with /usr/bin/python3
 (numpy, scipy).
 
 Any two sets of drum runs NAME_seedS in one folder compare the same way:
-compare.py --out DIR --a NAME --b NAME --title TEXT --setup TEXT (issue 17's
-studies/mpi_drum: one process against 2 MPI ranks)."""
+compare.py --out DIR --a NAME --b NAME --title TEXT --setup TEXT (the MPI drum
+study, studies/mpi_drum: one process against 2 MPI ranks)."""
 import argparse
 import csv
 import json

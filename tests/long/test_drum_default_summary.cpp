@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// End to end (issue 14): the README's main job, `tumble drum` on its
+// End to end: the README's main job, `tumble drum` on its
 // default (the paper's two-component drum, 12 revolutions), writes a
 // summary.json with, for each component, the grains' MSD D determined and a
 // 95 % interval around it. About 40 s (38 s on an AMD Zen 5, 2026-12-05):

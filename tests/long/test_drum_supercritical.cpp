@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Above the critical speed the grains are held against the wall and axial
-// transport nearly stops (issue 3). Minutes of run time: label "long"
+// transport nearly stops. Minutes of run time: label "long"
 // (ctest --test-dir build -L long).
 //
 // How far above: Fr = omega^2 R / g > 1 only lifts the grains off the

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Issue 13: the LAMMPS peer of `tumble bench --case long-drum`
+// The LAMMPS peer of `tumble bench --case long-drum`
 // (bench/compare_drum.sh, bench/peers/lammps_drum.in; docs/BENCHMARKS.md,
 // "LAMMPS on the same drum") runs on tumble's settled bed and does what the
 // drum does: no grain leaves the drum; with the deck's own law in tumble

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Issue 11: the tangential-spring model (shear = "spring") against LAMMPS's
+// The tangential-spring model (shear = "spring") against LAMMPS's
 // pair_style granular with the same normal law, on a pour of 300 grains into
 // a box with flat walls (docs/BENCHMARKS.md, "The pour against LAMMPS").
 //
@@ -9,7 +9,7 @@
 // beds are at rest after about 0.4 s). Compared on the final states, with the
 // same definitions for both codes: the mean bed height (mean z of the grain
 // centres) and the coordination number (2 x grain-grain pairs that overlap,
-// divided by the number of grains). The criterion is the issue's: the mean
+// divided by the number of grains). The criterion: the mean
 // over seeds of the relative difference of the bed height within 1 %. The
 // seed-to-seed spread is reported as a 95 % confidence interval of that mean
 // (Student's t over the seeds' paired differences).

@@ -165,7 +165,7 @@ inline tumble::Scenario shaken_box() {
     return s;
 }
 
-// The long drum of issue 13 (docs/BENCHMARKS.md) at reduced size: the
+// The long drum of `tumble bench --case long-drum` (docs/BENCHMARKS.md) at reduced size: the
 // paper's cross-section and wall spheres, end caps, two components, but 6 cm
 // long with 300 grains, and turning at 5 rad/s from the start while the
 // grains, placed at random and thrown with velocity components up to 1 m/s,

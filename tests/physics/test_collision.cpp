@@ -148,7 +148,7 @@ TEST_P(HertzCollision, MatchesAnalyticDurationOverlapAndEnergy) {
 
     const Collision c = collide(k.Ra, k.ma, k.Rb, k.mb, k.v, elastic_only(), dt, 4000);
     ASSERT_TRUE(c.separated);
-    // The issue asks for 1 %. Velocity Verlet with 2000 steps per collision
+    // The required bound is 1 %. Velocity Verlet with 2000 steps per collision
     // errs by O((dt/t_c)^2) ~ 1e-6 and the zero crossings are interpolated
     // to O(dt^2); 1e-4 keeps a wide margin yet would still catch a factor in
     // E*, R* or m* (any of those moves t_c and h_max by >= 1e-2).
@@ -297,7 +297,7 @@ TEST_P(Restitution, AtTheAutomaticStepMatchesIndependentIntegrationOfTheNormalEq
     report("restitution at the automatic step " + std::to_string(dt_v) + " s for " + std::to_string(k.v) + " m/s",
            own.separation_speed / k.v, e_reference, 1e-2);
     EXPECT_LT(relative_difference(own.separation_speed / k.v, e_reference), 1e-2);
-    // The issue's bound. The damping sees the velocity predicted for t + dt
+    // The required bound. The damping sees the velocity predicted for t + dt
     // (second order) and solves its own dashpot over the step
     // (integrate/dashpot.hpp); with the half-step velocity it was 1.2 to 4 %
     // low here. Measured: within 0.67 % (the step is tau/25 or t_c/20).

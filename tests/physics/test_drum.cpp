@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// A short run of the paper's drum at a reduced grain count (issue 3): the
+// A short run of the paper's drum at a reduced grain count: the
 // wall holds the grains, overlaps stay small, the turning drum inclines the
 // bed in the direction of rotation, and no mass is created or lost.
 //

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Drum options of issue 14: the periodic axis (no end caps; the drum's
+// Drum options: the periodic axis (no end caps; the drum's
 // length is the period) and the spin-up ramp; the neighbour skin; the
 // surface energy.
 #include <gtest/gtest.h>

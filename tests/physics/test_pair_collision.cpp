@@ -36,7 +36,7 @@ TEST(ContactPairs, TheDrumHasItsFiveKindsOfContact) {
     EXPECT_NEAR(pairs[2].m_star, sphere_mass(1000.0, R1), 1e-15);
 }
 
-// The bounds: restitution and contact time at the automatic step
+// The required bounds: restitution and contact time at the automatic step
 // within 1 % of the converged integration, for every pair of the drum at
 // 0.05 to 1.4 m/s (the largest, sqrt(5 g R_drum), is the step's reference).
 // Measured at the automatic step (0.7 m*/c of the 2-2 pair at 1.4 m/s,

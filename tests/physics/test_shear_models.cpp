@@ -94,7 +94,7 @@ TEST_P(SustainedSliding, FrictionIsTheContinuumValueAtEveryStep) {
         std::ostringstream what;
         what << model_name(model) << (surface == Surface::FlatWall ? " on a flat wall" : " on a big sphere")
              << ", mu_eff at " << fraction << " x the automatic step " << dt << " s";
-        // 1 %: the issue's bound. The deceleration is measured over 5 ms
+        // 1 %: the required bound. The deceleration is measured over 5 ms
         // (hundreds of teeth of the paper's saw-tooth, whose phase at the
         // end adds at most mu/2 x one tooth's time / 5 ms ~ 0.2 %); the
         // normal force is m g on average (the grain starts at rest on its
@@ -180,7 +180,7 @@ TEST_P(StaticFriction, ClampedGrainHoldsWithoutCreep) {
     const double creep = std::abs(second - first) / 0.2;
     std::printf("  [measured] %s, load %.2f mu |F_n|: creep %.3g m/s, height %.3g m\n", model_name(model).c_str(), r,
                 creep, second);
-    // The issue's bound: below 1 um/s. (The paper's rule as it was crept
+    // The required bound: below 1 um/s. (The paper's rule as it was crept
     // at 0.28 to 0.73 mm/s here, and a regularised direction at v_reg r.)
     // (Where the load's elastic peak, 2 r mu |F_n|, passes the limit, the
     // grain slides once, tens of um, before it sticks.)
@@ -268,7 +268,7 @@ TEST(TwistingHeld, ACoupleBelowTheLimitIsHeld) {
         const double rim_creep = std::abs(second - first) / 0.5 * std::sqrt(R1 * h);
         std::printf("  [measured] %s: the grain's rim creeps at %.3g m/s (the sphere's rim turns at %.3g m/s)\n",
                     model_name(model).c_str(), rim_creep, 2.0 * std::sqrt(R1 * h));
-        EXPECT_LT(rim_creep, 1e-6) << model_name(model);  // the static-friction bound of the issue
+        EXPECT_LT(rim_creep, 1e-6) << model_name(model);  // the required static-friction bound
     }
 }
 
@@ -276,7 +276,7 @@ TEST(TwistingHeld, ACoupleBelowTheLimitIsHeld) {
 
 // 216 grains of material 1 dropped in a walled box (6 x 6 x 6 jittered
 // lattice, random velocities 0.05 m/s), every term on; after 1 s the rms
-// speed must be below 1e-6 m/s (the issue's bound; the paper's rule as it
+// speed must be below 1e-6 m/s (the required bound; the paper's rule as it
 // was kept 0.2 mm/s).
 TEST(SettledBed, AdhesiveGrainsComeToRest) {
     for (tumble::ShearModel model : {tumble::ShearModel::Coulomb, tumble::ShearModel::Spring}) {

@@ -149,7 +149,7 @@ TEST_F(BandRun, BadBandThresholdsAreRefusedNamingTheOption) {
     EXPECT_NE(width.output.find("--band-min-width must be at least 1"), std::string::npos) << width.output;
 }
 
-// A run stopped part way (a long band study between sittings): tumble
+// A run stopped part way (a long band study, paused): tumble
 // analyze refuses it, --so-far analyses its bands so far into DIR/so_far/
 // and leaves the run's files alone, also while the run goes on, and the run
 // then resumes.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The diffusion estimators of issue 14 on synthetic data with a known answer:
+// The diffusion estimators on synthetic data with a known answer:
 // random walkers for the grains' axial MSD (axial_msd.hpp) and its bootstrap
 // interval, Hogg series with an offset and a start-up transient for the
 // free-amplitude fit, and a series with diffusion and drift (hogg.hpp).

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The drum's starting arrangements and fill options (setup/drum.hpp,
-// DrumFill; issue 16): bands of the requested widths and species, a list of
+// DrumFill): bands of the requested widths and species, a list of
 // boundaries, the small grains' volume fraction, a mixed start uniform along
 // the axis, the caps' own friction, the periodic axis keeping its grains,
 // and the refusal of impossible fills naming the key.

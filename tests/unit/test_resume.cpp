@@ -100,7 +100,7 @@ TEST_F(Resume, StoppedAtAnyStepAndResumedGivesTheSameBytes) {
     }
 }
 
-// A drum with its own fill (issue 16: bands between given boundaries, a
+// A drum with its own fill (bands between given boundaries, a
 // volume fraction, the caps' own friction) resumes to the same bytes: the
 // checkpoint holds the particles and the caps' material, its record the
 // arrangement.

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Never silently wrong (issue 12): one process per run directory, a run is
+// Never silently wrong: one process per run directory, a run is
 // checked at its end and finished only when its results are written, and
 // every input (command line, scenario, checkpoint) is checked before the
-// work. Each test reproduces one of the issue's failures and expects the
+// work. Each test reproduces one such failure and expects the
 // clear error or the uninterrupted result. tests/data/bad/run and
 // tests/data/bad/cli hold the refused inputs, one case per class.
 #include <gtest/gtest.h>
@@ -400,7 +400,7 @@ TEST_F(Safety, AnalyzeRefusesAnUnfinishedRun) {
     EXPECT_FALSE(fs::exists(out / "summary.json"));
 }
 
-// ---- 8b. a size that is a unit slip is refused before any work (issue 15)
+// ---- 8b. a size that is a unit slip is refused before any work
 
 // `--diameter 8` meant as 8 cm built 2.9 million wall spheres for 1000
 // grains and ran for minutes with no output. A wall of more than 50 times

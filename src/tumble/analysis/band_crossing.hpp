@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Small grains crossing a band of large grains (issue 16, item 4): the flux
+// Small grains crossing a band of large grains (docs/BAND-ANALYSIS.md): the flux
 // that Kohring's argument for the odd band counts needs, as an effective
 // axial diffusion coefficient inside the band by Fick's law.
 //

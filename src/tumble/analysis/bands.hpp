@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Axial bands of a two-species drum (issue 16; docs/BAND-ANALYSIS.md): the
+// Axial bands of a two-species drum (docs/BAND-ANALYSIS.md): the
 // composition along the axis sampled over the rotation, C(z, N) (the
 // "kymograph" of band studies), and what is read from it: the bands, their
 // number, edges, contrast and the species at the ends, the dominant

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Segregation and energetics of the bed from particle frames (issue 14,
-// items 3 and 4). Frame as in drum_measure.hpp: drum axis = z, centre at the
-// origin; components by tag.
+// Segregation and energetics of the bed from particle frames. Frame as in
+// drum_measure.hpp: drum axis = z, centre at the origin; components by tag.
 //
 // Energetics. The paper compares the kinetic energies of the two species in
 // the lab frame, where most of a grain's velocity is the mean flow (carried
@@ -51,7 +50,7 @@ struct AxialStructure {
 // Slices of equal width over [-length/2, length/2].
 AxialStructure axial_structure(const GrainFrame& frame, int components, double length, int slices);
 
-// Where the motion happens (item 5). The free surface per axial slice:
+// Where the motion happens. The free surface per axial slice:
 // find_free_surface() (depth_mobility.hpp) on the grains of each slice, and
 // its inclination, degrees: the angle of the surface's normal from the
 // vertical, positive when the surface is raised on the +x side (toward

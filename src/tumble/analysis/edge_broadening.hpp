@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// How fast the boundaries of a prepared start blur (issue 16, item 4): the
+// How fast the boundaries of a prepared start blur (docs/BAND-ANALYSIS.md): the
 // axial interdiffusion coefficient D(phi) of the two species at each
 // boundary between bands, by the Boltzmann-Matano analysis of the
 // composition profile across it.

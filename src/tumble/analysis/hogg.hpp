@@ -85,7 +85,7 @@ struct DiffusionFit {
 DiffusionFit fit_diffusion(const std::vector<double>& N, const std::vector<double>& z_mean,
                            double L);
 
-// The Hogg fit a referee asks for (issue 14): the amplitude free and the
+// The Hogg fit with the amplitude free and the
 // start-up left out, optionally with a drift,
 //   <z>(N) = A (4/L) hogg_mean_position(D, N, L) + v N,       N >= first_revolution,
 // A in m (the effective <z>(0); 4A is an effective bed length), v in m per
