@@ -34,7 +34,7 @@ def kept_intervals(root):
 
 def main():
     root = Path(sys.argv[1] if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent)
-    report = (root / "docs" / "RESULTS.md").read_text()
+    report = (root / "docs" / 'RESULTS.md').read_text()
     tables = "\n".join(p.read_text() for p in sorted(root.glob("studies/*/*.md")))
     known = set(INTERVAL.findall(tables)) | kept_intervals(root)
     quoted = INTERVAL.findall(report)
