@@ -14,13 +14,14 @@ the page again.
 build/python: the directory that holds the built package (PYTHONPATH).
 Standard library only (and the package's numpy and pandas).
 """
-import difflib
 import importlib
 import inspect
 import os
 import re
 import sys
 import textwrap
+
+from generated_page import write_or_check
 
 PAGE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "reference", "python.md")
 MODULES = ("tumble", "tumble.io")
@@ -124,27 +125,9 @@ def main():
     made = page(missing)
     for name in missing:
         print(f"{name}: no docstring")
-    if sys.argv[2] == "--write":
-        with open(PAGE, "w", encoding="utf-8") as f:
-            f.write(made)
-        print(f"wrote {os.path.normpath(PAGE)}")
-        return 1 if missing else 0
-    try:
-        with open(PAGE, encoding="utf-8") as f:
-            kept = f.read()
-    except FileNotFoundError:
-        kept = ""
-    if kept != made:
-        sys.stdout.writelines(difflib.unified_diff(kept.splitlines(True), made.splitlines(True),
-                                                   "docs/reference/python.md", "the module's docstrings"))
-        print("\ndocs/reference/python.md differs from the module's docstrings; write it again with:\n"
-              "    python3 scripts/python_reference.py build/python --write")
-        return 1
-    if missing:
-        return 1
-    print("docs/reference/python.md is the module's docstrings")
-    return 0
-
+    status = write_or_check(PAGE, made, sys.argv[2], "the module's docstrings",
+                            "python3 scripts/python_reference.py build/python --write")
+    return 1 if missing else status
 
 if __name__ == "__main__":
     sys.exit(main())
