@@ -10,11 +10,12 @@ help and the page differ, and says how to write the page again.
 
 Standard library only.
 """
-import difflib
 import os
 import re
 import subprocess
 import sys
+
+from generated_page import write_or_check
 
 PAGE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "reference", "cli.md")
 
@@ -60,24 +61,8 @@ def main():
     if len(sys.argv) != 3 or sys.argv[2] not in ("--write", "--check"):
         sys.exit(__doc__)
     binary, mode = sys.argv[1], sys.argv[2]
-    made = page(binary)
-    if mode == "--write":
-        with open(PAGE, "w", encoding="utf-8") as f:
-            f.write(made)
-        print(f"wrote {os.path.normpath(PAGE)}")
-        return
-    try:
-        with open(PAGE, encoding="utf-8") as f:
-            kept = f.read()
-    except FileNotFoundError:
-        kept = ""
-    if kept != made:
-        sys.stdout.writelines(difflib.unified_diff(kept.splitlines(True), made.splitlines(True),
-                                                   "docs/reference/cli.md", "the program's help"))
-        print("\ndocs/reference/cli.md differs from the program's help; write it again with:\n"
-              "    python3 scripts/cli_reference.py build/tumble --write")
-        sys.exit(1)
-    print("docs/reference/cli.md is the program's help")
+    sys.exit(write_or_check(PAGE, page(binary), mode, "the program's help",
+                            "python3 scripts/cli_reference.py build/tumble --write"))
 
 
 if __name__ == "__main__":

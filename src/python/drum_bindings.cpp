@@ -48,17 +48,19 @@ py::object sample_of(const experiments::DrumSample& s) {
 
 void bind_drum(py::module_& m) {
     py::class_<io::DrumSettings>(m, "DrumSettings", "Settings of the drum experiment (tumble.drum_settings)")
-        .def_readonly("mode", &io::DrumSettings::mode)
+        .def_readonly("mode", &io::DrumSettings::mode,
+                      "two-component (large and small grains) or self (one kind, tagged by the half it started in)")
         .def_property_readonly("grains", &io::DrumSettings::grain_count, "the number of grains it makes")
         .def_property_readonly("omega", &io::DrumSettings::omega, "rad/s")
-        .def_readonly("revolutions", &io::DrumSettings::revolutions)
+        .def_readonly("revolutions", &io::DrumSettings::revolutions, "revolutions of the rotation")
         .def_readonly("until_band_change", &io::DrumSettings::until_band_change,
                       "end early once the band count has differed from the start's this many revolutions (0: off)")
-        .def_readonly("seed", &io::DrumSettings::seed)
+        .def_readonly("seed", &io::DrumSettings::seed, "seed of the fill")
         .def_property_readonly("length", [](const io::DrumSettings& s) { return s.geometry.length; }, "m")
         .def_property_readonly("diameter", [](const io::DrumSettings& s) { return s.geometry.diameter; }, "m")
         .def_property_readonly("wall_radius", [](const io::DrumSettings& s) { return s.geometry.wall_radius; }, "m")
-        .def_property_readonly("periodic_axis", [](const io::DrumSettings& s) { return s.geometry.periodic_axis; })
+        .def_property_readonly("periodic_axis", [](const io::DrumSettings& s) { return s.geometry.periodic_axis; },
+                               "no end caps: the axis is periodic, the length its period")
         .def_property_readonly("walls",
                                [](const io::DrumSettings& s) { return keyword_of(drum_wall_kinds, s.geometry.walls); },
                                "particles (a wall of spheres, the paper's) or smooth (a cylinder and two discs)")
@@ -78,11 +80,15 @@ void bind_drum(py::module_& m) {
         .def_property_readonly("cap_friction", [](const io::DrumSettings& s) { return s.fill.cap_friction; },
                                "mu between grains and end caps; None: the wall's")
         .def_property_readonly("arrangement",
-                               [](const io::DrumSettings& s) { return keyword_of(arrangements, s.fill.arrangement); })
-        .def_property_readonly("bands", [](const io::DrumSettings& s) { return s.fill.bands; })
-        .def_property_readonly("band_widths", [](const io::DrumSettings& s) { return s.fill.band_widths; })
+                               [](const io::DrumSettings& s) { return keyword_of(arrangements, s.fill.arrangement); },
+                               "the axial arrangement at the start: halves, mixed, bands or boundaries")
+        .def_property_readonly("bands", [](const io::DrumSettings& s) { return s.fill.bands; },
+                               "arrangement bands: the number of alternating bands")
+        .def_property_readonly("band_widths", [](const io::DrumSettings& s) { return s.fill.band_widths; },
+                               "arrangement bands: their widths as fractions of the length (empty: equal)")
         .def_property_readonly("boundaries", [](const io::DrumSettings& s) { return s.fill.boundaries; }, "m")
-        .def_property_readonly("ends", [](const io::DrumSettings& s) { return keyword_of(species_names, s.fill.ends); })
+        .def_property_readonly("ends", [](const io::DrumSettings& s) { return keyword_of(species_names, s.fill.ends); },
+                               "bands, boundaries: the species of the left end band, small or large")
         .def_property_readonly("small_volume_fraction",
                                [](const io::DrumSettings& s) { return s.fill.small_volume_fraction; },
                                "None: equal masses")
@@ -90,17 +96,21 @@ void bind_drum(py::module_& m) {
                                [](const io::DrumSettings& s) { return band_edges(s.geometry, s.fill); },
                                "z (m) of the start's band edges, -length/2 to length/2")
         .def_readonly("spin_up_time", &io::DrumSettings::spin_up_time, "s")
-        .def_readonly("samples_per_revolution", &io::DrumSettings::samples_per_revolution)
-        .def_readonly("profile_bins", &io::DrumSettings::profile_bins)
-        .def_readonly("snapshots_per_revolution", &io::DrumSettings::snapshots_per_revolution)
+        .def_readonly("samples_per_revolution", &io::DrumSettings::samples_per_revolution,
+                      "rows of drum_series.csv and profiles.csv per revolution")
+        .def_readonly("profile_bins", &io::DrumSettings::profile_bins, "axial bins of the concentration profile C(z, N)")
+        .def_readonly("snapshots_per_revolution", &io::DrumSettings::snapshots_per_revolution,
+                      "particle snapshots per revolution (0: none)")
         .def_readonly("dt", &io::DrumSettings::dt, "s; 0: chosen from the materials")
         .def_readonly("skin", &io::DrumSettings::skin, "m, the neighbour list's; 0: 0.3 x the largest radius")
-        .def_property_readonly("shear", [](const io::DrumSettings& s) { return keyword_of(shear_models, s.shear); })
+        .def_property_readonly("shear", [](const io::DrumSettings& s) { return keyword_of(shear_models, s.shear); },
+                               "the shear model (docs/MODEL.md)")
         .def_property_readonly("friction_normal",
-                               [](const io::DrumSettings& s) { return keyword_of(friction_normals, s.friction_normal); })
+                               [](const io::DrumSettings& s) { return keyword_of(friction_normals, s.friction_normal); },
+                               "the normal force that limits friction (docs/MODEL.md)")
         .def_property_readonly("tangential_stiffness", [](const io::DrumSettings& s) {
             return keyword_of(tangential_stiffnesses, s.tangential_stiffness);
-        })
+        }, "the tangential stiffness: the paper's or Mindlin's (docs/MODEL.md)")
         .def_property_readonly("surface_energy", &io::DrumSettings::uniform_surface_energy,
                                "J/m^2, every pair's W (the attraction): the one given, else the one the materials' "
                                "pairs share (the paper's 0.2); None if their W differ; 0: cohesionless")

@@ -9,10 +9,12 @@ PYBIND11_MODULE(_core, m) {
     using namespace tumble::python;
     m.doc() = "tumble's engine, readers, drum protocol, sweep and analysis (import tumble, not this)";
     m.attr("version") = TUMBLE_VERSION;
-    // Bad input and failed runs (the reason, naming the file and key where
-    // there is one); a run that became unphysical (the diagnostic).
     const auto& error = py::register_exception<tumble::Error>(m, "Error", PyExc_RuntimeError);
-    py::register_exception<tumble::experiments::BlewUp>(m, "BlewUp", error.ptr());
+    error.attr("__doc__") =
+        "Bad input or a failed run: the message gives the reason, and the file and key where there is one";
+    py::register_exception<tumble::experiments::BlewUp>(m, "BlewUp", error.ptr()).attr("__doc__") =
+        "A run that became unphysical: the message is the diagnostic; its last checkpoint, written before, stays "
+        "good (docs/CHECKPOINTS.md, \"Blow-up detection\")";
     m.def("set_program_name", &tumble::experiments::set_program_name, py::arg("name"),
           "The tumble program that messages name in the commands they suggest (tumble resume DIR)");
     bind_scenario(m);

@@ -290,17 +290,21 @@ void bind_scenario(py::module_& m) {
             "The paper's drum of the settings (tumble.drum_settings), at rest: its wall is motion 0 "
             "(Simulation.set_motion turns it); duration 0, the protocol (tumble.run_drum) decides")
         .def_readonly("duration", &io::RunConfig::duration, "simulated time of the file, s")
-        .def_readonly("seed", &io::RunConfig::seed)
-        .def_property_readonly("output_directory", [](const io::RunConfig& c) { return c.output.directory; })
-        .def_property_readonly("time_series_interval", [](const io::RunConfig& c) { return c.output.time_series_interval; })
-        .def_property_readonly("snapshot_interval", [](const io::RunConfig& c) { return c.output.snapshot_interval; })
-        .def_readonly("source", &io::RunConfig::source)
-        .def_property_readonly("particle_count", [](const io::RunConfig& c) { return c.scenario.particles.size(); })
+        .def_readonly("seed", &io::RunConfig::seed, "the random seed")
+        .def_property_readonly("output_directory", [](const io::RunConfig& c) { return c.output.directory; },
+                               "[output] directory: where tumble run writes")
+        .def_property_readonly("time_series_interval", [](const io::RunConfig& c) { return c.output.time_series_interval; },
+                               "s between rows of time_series.csv")
+        .def_property_readonly("snapshot_interval", [](const io::RunConfig& c) { return c.output.snapshot_interval; },
+                               "s between particle snapshots (0: none)")
+        .def_readonly("source", &io::RunConfig::source, "the scenario file, or the name it was given")
+        .def_property_readonly("particle_count", [](const io::RunConfig& c) { return c.scenario.particles.size(); },
+                               "particles at the start (those poured in later by [[insert]] not counted)")
         .def_property_readonly("material_names", [](const io::RunConfig& c) {
             std::vector<std::string> names;
             for (const Material& mat : c.scenario.materials) names.push_back(mat.name);
             return names;
-        });
+        }, "the materials' names, in the order of their indices");
 }
 
 void bind_simulation(py::module_& m) {
@@ -360,18 +364,22 @@ the store to other memory).)");
         .def("reset_step_times", &Simulation::reset_step_times, "Starts step_times from zero")
         .def_property_readonly("time", &Simulation::time, "s")
         .def_property_readonly("dt", &Simulation::dt, "time step, s")
-        .def_property_readonly("step_count", &Simulation::step_count)
+        .def_property_readonly("step_count", &Simulation::step_count, "time steps taken")
         .def_property_readonly("inserted", &Simulation::inserted,
                                "Per [[insert]] of the scenario, the spheres it has poured in so far")
-        .def_property("threads", &Simulation::threads, &Simulation::set_threads)
-        .def_property_readonly("size", [](const Simulation& s) { return s.particles().size(); })
-        .def_property_readonly("free_count", [](const Simulation& s) { return s.particles().free_count(); })
+        .def_property("threads", &Simulation::threads, &Simulation::set_threads,
+                      "threads of the time step; another count changes the results by round-off")
+        .def_property_readonly("size", [](const Simulation& s) { return s.particles().size(); },
+                               "particles, the kinematic ones included")
+        .def_property_readonly("free_count", [](const Simulation& s) { return s.particles().free_count(); },
+                               "particles that move by the forces (no prescribed motion)")
         .def_property_readonly("material_names",
                                [](const Simulation& s) {
                                    std::vector<std::string> names;
                                    for (const Material& mat : s.scenario().materials) names.push_back(mat.name);
                                    return names;
-                               })
+                               },
+                               "the materials' names: the array materials indexes them")
         .def_property_readonly(
             "by_id",
             [](const Simulation& s) {

@@ -26,8 +26,9 @@ for sweep in caps_two-component caps_self periodic_two-component periodic_self l
   [[ $sweep != periodic_self ]] || /usr/bin/python3 "$study/periodic_modes.py"
   bash "$study/keep.sh"
 done
-# The tables (results.md) and the figures and sweep tables docs/RESULTS.md shows.
+# The tables (results.md, comparisons.md) and the figures and sweep tables docs/RESULTS.md shows.
 /usr/bin/python3 "$study/verdicts.py" >/dev/null
+/usr/bin/python3 "$study/comparisons.py" >/dev/null
 out=$study/out dest=docs/results/study
 mkdir -p "$dest"
 cp "$out/caps_self/figures/fig3_self_D_vs_omega.png" "$out/caps_two-component/figures/fig5_two_component_D_vs_omega.png" \

@@ -156,6 +156,7 @@ class Run:
 
     @property
     def snapshot_files(self):
+        """The particle snapshots, snapshots/NNNNNN.csv, in order."""
         return sorted((self.directory / "snapshots").glob("*.csv"))
 
     def snapshot(self, k=-1):
