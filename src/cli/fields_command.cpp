@@ -5,6 +5,7 @@
 #include "cli/commands.hpp"
 #include "io/fields_output.hpp"
 #include "io/vtk_output.hpp"
+#include "tumble/core/constants.hpp"
 
 namespace tumble::cli {
 
@@ -18,6 +19,16 @@ int fields_command(const FieldsOptions& options) {
     std::filesystem::create_directories(out);
     if (options.format != "csv") io::write_vti_fields(out / "fields.vti", run.fields);
     if (options.format != "vti") io::write_fields_csv(out / "fields.csv", run.fields);
+    if (run.drum) {
+        const analysis::DrumSurface& s = run.drum->surface;
+        const analysis::FlowingLayer& l = run.drum->layer;
+        io::write_fields_csv(out / "profile.csv", run.drum->profile, "sdz");
+        io::write_json_file(out / "drum_frame.json", io::drum_frame_json(s, l, options.run.span));
+        say(fmt::format("free surface at {:.2f} degrees, {:.4g} m from the axis; surface velocity {:.3g} m/s, "
+                        "flowing layer {:.3g} m ({:.2f} grain diameters) deep",
+                        s.angle * 180.0 / pi, s.level, l.surface_velocity, l.thickness,
+                        l.thickness / l.diameter));
+    }
     say(fmt::format("{} sample{} from t = {} s to {} s (coarse-grained in {:.3g} s) into {}", run.times.size(),
                     run.times.size() == 1 ? "" : "s", run.times.front(), run.times.back(), run.seconds, out.string()));
     return 0;

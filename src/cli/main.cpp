@@ -484,6 +484,13 @@ int main(int argc, char** argv) {
     fields_cmd->add_option("--kernel", fields_kernel, "gaussian (cut off at 3 widths; default) or lucy")
         ->check(CLI::IsMember({"gaussian", "lucy"}));
     fields_cmd->add_option("--width", fields_width, "Kernel width w, m (default: the grains' mean radius)");
+    fields_cmd->add_option("--frame", fields.run.frame,
+                           "lab (default) or drum: a drum run's cross-section (averaged along z), its free surface, "
+                           "and the depth profile below it (profile.csv, drum_frame.json)")
+        ->check(CLI::IsMember({"lab", "drum"}));
+    fields_cmd->add_option("--span", fields.run.span,
+                           "The drum frame: the middle part of the free surface's length that the surface fit and "
+                           "the profile use, in (0, 1] (default 0.5)");
     fields_cmd->add_option("--samples", fields.run.samples, "States averaged (default 1)");
     fields_cmd->add_option("--every", fields.run.every, "Simulated seconds between the states (default 0.01)");
     fields_cmd->add_option("--checkpoint", fields.run.checkpoint,

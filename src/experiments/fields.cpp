@@ -159,7 +159,67 @@ io::LoadedCheckpoint load_checkpoint(const fs::path& run_directory, const fs::pa
 
 }  // namespace
 
-RunFields run_fields(const RunFieldsOptions& o, const std::function<void(const std::string&)>& say) {
+std::string frame_problem(const RunFieldsOptions& o) {
+    if (o.frame != "lab" && o.frame != "drum") return "frame: lab or drum, got \"" + o.frame + "\"";
+    if (!(std::isfinite(o.span) && o.span > 0.0 && o.span <= 1.0))
+        return fmt::format("span: the middle part of the free surface that the drum frame averages, a number in (0, 1], "
+                           "got {}", o.span);
+    if (o.frame == "drum" && !o.settings.average.empty() && o.settings.average != "z")
+        return "average: the drum frame's cross-section is averaged along z, the drum's axis (give z or nothing), got \"" +
+               o.settings.average + "\"";
+    return {};
+}
+
+namespace {
+
+// The depth profile of the drum frame (RunFieldsOptions): the surface found
+// on the cross-section `cs` (of settings `c`), the samples carried into the
+// drum's coordinates and coarse-grained on a grid resolved along d.
+DrumLayer drum_layer(const analysis::Fields& cs, const analysis::CgSettings& c,
+                     const std::vector<analysis::GrainState>& states, double span) {
+    double reach = 0.0;  // m, the largest distance of a grain centre from the axis
+    for (const analysis::GrainState& s : states)
+        for (const Vec3& r : s.position) reach = std::max(reach, std::hypot(r.x, r.y));
+    DrumLayer out;
+    out.surface = analysis::find_drum_surface(cs, reach, span);
+    std::vector<analysis::GrainState> in_frame;
+    for (const analysis::GrainState& s : states) in_frame.push_back(analysis::to_drum_frame(s, out.surface));
+
+    // The grid: d from 3 widths above the surface to the deepest grain
+    // surface under the span, the cross-section's cell size.
+    const double half = span * out.surface.half_length, w = c.width, cell = cs.grid.spacing(0);
+    const bool periodic = cs.grid.periodic[2];
+    double deepest = -std::numeric_limits<double>::infinity();
+    for (const analysis::GrainState& s : in_frame)
+        for (std::size_t i = 0; i < s.position.size(); ++i) {
+            const Vec3& x = s.position[i];
+            if (std::abs(x.x) <= half && (periodic || (x.z >= cs.grid.lo.z && x.z < cs.grid.hi.z)))
+                deepest = std::max(deepest, x.y + s.radius[i]);
+        }
+    if (!(deepest > 0.0)) throw Error("drum frame: no grains below the free surface's middle part");
+    analysis::CgSettings p;
+    p.kernel = c.kernel;
+    p.width = w;
+    p.grid.averaged = {true, false, true};
+    p.grid.periodic = {false, false, periodic};
+    const double cells = std::max(2.0, std::ceil((deepest + 3.0 * w) / cell));
+    p.grid.cells = {1, static_cast<std::size_t>(cells), 1};
+    p.grid.lo = {-half, -3.0 * w, cs.grid.lo.z};
+    p.grid.hi = {half, -3.0 * w + cells * cell, cs.grid.hi.z};
+    analysis::FieldAccumulator sum(p);
+    for (const analysis::GrainState& s : in_frame) sum.add(s.grains(), s.contacts);
+    out.profile = std::move(sum).finish();
+    out.layer = analysis::flowing_layer(out.profile);
+    return out;
+}
+
+}  // namespace
+
+RunFields run_fields(const RunFieldsOptions& given, const std::function<void(const std::string&)>& say) {
+    RunFieldsOptions o = given;
+    if (const std::string problem = frame_problem(o); !problem.empty()) throw Error(problem);
+    const bool drum = o.frame == "drum";
+    if (drum) o.settings.average = "z";
     if (const std::string problem = field_settings_problem(o.settings); !problem.empty()) throw Error(problem);
     if (o.samples < 1) throw Error(fmt::format("samples: at least 1, got {}", o.samples));
     if (o.samples > 1 && !(std::isfinite(o.every) && o.every > 0.0))
@@ -167,6 +227,9 @@ RunFields run_fields(const RunFieldsOptions& o, const std::function<void(const s
     std::error_code ec;
     if (!fs::is_directory(o.run_directory, ec))
         throw Error("run directory: no such directory: " + o.run_directory.string());
+    if (drum && !fs::exists(o.run_directory / "drum_run.toml", ec))
+        throw Error("frame: drum takes the directory of a tumble drum run (it has drum_run.toml); " +
+                    o.run_directory.string() + " has none");
     // A grid given in full is checked, its memory too, before the checkpoint is read.
     if (const auto early = grid_settings(o.settings, o.memory_option))
         say("grid " + grid_summary(o.settings, early->grid));
@@ -180,6 +243,8 @@ RunFields run_fields(const RunFieldsOptions& o, const std::function<void(const s
     RunFields out;
     out.checkpoint = loaded.file;
     std::optional<analysis::FieldAccumulator> sum;
+    analysis::CgSettings settings;
+    std::vector<analysis::GrainState> kept;  // the drum frame's samples, for the depth profile
     for (int k = 0; k < o.samples; ++k) {
         if (k > 0 && between > 1) {
             sim.set_contact_recording(false);
@@ -187,10 +252,9 @@ RunFields run_fields(const RunFieldsOptions& o, const std::function<void(const s
         }
         sim.set_contact_recording(true);
         sim.step();
-        const analysis::GrainState state = analysis::grain_state(sim);
+        analysis::GrainState state = analysis::grain_state(sim);
         if (!sum) {
-            const analysis::CgSettings settings =
-                grid_settings(o.settings, state.grains(), o.memory_option, &sim.scenario().domain);
+            settings = grid_settings(o.settings, state.grains(), o.memory_option, &sim.scenario().domain);
             if (!o.settings.lo || !o.settings.hi || !o.settings.width)
                 say("grid " + grid_summary(o.settings, settings.grid));
             sum.emplace(settings);
@@ -199,9 +263,11 @@ RunFields run_fields(const RunFieldsOptions& o, const std::function<void(const s
         sum->add(state.grains(), state.contacts);
         out.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         out.times.push_back(state.time);
+        if (drum) kept.push_back(std::move(state));
     }
     const auto start = std::chrono::steady_clock::now();
     out.fields = std::move(*sum).finish();
+    if (drum) out.drum = drum_layer(out.fields, settings, kept, o.span);
     out.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }

@@ -131,3 +131,62 @@ def test_the_fields_of_a_simulation_stepped_in_python():
     integral = f["contact_stress"].sum(axis=(0, 1, 2)) * dz * L * L
     expected = np.einsum("ka,kb->ab", contacts["force"], contacts["branch"])
     np.testing.assert_allclose(integral, expected, rtol=1e-3, atol=1e-3 * np.abs(expected).max())
+
+
+@pytest.fixture(scope="module")
+def flowing_drum(tmp_path_factory):
+    """The paper's drum with 600 grains of one kind, turned one revolution
+    at 5 rad/s: a bed deep enough for a flowing layer over a turning bed."""
+    return tumble.run_drum(out=tmp_path_factory.mktemp("drum") / "flowing", mode="self", grains=600, revolutions=1.0,
+                           snapshots=0)
+
+
+def test_the_drum_frame_finds_the_flowing_layer(flowing_drum, tumble_binary, tmp_path):
+    """tumble.fields(frame="drum"): the free surface, the depth profile below
+    it and its numbers; the command line writes the same (profile.csv,
+    drum_frame.json)."""
+    settings = dict(samples=3, every=0.01, kernel="lucy", cell=0.001)
+    d = tumble.fields(flowing_drum, frame="drum", **settings)
+    s, p = d["surface"], d["profile"]
+    assert p["velocity"].shape == (1, len(p["d"]), 1, 3)
+    u = p["velocity"][0, :, 0, 0]
+    phi = p["solid_fraction"][0, :, 0]
+    # The surface lies where the profile's solid fraction is half the bed's:
+    # phi(d = 0), interpolated, is the level the surface was fitted to (on
+    # the cross-section rather than the middle part's profile: within 20 %).
+    assert np.interp(0.0, p["d"], phi) == pytest.approx(s["surface_solid_fraction"], rel=0.2)
+    # The layer flows downhill at the surface and the bed below turns uphill
+    # with the drum, at about the wall's speed, omega R = 0.2 m/s (within a
+    # factor 2: the deepest nodes lie above the wall).
+    assert s["surface_velocity_m_per_s"] > 0.0 and u[-1] < 0.0
+    assert 0.1 < -u[phi > 0.3][-1] < 0.4
+    # The thickness is where u turns, a few grains deep; u is 0 there.
+    assert 1.0 < s["layer_thickness_diameters"] < 5.0
+    assert abs(np.interp(s["layer_thickness_m"], p["d"], u)) < 0.01 * s["surface_velocity_m_per_s"]
+    # The angle: between 15 and 45 degrees for these grains (mu = 0.1
+    # between them, a rough wall).
+    assert 15.0 < s["angle_of_repose_deg"] < 45.0
+
+    out = tmp_path / "fields"
+    done = subprocess.run([tumble_binary, "fields", str(flowing_drum), "-q", "-o", str(out), "--frame", "drum",
+                           "--samples", "3", "--every", "0.01", "--kernel", "lucy", "--cell", "0.001", "--format",
+                           "csv"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    table = pd.read_csv(out / "profile.csv", float_precision="round_trip")
+    np.testing.assert_array_equal(table["d"].to_numpy(), p["d"])
+    np.testing.assert_array_equal(table["velocity_s"].to_numpy(), u)
+    np.testing.assert_array_equal(table["stress_sd"].to_numpy(), p["stress"][0, :, 0, 0, 1])
+    import json
+    assert json.loads((out / "drum_frame.json").read_text()) == s
+
+
+def test_the_drum_frame_refuses_bad_settings(tiny_drum, tmp_path):
+    directory, _ = tiny_drum
+    with pytest.raises(tumble.Error, match="^frame: lab or drum"):
+        tumble.fields(directory, frame="rotating")
+    with pytest.raises(tumble.Error, match=r"^span: .* \(0, 1\], got 0"):
+        tumble.fields(directory, frame="drum", span=0.0)
+    with pytest.raises(tumble.Error, match="^average: the drum frame's cross-section is averaged along z"):
+        tumble.fields(directory, frame="drum", average="x")
+    with pytest.raises(tumble.Error, match="^frame: drum takes the directory of a tumble drum run"):
+        tumble.fields(tmp_path, frame="drum")
