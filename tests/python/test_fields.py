@@ -155,11 +155,16 @@ def test_the_drum_frame_finds_the_flowing_layer(flowing_drum, tumble_binary, tmp
     # phi(d = 0), interpolated, is the level the surface was fitted to (on
     # the cross-section rather than the middle part's profile: within 20 %).
     assert np.interp(0.0, p["d"], phi) == pytest.approx(s["surface_solid_fraction"], rel=0.2)
-    # The layer flows downhill at the surface and the bed below turns uphill
-    # with the drum, at about the wall's speed, omega R = 0.2 m/s (within a
-    # factor 2: the deepest nodes lie above the wall).
+    # The layer flows downhill at the surface and the bed below goes uphill
+    # with the drum, but no faster than the drum turning rigidly, whose
+    # velocity along the surface is omega n . r = omega (level - d): at the
+    # deepest node where phi > 0.3, measured 0.47 of it (the paper's grains,
+    # mu = 0.1, slip over each other and the wall all through this shallow
+    # bed).
     assert s["surface_velocity_m_per_s"] > 0.0 and u[-1] < 0.0
-    assert 0.1 < -u[phi > 0.3][-1] < 0.4
+    deep = np.nonzero(phi > 0.3)[0][-1]
+    rigid = 5.0 * (s["surface_level_m"] - p["d"][deep])
+    assert 0.2 < u[deep] / rigid < 1.0
     # The thickness is where u turns, a few grains deep; u is 0 there.
     assert 1.0 < s["layer_thickness_diameters"] < 5.0
     assert abs(np.interp(s["layer_thickness_m"], p["d"], u)) < 0.01 * s["surface_velocity_m_per_s"]
