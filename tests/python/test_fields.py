@@ -185,6 +185,46 @@ def test_the_drum_frame_finds_the_flowing_layer(flowing_drum, tumble_binary, tmp
     assert json.loads((out / "drum_frame.json").read_text()) == s
 
 
+def test_the_flowing_layer_against_the_kernel_width(flowing_drum):
+    """The drum frame's numbers at widths d/8 to d (docs/FIELDS.md, "Width":
+    the table there is what this prints, pytest -s), 20 samples 10 ms apart,
+    Lucy's kernel, cells of w/2 (at most 1 mm). Between w = d/4 and d/2 the
+    numbers agree (the plateau); below, the solid fraction resolves the
+    grains; above, the kernel's reach (3w) is the bed's depth."""
+    d = 0.0072  # m, the grains' diameter
+    rows = {}
+    for ratio in (0.125, 0.25, 0.5, 1.0):
+        w = ratio * d
+        f = tumble.fields(flowing_drum, frame="drum", samples=20, every=0.01, kernel="lucy", width=w,
+                          cell=min(w / 2, 0.001))
+        s, p = f["surface"], f["profile"]
+        h = s["layer_thickness_m"]
+        mid = {k: float(np.interp(h / 2, p["d"], p[k][0, :, 0])) for k in
+               ("solid_fraction", "shear_rate", "friction", "inertial_number")}
+        rows[ratio] = dict(s, **mid)
+        print(f"| {ratio:g} | {s['angle_of_repose_deg']:.1f} | {s['bed_solid_fraction']:.3f} | "
+              f"{s['surface_velocity_m_per_s']:.3f} | {h * 1e3:.1f} | {mid['solid_fraction']:.3f} | "
+              f"{mid['shear_rate']:.2f} | {mid['friction']:.3f} | {mid['inertial_number']:.3f} |")
+    quarter, half = rows[0.25], rows[0.5]
+    # The plateau, w = d/4 and d/2 (measured: 19.4 and 20.1 degrees, 13.1
+    # and 14.0 mm, phi 0.555 and 0.575, mu 0.345 and 0.311, I 0.181 and
+    # 0.152): tolerances 2 degrees, 10 %, 5 %, 15 %, 25 % (the kernel's mean
+    # over a layer a few grains deep, whose gradients it smooths more as it
+    # widens; I is a ratio of three fields).
+    assert quarter["angle_of_repose_deg"] == pytest.approx(half["angle_of_repose_deg"], abs=2.0)
+    assert quarter["layer_thickness_m"] == pytest.approx(half["layer_thickness_m"], rel=0.1)
+    assert quarter["solid_fraction"] == pytest.approx(half["solid_fraction"], rel=0.05)
+    assert quarter["friction"] == pytest.approx(half["friction"], rel=0.15)
+    assert quarter["inertial_number"] == pytest.approx(half["inertial_number"], rel=0.25)
+    # At w = d/8 the time-averaged solid fraction still shows the grains:
+    # the bed's phi_ref is above 1 (measured 1.06), and the surface at
+    # phi_ref / 2 is no longer the bed's.
+    assert rows[0.125]["bed_solid_fraction"] > 0.9
+    # At w = d (3w = 22 mm, the bed's depth) the bed's phi is smeared over
+    # its edges: phi_ref falls below 0.5 (measured 0.431).
+    assert rows[1.0]["bed_solid_fraction"] < 0.5
+
+
 def test_the_drum_frame_refuses_bad_settings(tiny_drum, tmp_path):
     directory, _ = tiny_drum
     with pytest.raises(tumble.Error, match="^frame: lab or drum"):
