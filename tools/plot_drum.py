@@ -680,13 +680,14 @@ def fig_bed_structure(run, w):
 
 
 def fig_flowing_layer(run, w):
-    """The flowing layer described by its coarse-grained fields (fields/ of
-    `tumble fields DIR --frame drum`, docs/FIELDS.md "The drum's frame"): the
+    """The flowing layer described by its coarse-grained fields (flowing_layer/
+    of `tumble fields DIR --frame drum`, which `tumble plot` computes where it
+    is missing; docs/FIELDS.md "The drum's frame"): the
     cross-section's solid fraction and velocity with the fitted free surface,
     and against depth below it the velocity along the surface, the solid
     fraction, the shear rate, the pressure, mu and I."""
     name = "fig_flowing_layer"
-    folder = run.path("fields")
+    folder = run.path("flowing_layer")
     numbers = os.path.join(folder, "drum_frame.json")
     if not os.path.isfile(numbers):
         w.skip(name, f"no {numbers} (tumble fields {run.dir} --frame drum)")

@@ -15,7 +15,8 @@ int fields_command(const FieldsOptions& options) {
     };
     const RunFields run = run_fields(options.run, say);
     const std::filesystem::path out =
-        options.out.empty() ? options.run.run_directory / "fields" : std::filesystem::path(options.out);
+        options.out.empty() ? options.run.run_directory / (options.run.frame == "drum" ? "flowing_layer" : "fields")
+                            : std::filesystem::path(options.out);
     std::filesystem::create_directories(out);
     if (options.format != "csv") io::write_vti_fields(out / "fields.vti", run.fields);
     if (options.format != "vti") io::write_fields_csv(out / "fields.csv", run.fields);

@@ -495,7 +495,9 @@ int main(int argc, char** argv) {
     fields_cmd->add_option("--every", fields.run.every, "Simulated seconds between the states (default 0.01)");
     fields_cmd->add_option("--checkpoint", fields.run.checkpoint,
                            "The checkpoint the states start from (default: the run's newest)");
-    fields_cmd->add_option("-o,--out", fields.out, "Where fields.vti and fields.csv go (default DIR/fields)");
+    fields_cmd->add_option("-o,--out", fields.out,
+                           "Where fields.vti and fields.csv go (default DIR/fields; with --frame drum "
+                           "DIR/flowing_layer)");
     fields_cmd->add_option("--format", fields.format, "vti, csv or both (default)")
         ->check(CLI::IsMember({"vti", "csv", "both"}));
     fields_cmd->add_option("--max-memory", fields.run.settings.max_memory_gib,

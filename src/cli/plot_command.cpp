@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // tumble plot DIR: the paper's figures from a drum run, drawn by the
-// project's matplotlib script tools/plot_drum.py (tools/README.md).
+// project's matplotlib script tools/plot_drum.py (tools/README.md), and
+// first, if the run has none, the flowing layer's fields they draw.
 #include <sys/wait.h>
 #include <cstdio>
 #include <unistd.h>
@@ -12,6 +13,8 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
+#include "io/drum_output.hpp"
+#include "tumble/core/error.hpp"
 
 namespace tumble::cli {
 
@@ -28,12 +31,40 @@ std::string plot_script() {
     return std::string(TUMBLE_TOOLS_DIR) + "/plot_drum.py";
 }
 
+// The flowing layer's fields that fig_flowing_layer draws, where the run
+// has none yet: tumble fields DIR --frame drum --samples 20 --every 0.01
+// --kernel lucy --cell R/40 (R the drum's inner radius) --format csv, into
+// DIR/flowing_layer (docs/FIELDS.md, "The drum's frame"). A run whose
+// surface cannot be found (too few grains) or that has no checkpoint gets
+// a note, and the figure is skipped.
+void flowing_layer_fields(const std::string& directory, bool quiet) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::exists(fs::path(directory) / "flowing_layer" / "drum_frame.json", ec)) return;
+    try {
+        FieldsOptions o;
+        o.run.run_directory = directory;
+        o.run.frame = "drum";
+        o.run.samples = 20;
+        o.run.every = 0.01;
+        o.run.settings.kernel = analysis::CgKernel::lucy;
+        o.run.settings.cell = io::read_drum_run_info(fs::path(directory) / "drum_run.toml").inner_radius / 40.0;
+        o.format = "csv";
+        o.quiet = quiet;
+        fields_command(o);
+    } catch (const Error& e) {
+        fmt::print(stderr, "tumble plot: note: no flowing layer's fields for fig_flowing_layer: {}\n", e.what());
+    }
+}
+
 }  // namespace
 
 int plot_command(const std::string& mode, const std::vector<std::string>& inputs, const std::string& out, bool quiet,
                  bool band_report) {
     if (mode == "run" || mode == "compare")
         for (const std::string& directory : inputs) experiments::require_drum_run(directory, "plot");
+    if (mode == "run")
+        for (const std::string& directory : inputs) flowing_layer_fields(directory, quiet);
     std::vector<std::string> arguments{"python3", plot_script(), mode};
     arguments.insert(arguments.end(), inputs.begin(), inputs.end());
     if (band_report && mode == "run") arguments.push_back("--band-report");

@@ -172,42 +172,54 @@ std::string frame_problem(const RunFieldsOptions& o) {
 
 namespace {
 
-// The depth profile of the drum frame (RunFieldsOptions): the surface found
-// on the cross-section `cs` (of settings `c`), the samples carried into the
-// drum's coordinates and coarse-grained on a grid resolved along d.
-DrumLayer drum_layer(const analysis::Fields& cs, const analysis::CgSettings& c,
-                     const std::vector<analysis::GrainState>& states, double span) {
-    double reach = 0.0;  // m, the largest distance of a grain centre from the axis
-    for (const analysis::GrainState& s : states)
-        for (const Vec3& r : s.position) reach = std::max(reach, std::hypot(r.x, r.y));
-    DrumLayer out;
-    out.surface = analysis::find_drum_surface(cs, reach, span);
-    std::vector<analysis::GrainState> in_frame;
-    for (const analysis::GrainState& s : states) in_frame.push_back(analysis::to_drum_frame(s, out.surface));
-
-    // The grid: d from 3 widths above the surface to the deepest grain
-    // surface under the span, the cross-section's cell size.
-    const double half = span * out.surface.half_length, w = c.width, cell = cs.grid.spacing(0);
-    const bool periodic = cs.grid.periodic[2];
-    double deepest = -std::numeric_limits<double>::infinity();
-    for (const analysis::GrainState& s : in_frame)
-        for (std::size_t i = 0; i < s.position.size(); ++i) {
-            const Vec3& x = s.position[i];
-            if (std::abs(x.x) <= half && (periodic || (x.z >= cs.grid.lo.z && x.z < cs.grid.hi.z)))
-                deepest = std::max(deepest, x.y + s.radius[i]);
+// The samples' states: `samples` steps `between` steps apart, taken with
+// the contacts recorded, from the checkpoint's state; each handed to `take`.
+// The same checkpoint gives the same states every time (the simulation is
+// deterministic), so a second pass needs no copy of the first's.
+void for_each_sample(const io::Checkpoint& checkpoint, int samples, double every,
+                     const std::function<void(const analysis::GrainState&, const Simulation&)>& take) {
+    Simulation sim(checkpoint.scenario);
+    sim.restore(checkpoint.state);
+    const std::int64_t between = samples > 1 ? step_count(every, sim.dt(), "every") : 1;
+    for (int k = 0; k < samples; ++k) {
+        if (k > 0 && between > 1) {
+            sim.set_contact_recording(false);
+            sim.advance(between - 1);
         }
-    if (!(deepest > 0.0)) throw Error("drum frame: no grains below the free surface's middle part");
+        sim.set_contact_recording(true);
+        sim.step();
+        take(analysis::grain_state(sim), sim);
+    }
+}
+
+// The drum frame's depth profile (RunFieldsOptions) of the samples of
+// `checkpoint`: the surface found on their cross-section `cs` (of settings
+// `c`; their grain centres reach `reach` from the axis, their radii are
+// `largest` at most), the samples taken again, carried into the drum's
+// coordinates and coarse-grained on a grid resolved along d.
+DrumLayer drum_layer(const analysis::Fields& cs, const analysis::CgSettings& c, double reach, double largest,
+                     const io::Checkpoint& checkpoint, const RunFieldsOptions& o) {
+    DrumLayer out;
+    out.surface = analysis::find_drum_surface(cs, reach, o.span);
+    // The grid: d from 3 widths above the surface to the deepest grain
+    // surface there can be under it, where the circle the grain centres
+    // reach is deepest (d = level + reach), the cross-section's cell size.
+    const double half = o.span * out.surface.half_length, w = c.width, cell = cs.grid.spacing(0);
+    const double deepest = out.surface.level + reach + largest;
     analysis::CgSettings p;
     p.kernel = c.kernel;
     p.width = w;
     p.grid.averaged = {true, false, true};
-    p.grid.periodic = {false, false, periodic};
+    p.grid.periodic = {false, false, cs.grid.periodic[2]};
     const double cells = std::max(2.0, std::ceil((deepest + 3.0 * w) / cell));
     p.grid.cells = {1, static_cast<std::size_t>(cells), 1};
     p.grid.lo = {-half, -3.0 * w, cs.grid.lo.z};
     p.grid.hi = {half, -3.0 * w + cells * cell, cs.grid.hi.z};
     analysis::FieldAccumulator sum(p);
-    for (const analysis::GrainState& s : in_frame) sum.add(s.grains(), s.contacts);
+    for_each_sample(checkpoint, o.samples, o.every, [&](const analysis::GrainState& s, const Simulation&) {
+        const analysis::GrainState in_frame = analysis::to_drum_frame(s, out.surface);
+        sum.add(in_frame.grains(), in_frame.contacts);
+    });
     out.profile = std::move(sum).finish();
     out.layer = analysis::flowing_layer(out.profile);
     return out;
@@ -219,7 +231,7 @@ RunFields run_fields(const RunFieldsOptions& given, const std::function<void(con
     RunFieldsOptions o = given;
     if (const std::string problem = frame_problem(o); !problem.empty()) throw Error(problem);
     const bool drum = o.frame == "drum";
-    if (drum) o.settings.average = "z";
+    if (drum) o.settings.average = std::string(1, 'z');  // (not = "z": GCC 12 warns falsely, -Wrestrict)
     if (const std::string problem = field_settings_problem(o.settings); !problem.empty()) throw Error(problem);
     if (o.samples < 1) throw Error(fmt::format("samples: at least 1, got {}", o.samples));
     if (o.samples > 1 && !(std::isfinite(o.every) && o.every > 0.0))
@@ -234,25 +246,14 @@ RunFields run_fields(const RunFieldsOptions& given, const std::function<void(con
     if (const auto early = grid_settings(o.settings, o.memory_option))
         say("grid " + grid_summary(o.settings, early->grid));
 
-    io::LoadedCheckpoint loaded = load_checkpoint(o.run_directory, o.checkpoint);
+    const io::LoadedCheckpoint loaded = load_checkpoint(o.run_directory, o.checkpoint);
     say("states from " + loaded.file.string());
-    Simulation sim(std::move(loaded.checkpoint.scenario));
-    sim.restore(std::move(loaded.checkpoint.state));
-    const std::int64_t between = o.samples > 1 ? step_count(o.every, sim.dt(), "every") : 1;
-
     RunFields out;
     out.checkpoint = loaded.file;
     std::optional<analysis::FieldAccumulator> sum;
     analysis::CgSettings settings;
-    std::vector<analysis::GrainState> kept;  // the drum frame's samples, for the depth profile
-    for (int k = 0; k < o.samples; ++k) {
-        if (k > 0 && between > 1) {
-            sim.set_contact_recording(false);
-            sim.advance(between - 1);
-        }
-        sim.set_contact_recording(true);
-        sim.step();
-        analysis::GrainState state = analysis::grain_state(sim);
+    double reach = 0.0, largest = 0.0;  // m: the largest distance of a grain centre from the z axis, radius
+    for_each_sample(loaded.checkpoint, o.samples, o.every, [&](const analysis::GrainState& state, const Simulation& sim) {
         if (!sum) {
             settings = grid_settings(o.settings, state.grains(), o.memory_option, &sim.scenario().domain);
             if (!o.settings.lo || !o.settings.hi || !o.settings.width)
@@ -263,12 +264,18 @@ RunFields run_fields(const RunFieldsOptions& given, const std::function<void(con
         sum->add(state.grains(), state.contacts);
         out.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         out.times.push_back(state.time);
-        if (drum) kept.push_back(std::move(state));
-    }
+        for (std::size_t i = 0; i < state.position.size(); ++i) {
+            reach = std::max(reach, std::hypot(state.position[i].x, state.position[i].y));
+            largest = std::max(largest, state.radius[i]);
+        }
+    });
     const auto start = std::chrono::steady_clock::now();
     out.fields = std::move(*sum).finish();
-    if (drum) out.drum = drum_layer(out.fields, settings, kept, o.span);
     out.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (drum) {
+        say("the drum frame: the samples again, in the free surface's coordinates");
+        out.drum = drum_layer(out.fields, settings, reach, largest, loaded.checkpoint, o);
+    }
     return out;
 }
 

@@ -65,11 +65,12 @@ std::optional<analysis::CgSettings> grid_settings(const FieldSettings& s, const 
 // frame "drum" (a run of tumble drum): `fields` is the drum's cross-section
 // (the settings' grid, averaged along z), the free surface is found on it
 // (analysis::find_drum_surface, fitted over the middle `span` of its length),
-// and the samples are coarse-grained again in the drum's coordinates (s, d,
-// z) into the depth profile: resolved along d at the cross-section's cell
-// size from 3 widths above the surface to the deepest grain surface below
-// the span, averaged along s over the span and along z over the
-// cross-section's extent (docs/FIELDS.md, "The drum's frame").
+// and the samples are taken again from the checkpoint (the same states: no
+// state is kept) and coarse-grained in the drum's coordinates (s, d, z)
+// into the depth profile: resolved along d at the cross-section's cell size
+// from 3 widths above the surface to the deepest a grain can reach under it,
+// averaged along s over the span and along z over the cross-section's
+// extent (docs/FIELDS.md, "The drum's frame").
 struct RunFieldsOptions {
     std::filesystem::path run_directory;
     std::filesystem::path checkpoint;

@@ -193,7 +193,7 @@ class Figures(unittest.TestCase):
         w = Capture()
         plot_drum.fig_flowing_layer(run, w)  # no fields yet: skipped with a note
         self.assertEqual(w.skipped, ["fig_flowing_layer"])
-        fields = os.path.join(self.dir, "fields")
+        fields = os.path.join(self.dir, "flowing_layer")
         os.makedirs(fields)
         surface = dict(angle_of_repose_deg=30.0, surface_level_m=-0.01, surface_half_length_m=0.03, span=0.5,
                        bed_solid_fraction=0.6, surface_solid_fraction=0.3, surface_velocity_m_per_s=0.1,
