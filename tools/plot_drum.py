@@ -753,7 +753,7 @@ def fig_flowing_layer(run, w):
         f"flowing layer {thickness * 1e3:.1f} mm ({surface['layer_thickness_diameters']:.1f} d) deep")
     fig.suptitle(f"The flowing layer, {run.mode} mode, {run.label()}: surface velocity "
                  f"{surface['surface_velocity_m_per_s']:.3g} m/s, {layer}", fontsize=10)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0, 1, 0.96))
     w.save(fig, name)
 
 
