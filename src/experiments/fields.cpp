@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -175,11 +176,11 @@ namespace {
 // The samples' states: `samples` steps `between` steps apart, taken with
 // the contacts recorded, from the checkpoint's state; each handed to `take`.
 // The same checkpoint gives the same states every time (the simulation is
-// deterministic), so a second pass needs no copy of the first's.
-void for_each_sample(const io::Checkpoint& checkpoint, int samples, double every,
+// deterministic), so a second pass needs no copy of the first's states.
+void for_each_sample(io::Checkpoint checkpoint, int samples, double every,
                      const std::function<void(const analysis::GrainState&, const Simulation&)>& take) {
-    Simulation sim(checkpoint.scenario);
-    sim.restore(checkpoint.state);
+    Simulation sim(std::move(checkpoint.scenario));
+    sim.restore(std::move(checkpoint.state));
     const std::int64_t between = samples > 1 ? step_count(every, sim.dt(), "every") : 1;
     for (int k = 0; k < samples; ++k) {
         if (k > 0 && between > 1) {
@@ -198,7 +199,7 @@ void for_each_sample(const io::Checkpoint& checkpoint, int samples, double every
 // `largest` at most), the samples taken again, carried into the drum's
 // coordinates and coarse-grained on a grid resolved along d.
 DrumLayer drum_layer(const analysis::Fields& cs, const analysis::CgSettings& c, double reach, double largest,
-                     const io::Checkpoint& checkpoint, const RunFieldsOptions& o) {
+                     io::Checkpoint checkpoint, const RunFieldsOptions& o) {
     DrumLayer out;
     out.surface = analysis::find_drum_surface(cs, reach, o.span);
     // The grid: d from 3 widths above the surface to the deepest grain
@@ -216,7 +217,7 @@ DrumLayer drum_layer(const analysis::Fields& cs, const analysis::CgSettings& c, 
     p.grid.lo = {-half, -3.0 * w, cs.grid.lo.z};
     p.grid.hi = {half, -3.0 * w + cells * cell, cs.grid.hi.z};
     analysis::FieldAccumulator sum(p);
-    for_each_sample(checkpoint, o.samples, o.every, [&](const analysis::GrainState& s, const Simulation&) {
+    for_each_sample(std::move(checkpoint), o.samples, o.every, [&](const analysis::GrainState& s, const Simulation&) {
         const analysis::GrainState in_frame = analysis::to_drum_frame(s, out.surface);
         sum.add(in_frame.grains(), in_frame.contacts);
     });
@@ -246,14 +247,17 @@ RunFields run_fields(const RunFieldsOptions& given, const std::function<void(con
     if (const auto early = grid_settings(o.settings, o.memory_option))
         say("grid " + grid_summary(o.settings, early->grid));
 
-    const io::LoadedCheckpoint loaded = load_checkpoint(o.run_directory, o.checkpoint);
+    io::LoadedCheckpoint loaded = load_checkpoint(o.run_directory, o.checkpoint);
     say("states from " + loaded.file.string());
     RunFields out;
     out.checkpoint = loaded.file;
     std::optional<analysis::FieldAccumulator> sum;
     analysis::CgSettings settings;
     double reach = 0.0, largest = 0.0;  // m: the largest distance of a grain centre from the z axis, radius
-    for_each_sample(loaded.checkpoint, o.samples, o.every, [&](const analysis::GrainState& state, const Simulation& sim) {
+    // The drum frame takes the samples twice: the first pass a copy of the
+    // checkpoint, the second the checkpoint itself.
+    for_each_sample(drum ? io::Checkpoint(loaded.checkpoint) : std::move(loaded.checkpoint), o.samples, o.every,
+                    [&](const analysis::GrainState& state, const Simulation& sim) {
         if (!sum) {
             settings = grid_settings(o.settings, state.grains(), o.memory_option, &sim.scenario().domain);
             if (!o.settings.lo || !o.settings.hi || !o.settings.width)
@@ -274,7 +278,7 @@ RunFields run_fields(const RunFieldsOptions& given, const std::function<void(con
     out.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (drum) {
         say("the drum frame: the samples again, in the free surface's coordinates");
-        out.drum = drum_layer(out.fields, settings, reach, largest, loaded.checkpoint, o);
+        out.drum = drum_layer(out.fields, settings, reach, largest, std::move(loaded.checkpoint), o);
     }
     return out;
 }
