@@ -24,6 +24,7 @@ int fields_command(const FieldsOptions& options) {
         const analysis::DrumSurface& s = run.drum->surface;
         const analysis::FlowingLayer& l = run.drum->layer;
         io::write_fields_csv(out / "profile.csv", run.drum->profile, "sdz");
+        if (run.drum->resolved) io::write_fields_csv(out / "frame.csv", *run.drum->resolved, "sdz");
         io::write_json_file(out / "drum_frame.json", io::drum_frame_json(s, l, options.run.span));
         say(fmt::format("free surface at {:.2f} degrees, {:.4g} m from the axis; surface velocity {:.3g} m/s, "
                         "flowing layer {:.3g} m ({:.2f} grain diameters) deep",

@@ -165,6 +165,11 @@ std::string frame_problem(const RunFieldsOptions& o) {
     if (!(std::isfinite(o.span) && o.span > 0.0 && o.span <= 1.0))
         return fmt::format("span: the middle part of the free surface that the drum frame averages, a number in (0, 1], "
                            "got {}", o.span);
+    for (const double n : o.frame_cells)
+        if (!(n >= 1.0 && n <= max_nodes && n == std::floor(n)))
+            return fmt::format("frame_cells: the cells along s and z, whole numbers >= 1, got {}", n);
+    if (o.frame == "lab" && (o.frame_cells[0] != 1.0 || o.frame_cells[1] != 1.0))
+        return "frame_cells: a grid in the drum's coordinates, for the drum frame (frame drum) only";
     if (o.frame == "drum" && !o.settings.average.empty() && o.settings.average != "z")
         return "average: the drum frame's cross-section is averaged along z, the drum's axis (give z or nothing), got \"" +
                o.settings.average + "\"";
@@ -216,13 +221,31 @@ DrumLayer drum_layer(const analysis::Fields& cs, const analysis::CgSettings& c, 
     p.grid.cells = {1, static_cast<std::size_t>(cells), 1};
     p.grid.lo = {-half, -3.0 * w, cs.grid.lo.z};
     p.grid.hi = {half, -3.0 * w + cells * cell, cs.grid.hi.z};
+    // The resolved grid: the profile's, with frame_cells along s and z.
+    std::optional<analysis::FieldAccumulator> resolved;
+    if (o.frame_cells[0] > 1.0 || o.frame_cells[1] > 1.0) {
+        analysis::CgSettings r = p;
+        r.grid.cells = {static_cast<std::size_t>(o.frame_cells[0]), p.grid.cells[1],
+                        static_cast<std::size_t>(o.frame_cells[1])};
+        r.grid.averaged = {r.grid.cells[0] == 1, false, r.grid.cells[2] == 1};
+        r.grid.periodic = {false, false, r.grid.averaged[2] && p.grid.periodic[2]};
+        const double nodes = o.frame_cells[0] * cells * o.frame_cells[1];
+        if (!(nodes <= max_nodes)) throw Error("frame_cells: more nodes than any memory holds");
+        check_memory({analysis::cg_memory_bytes(r.grid.nodes()),
+                      fmt::format("a grid of {:g} x {:g} x {:g} nodes in the drum's coordinates (frame_cells)",
+                                  o.frame_cells[0], cells, o.frame_cells[1])},
+                     memory_limit_bytes(o.settings.max_memory_gib), "fields", o.memory_option);
+        resolved.emplace(r);
+    }
     analysis::FieldAccumulator sum(p);
     for_each_sample(std::move(checkpoint), o.samples, o.every, [&](const analysis::GrainState& s, const Simulation&) {
         const analysis::GrainState in_frame = analysis::to_drum_frame(s, out.surface);
         sum.add(in_frame.grains(), in_frame.contacts);
+        if (resolved) resolved->add(in_frame.grains(), in_frame.contacts);
     });
     out.profile = std::move(sum).finish();
     out.layer = analysis::flowing_layer(out.profile);
+    if (resolved) out.resolved = std::move(*resolved).finish();
     return out;
 }
 

@@ -79,12 +79,19 @@ struct RunFieldsOptions {
     FieldSettings settings;
     std::string frame = "lab";  // "lab" or "drum"
     double span = 0.5;          // the drum frame: the middle part of the surface averaged, in (0, 1]
+    // The drum frame: cells along s (across the span) and z (along the
+    // cross-section's extent) of a second grid in the drum's coordinates,
+    // resolved along d as the profile is (DrumLayer::resolved); (1, 1): none.
+    std::array<double, 2> frame_cells{1.0, 1.0};
     std::string memory_option = "--max-memory GIB";
 };
 struct DrumLayer {
     analysis::DrumSurface surface;
     analysis::Fields profile;  // in the drum's coordinates: x = s, y = d, z
     analysis::FlowingLayer layer;
+    // The fields resolved along s and z too (RunFieldsOptions::frame_cells),
+    // on the profile's extent and its nodes along d.
+    std::optional<analysis::Fields> resolved;
 };
 struct RunFields {
     analysis::Fields fields;
@@ -94,8 +101,8 @@ struct RunFields {
     std::optional<DrumLayer> drum;     // frame "drum"
 };
 
-// What is wrong with the frame and span on their own (and the averaged axes
-// the drum frame needs), naming the key; "" if nothing.
+// What is wrong with the frame, span and frame cells on their own (and the
+// averaged axes the drum frame needs), naming the key; "" if nothing.
 std::string frame_problem(const RunFieldsOptions& o);
 // `say` hears what is about to happen (the checkpoint, the grid and its
 // memory before it is allocated). tumble::Error naming the option or the

@@ -236,7 +236,8 @@ void bind_analysis(py::module_& m) {
         [](const fs::path& directory, int samples, double every, const std::optional<fs::path>& checkpoint,
            std::optional<std::array<double, 3>> lo, std::optional<std::array<double, 3>> hi, std::optional<double> cell,
            std::optional<std::array<double, 3>> cells, const std::string& average, const std::string& kernel,
-           std::optional<double> width, double max_memory_gib, const std::string& frame, double span) {
+           std::optional<double> width, double max_memory_gib, const std::string& frame, double span,
+           std::array<double, 2> frame_cells) {
             experiments::RunFieldsOptions o;
             o.run_directory = directory;
             o.checkpoint = checkpoint.value_or(fs::path());
@@ -246,6 +247,7 @@ void bind_analysis(py::module_& m) {
             o.memory_option = "max_memory_gib";
             o.frame = frame;
             o.span = span;
+            o.frame_cells = frame_cells;
             experiments::RunFields run;
             {
                 py::gil_scoped_release released;
@@ -256,6 +258,7 @@ void bind_analysis(py::module_& m) {
             d["checkpoint"] = run.checkpoint;
             if (run.drum) {
                 d["profile"] = fields_dict(run.drum->profile, "sdz");
+                if (run.drum->resolved) d["frame"] = fields_dict(*run.drum->resolved, "sdz");
                 d["surface"] = py::module_::import("json").attr("loads")(
                     io::json_line(io::drum_frame_json(run.drum->surface, run.drum->layer, span)));
             }
@@ -265,13 +268,14 @@ void bind_analysis(py::module_& m) {
         py::arg("checkpoint") = py::none(), py::arg("lo") = py::none(), py::arg("hi") = py::none(),
         py::arg("cell") = py::none(), py::arg("cells") = py::none(), py::arg("average") = "",
         py::arg("kernel") = "gaussian", py::arg("width") = py::none(), py::arg("max_memory_gib") = 0.0,
-        py::arg("frame") = "lab", py::arg("span") = 0.5,
+        py::arg("frame") = "lab", py::arg("span") = 0.5, py::arg("frame_cells") = std::array<double, 2>{1.0, 1.0},
         "Coarse-grained fields of a run directory, as tumble fields computes them (docs/FIELDS.md): `samples` "
         "states `every` s apart, continued in memory from the run's newest checkpoint (or `checkpoint`), every "
         "contact force exact. The grid and kernel as coarse_grain's; the dict of coarse_grain, with times (s) and "
         "checkpoint. frame='drum' (a drum run): the cross-section averaged along z, and besides 'profile' (the "
         "depth profile below the free surface, in the drum's coordinates s, d, z; averaged over the middle `span` "
-        "of the surface) and 'surface' (drum_frame.json's numbers)");
+        "of the surface) and 'surface' (drum_frame.json's numbers); frame_cells=(NS, NZ) adds 'frame', the same "
+        "resolved along s and z too");
 }
 
 }  // namespace tumble::python

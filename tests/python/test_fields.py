@@ -172,15 +172,31 @@ def test_the_drum_frame_finds_the_flowing_layer(flowing_drum, tumble_binary, tmp
     # between them, a rough wall).
     assert 15.0 < s["angle_of_repose_deg"] < 45.0
 
+    # Resolved along the axis too (frame_cells): the same nodes along d, 4
+    # along z; the bed of one kind is uniform along the axis but for the
+    # caps, so the mean of its axial nodes' density inside the layer is the
+    # profile's, within 10 % (each node's value is the kernel's mean over
+    # 3w about it, a sample of the axis rather than its average).
+    r = tumble.fields(flowing_drum, frame="drum", frame_cells=(1, 4), **settings)
+    resolved = r["frame"]
+    assert resolved["density"].shape == (4, len(p["d"]), 1)
+    np.testing.assert_array_equal(resolved["d"], p["d"])
+    np.testing.assert_array_equal(r["profile"]["density"], p["density"])
+    half = np.interp(s["layer_thickness_m"] / 2, p["d"], p["density"][0, :, 0])
+    axial = [np.interp(s["layer_thickness_m"] / 2, p["d"], resolved["density"][k, :, 0]) for k in range(4)]
+    assert np.mean(axial) == pytest.approx(half, rel=0.1)
+
     out = tmp_path / "fields"
     done = subprocess.run([tumble_binary, "fields", str(flowing_drum), "-q", "-o", str(out), "--frame", "drum",
                            "--samples", "3", "--every", "0.01", "--kernel", "lucy", "--cell", "0.001", "--format",
-                           "csv"], capture_output=True, text=True)
+                           "csv", "--frame-cells", "1,4"], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     table = pd.read_csv(out / "profile.csv", float_precision="round_trip")
     np.testing.assert_array_equal(table["d"].to_numpy(), p["d"])
     np.testing.assert_array_equal(table["velocity_s"].to_numpy(), u)
     np.testing.assert_array_equal(table["stress_sd"].to_numpy(), p["stress"][0, :, 0, 0, 1])
+    frame = pd.read_csv(out / "frame.csv", float_precision="round_trip")
+    np.testing.assert_array_equal(frame["velocity_s"].to_numpy(), resolved["velocity"][..., 0].ravel())
     import json
     assert json.loads((out / "drum_frame.json").read_text()) == s
 
@@ -235,3 +251,7 @@ def test_the_drum_frame_refuses_bad_settings(tiny_drum, tmp_path):
         tumble.fields(directory, frame="drum", average="x")
     with pytest.raises(tumble.Error, match="^frame: drum takes the directory of a tumble drum run"):
         tumble.fields(tmp_path, frame="drum")
+    with pytest.raises(tumble.Error, match="^frame_cells: the cells along s and z, whole numbers >= 1, got 2.5"):
+        tumble.fields(directory, frame="drum", frame_cells=(2.5, 1))
+    with pytest.raises(tumble.Error, match="^frame_cells: .* for the drum frame"):
+        tumble.fields(directory, frame_cells=(1, 4))
