@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -36,19 +37,33 @@ std::string plot_script() {
 // --kernel lucy --cell R/40 (R the drum's inner radius) --format csv, into
 // DIR/flowing_layer (docs/FIELDS.md, "The drum's frame"). A run whose
 // surface cannot be found (too few grains) or that has no checkpoint gets
-// a note, and the figure is skipped.
+// a note, and the figure is skipped; so does a run whose 0.4 s of stepping
+// (the samples' 0.2 s, taken twice) would take more than a minute at its
+// own speed on one core (its grain updates per second over its threads).
 void flowing_layer_fields(const std::string& directory, bool quiet) {
     namespace fs = std::filesystem;
     std::error_code ec;
     if (fs::exists(fs::path(directory) / "flowing_layer" / "drum_frame.json", ec)) return;
     try {
+        const io::DrumRunInfo info = io::read_drum_run_info(fs::path(directory) / "drum_run.toml");
+        constexpr int samples = 20;
+        constexpr double every = 0.01;  // s
+        double grains = 0.0;
+        for (const io::DrumComponent& c : info.components) grains += static_cast<double>(c.grains);
+        const double seconds = info.dt > 0.0 && info.grain_updates_per_second > 0.0
+                                   ? 2.0 * samples * every / info.dt * grains /
+                                         (info.grain_updates_per_second / std::max(info.threads, 1))
+                                   : 0.0;
+        if (seconds > 60.0)
+            throw Error(fmt::format("they would take about {:.0f} s here (tumble fields {} --frame drum computes them)",
+                                    seconds, directory));
         FieldsOptions o;
         o.run.run_directory = directory;
         o.run.frame = "drum";
-        o.run.samples = 20;
-        o.run.every = 0.01;
+        o.run.samples = samples;
+        o.run.every = every;
         o.run.settings.kernel = analysis::CgKernel::lucy;
-        o.run.settings.cell = io::read_drum_run_info(fs::path(directory) / "drum_run.toml").inner_radius / 40.0;
+        o.run.settings.cell = info.inner_radius / 40.0;
         o.format = "csv";
         o.quiet = quiet;
         fields_command(o);
