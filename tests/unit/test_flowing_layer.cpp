@@ -140,10 +140,10 @@ TEST(FlowingLayer, FindsTheSurfaceAndTheLayerOfABedMadeToOrder) {
     EXPECT_NEAR(profile.shear_rate[inside], U / delta, 0.02 * U / delta);
     EXPECT_NEAR(profile.velocity[inside].x, expected_u(d_inside), 1e-3 * U);
     EXPECT_NEAR(profile.velocity[inside].y, 0.0, 1e-3 * U);  // no flow across the surface
-    std::printf("  [measured] phi_ref %.5f, angle %.4f degrees, level offset %.4g mm, thickness %.5g mm, surface velocity %.5g "
-                "(expected %.5g) m/s, shear rate %.5g (expected %.5g) 1/s\n",
-                found.solid_fraction, found.angle * 180.0 / pi, offset * 1e3, layer.thickness * 1e3, layer.surface_velocity,
-                expected_u(0.0), profile.shear_rate[inside], slope);
+    std::printf("  [measured] phi_ref %.5f, angle %.4f degrees, level offset %.4g mm, thickness %.5g mm, surface "
+                "velocity %.5g (expected %.5g) m/s, shear rate %.5g (expected %.5g) 1/s\n",
+                found.solid_fraction, found.angle * 180.0 / pi, offset * 1e3, layer.thickness * 1e3,
+                layer.surface_velocity, expected_u(0.0), profile.shear_rate[inside], slope);
 }
 
 TEST(FlowingLayer, RefusesACrossSectionWithoutASurface) {

@@ -68,7 +68,7 @@ DrumSurface find_drum_surface(const Fields& cs, double reach, double span) {
     if (!(reach > 0.0 && std::isfinite(reach)) || !(span > 0.0 && span <= 1.0))
         throw Error("drum frame: the reach must be > 0 and the span in (0, 1]");
     DrumSurface out;
-    // phi's centroid and its second moments about it (m^2, per node).
+    // phi's centroid (cx, cy), m.
     double sum = 0.0, cx = 0.0, cy = 0.0;
     for (std::size_t b = 0; b < g.cells[1]; ++b)
         for (std::size_t a = 0; a < g.cells[0]; ++a) {
@@ -88,14 +88,18 @@ DrumSurface find_drum_surface(const Fields& cs, double reach, double span) {
             out.solid_fraction = phi;
             break;
         }
+    // phi's second moments about its centroid (m^2 per node), and their
+    // long principal axis (cos a, sin a): tan 2a = 2 I_xy / (I_xx - I_yy),
+    // a in (-90, 90] degrees, so that n = (-sin a, cos a) points up.
     double ixx = 0.0, iyy = 0.0, ixy = 0.0;
     for (std::size_t b = 0; b < g.cells[1]; ++b)
         for (std::size_t a = 0; a < g.cells[0]; ++a) {
             const double phi = cs.solid_fraction[a + g.cells[0] * b];
             const Vec3 x = g.node(a, b, 0);
-            ixx += phi * (x.x - cx) * (x.x - cx), iyy += phi * (x.y - cy) * (x.y - cy), ixy += phi * (x.x - cx) * (x.y - cy);
+            ixx += phi * (x.x - cx) * (x.x - cx);
+            iyy += phi * (x.y - cy) * (x.y - cy);
+            ixy += phi * (x.x - cx) * (x.y - cy);
         }
-    // The long principal axis (cos a, sin a): tan 2a = 2 I_xy / (I_xx - I_yy).
     out.angle = 0.5 * std::atan2(2.0 * ixy, ixx - iyy);
 
     const CrossSection phi(cs);
@@ -104,11 +108,11 @@ DrumSurface find_drum_surface(const Fields& cs, double reach, double span) {
     double top = 0.0;  // m: the grid's farthest corner from the axis
     for (const double x : {g.lo.x, g.hi.x})
         for (const double y : {g.lo.y, g.hi.y}) top = std::max(top, std::hypot(x, y));
-    const double level = 0.5 * out.solid_fraction;
+    const double phi_half = 0.5 * out.solid_fraction;  // the surface's solid fraction
     // In the fits, columns run along the uphill direction u = -t = (cos a, sin a) at s' = -s.
     {
         const Vec3 u = -out.along();
-        out.level = first_crossing(phi, u, out.normal(), 0.0, top, step, level);
+        out.level = first_crossing(phi, u, out.normal(), 0.0, top, step, phi_half);
         if (!std::isfinite(out.level)) throw Error("drum frame: no free surface: the column through the axis crosses "
                                                    "no solid fraction of half the bed's");
     }
@@ -121,7 +125,7 @@ DrumSurface find_drum_surface(const Fields& cs, double reach, double span) {
         double m = 0.0, ms = 0.0, mh = 0.0, mss = 0.0, msh = 0.0;
         const double half = span * out.half_length;
         for (double s = -std::floor(half / column) * column; s <= half; s += column) {
-            const double h = first_crossing(phi, u, n, s, top, step, level);
+            const double h = first_crossing(phi, u, n, s, top, step, phi_half);
             if (!std::isfinite(h)) continue;
             m += 1, ms += s, mh += h, mss += s * s, msh += s * h;
         }
