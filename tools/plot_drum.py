@@ -679,6 +679,84 @@ def fig_bed_structure(run, w):
     w.save(fig, name)
 
 
+def fig_flowing_layer(run, w):
+    """The flowing layer described by its coarse-grained fields (flowing_layer/
+    of `tumble fields DIR --frame drum`, which `tumble plot` computes where it
+    is missing; docs/FIELDS.md "The drum's frame"): the
+    cross-section's solid fraction and velocity with the fitted free surface,
+    and against depth below it the velocity along the surface, the solid
+    fraction, the shear rate, the pressure, mu and I."""
+    name = "fig_flowing_layer"
+    folder = run.path("flowing_layer")
+    numbers = os.path.join(folder, "drum_frame.json")
+    if not os.path.isfile(numbers):
+        w.skip(name, f"no {numbers} (tumble fields {run.dir} --frame drum)")
+        return
+    surface = read_json(numbers)
+    section = read_csv(os.path.join(folder, "fields.csv"))
+    profile = read_csv(os.path.join(folder, "profile.csv"))
+    x, y = np.unique(section["x"]), np.unique(section["y"])
+    shape = (len(y), len(x))  # the rows run x fastest, then y
+    phi = section["solid_fraction"].reshape(shape)
+    fig = plt.figure(figsize=(14, 7.5))
+    grid = fig.add_gridspec(2, 4, width_ratios=[2.2, 1, 1, 1])
+    cut = fig.add_subplot(grid[:, 0])
+    image = cut.pcolormesh(x * 1e3, y * 1e3, phi, cmap="Greys", vmin=0.0, vmax=max(0.65, phi.max()),
+                           shading="nearest")
+    fig.colorbar(image, ax=cut, shrink=0.5, location="bottom", label="solid fraction \u03c6")
+    every = max(1, len(x) // 25)
+    vx = section["velocity_x"].reshape(shape)
+    vy = section["velocity_y"].reshape(shape)
+    held = phi > 0.5 * surface["surface_solid_fraction"]
+    X, Y = np.meshgrid(x * 1e3, y * 1e3)
+    sel = (slice(None, None, every), slice(None, None, every))
+    cut.quiver(X[sel][held[sel]], Y[sel][held[sel]], vx[sel][held[sel]], vy[sel][held[sel]], color="tab:blue",
+               angles="xy", scale_units="xy", scale=None, width=0.003)
+    a = math.radians(surface["angle_of_repose_deg"])
+    t, n = np.array([-math.cos(a), -math.sin(a)]), np.array([-math.sin(a), math.cos(a)])
+    half = surface["surface_half_length_m"]
+    for span, style in ((1.0, ":"), (surface["span"], "-")):
+        ends = np.array([surface["surface_level_m"] * n + s * t for s in (-span * half, span * half)]) * 1e3
+        cut.plot(ends[:, 0], ends[:, 1], style, color="tab:red", lw=1.5)
+    cut.set_aspect("equal")
+    cut.set_xlabel("x (mm)")
+    cut.set_ylabel("y (mm)")
+    cut.set_title(f"\u03c6 and velocity; free surface at {surface['angle_of_repose_deg']:.1f}\u00b0\n"
+                  "(red: its chord; solid: the part averaged)", fontsize=9)
+    d = profile["d"] * 1e3
+    thickness = surface["layer_thickness_m"]
+    panels = [("velocity_s", "u along the surface, downhill (m/s)"),
+              ("solid_fraction", "solid fraction \u03c6"),
+              ("shear_rate", "shear rate \u03b3\u0307 (1/s)"),
+              ("pressure", "pressure p (Pa)"),
+              ("friction", "\u03bc = \u03c4 / p"),
+              ("inertial_number", "inertial number I")]
+    # mu and I are ratios of vanishing stresses where the grains thin out
+    # above the surface: drawn where phi is a quarter of the surface's or more.
+    dense = profile["solid_fraction"] >= 0.25 * surface["surface_solid_fraction"]
+    for k, (column, label) in enumerate(panels):
+        ax = fig.add_subplot(grid[k // 3, 1 + k % 3])
+        values = profile[column]
+        if column in ("friction", "inertial_number"):
+            values = np.where(dense, values, np.nan)
+        ax.plot(values, d, "-", color="0.2")
+        ax.axhline(0.0, color="tab:red", lw=0.8)
+        if thickness is not None:
+            ax.axhline(thickness * 1e3, color="tab:blue", lw=0.8, ls="--")
+        if column == "velocity_s":
+            ax.axvline(0.0, color="0.6", lw=0.8)
+        ax.set_xlabel(label, fontsize=8)
+        ax.set_ylabel("depth below the surface d (mm)", fontsize=8)
+        ax.set_ylim(d.max(), d.min())
+        ax.tick_params(labelsize=7)
+    layer = "no flowing layer found" if thickness is None else (
+        f"flowing layer {thickness * 1e3:.1f} mm ({surface['layer_thickness_diameters']:.1f} d) deep")
+    fig.suptitle(f"The flowing layer, {run.mode} mode, {run.label()}: surface velocity "
+                 f"{surface['surface_velocity_m_per_s']:.3g} m/s, {layer}", fontsize=10)
+    fig.tight_layout(rect=(0, 0, 1, 0.96))
+    w.save(fig, name)
+
+
 def _band_rows(path):
     """band_profile.csv as ({quantity: N of its samples}, {quantity: array [sample, bin]})."""
     t = read_csv(path)
@@ -880,7 +958,8 @@ def bands_reported(run):
 def do_run(args):
     run = Run(args.dir)
     w = Writer(args.out or os.path.join(args.dir, "figures"))
-    makers = [fig_setup, fig_z, fig_profiles, fig_energy, fig_depth, fig_msd, fig_collapse, fig_bed_structure]
+    makers = [fig_setup, fig_z, fig_profiles, fig_energy, fig_depth, fig_msd, fig_collapse, fig_bed_structure,
+              fig_flowing_layer]
     # The band figure for a run with bands, or when asked (--band-report).
     if args.band_report or bands_reported(run):
         makers.append(fig_bands)

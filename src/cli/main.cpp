@@ -484,11 +484,26 @@ int main(int argc, char** argv) {
     fields_cmd->add_option("--kernel", fields_kernel, "gaussian (cut off at 3 widths; default) or lucy")
         ->check(CLI::IsMember({"gaussian", "lucy"}));
     fields_cmd->add_option("--width", fields_width, "Kernel width w, m (default: the grains' mean radius)");
+    fields_cmd->add_option("--frame", fields.run.frame,
+                           "lab (default) or drum: a drum run's cross-section (averaged along z), its free surface, "
+                           "and the depth profile below it (profile.csv, drum_frame.json)")
+        ->check(CLI::IsMember({"lab", "drum"}));
+    fields_cmd->add_option("--span", fields.run.span,
+                           "The drum frame: the middle part of the free surface's length that the surface fit and "
+                           "the profile use, in (0, 1] (default 0.5)");
+    std::vector<double> fields_frame_cells;
+    fields_cmd->add_option("--frame-cells", fields_frame_cells,
+                           "The drum frame: cells NS,NZ along the surface (across the span) and the axis of a grid "
+                           "in the drum's coordinates besides the profile (frame.csv; default 1,1: none)")
+        ->delimiter(',')
+        ->expected(2);
     fields_cmd->add_option("--samples", fields.run.samples, "States averaged (default 1)");
     fields_cmd->add_option("--every", fields.run.every, "Simulated seconds between the states (default 0.01)");
     fields_cmd->add_option("--checkpoint", fields.run.checkpoint,
                            "The checkpoint the states start from (default: the run's newest)");
-    fields_cmd->add_option("-o,--out", fields.out, "Where fields.vti and fields.csv go (default DIR/fields)");
+    fields_cmd->add_option("-o,--out", fields.out,
+                           "Where fields.vti and fields.csv go (default DIR/fields; with --frame drum "
+                           "DIR/flowing_layer)");
     fields_cmd->add_option("--format", fields.format, "vti, csv or both (default)")
         ->check(CLI::IsMember({"vti", "csv", "both"}));
     fields_cmd->add_option("--max-memory", fields.run.settings.max_memory_gib,
@@ -552,6 +567,7 @@ int main(int argc, char** argv) {
             if (!fields_lo.empty()) f.lo = tumble::Vec3{fields_lo[0], fields_lo[1], fields_lo[2]};
             if (!fields_hi.empty()) f.hi = tumble::Vec3{fields_hi[0], fields_hi[1], fields_hi[2]};
             if (!fields_cells.empty()) f.cells = std::array<double, 3>{fields_cells[0], fields_cells[1], fields_cells[2]};
+            if (!fields_frame_cells.empty()) fields.run.frame_cells = {fields_frame_cells[0], fields_frame_cells[1]};
             f.cell = fields_cell;
             f.width = fields_width;
             f.kernel = fields_kernel == "lucy" ? tumble::analysis::CgKernel::lucy : tumble::analysis::CgKernel::gaussian;

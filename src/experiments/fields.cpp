@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -159,7 +160,102 @@ io::LoadedCheckpoint load_checkpoint(const fs::path& run_directory, const fs::pa
 
 }  // namespace
 
-RunFields run_fields(const RunFieldsOptions& o, const std::function<void(const std::string&)>& say) {
+std::string frame_problem(const RunFieldsOptions& o) {
+    if (o.frame != "lab" && o.frame != "drum") return "frame: lab or drum, got \"" + o.frame + "\"";
+    if (!(std::isfinite(o.span) && o.span > 0.0 && o.span <= 1.0))
+        return fmt::format("span: the middle part of the free surface that the drum frame averages, a number in (0, 1], "
+                           "got {}", o.span);
+    for (const double n : o.frame_cells)
+        if (!(n >= 1.0 && n <= max_nodes && n == std::floor(n)))
+            return fmt::format("frame_cells: the cells along s and z, whole numbers >= 1, got {}", n);
+    if (o.frame == "lab" && (o.frame_cells[0] != 1.0 || o.frame_cells[1] != 1.0))
+        return "frame_cells: a grid in the drum's coordinates, for the drum frame (frame drum) only";
+    if (o.frame == "drum" && !o.settings.average.empty() && o.settings.average != "z")
+        return "average: the drum frame's cross-section is averaged along z, the drum's axis (give z or nothing), got \"" +
+               o.settings.average + "\"";
+    return {};
+}
+
+namespace {
+
+// The samples' states: `samples` steps `between` steps apart, taken with
+// the contacts recorded, from the checkpoint's state; each handed to `take`.
+// The same checkpoint gives the same states every time (the simulation is
+// deterministic), so a second pass needs no copy of the first's states.
+void for_each_sample(io::Checkpoint checkpoint, int samples, double every,
+                     const std::function<void(const analysis::GrainState&, const Simulation&)>& take) {
+    Simulation sim(std::move(checkpoint.scenario));
+    sim.restore(std::move(checkpoint.state));
+    const std::int64_t between = samples > 1 ? step_count(every, sim.dt(), "every") : 1;
+    for (int k = 0; k < samples; ++k) {
+        if (k > 0 && between > 1) {
+            sim.set_contact_recording(false);
+            sim.advance(between - 1);
+        }
+        sim.set_contact_recording(true);
+        sim.step();
+        take(analysis::grain_state(sim), sim);
+    }
+}
+
+// The drum frame's depth profile (RunFieldsOptions) of the samples of
+// `checkpoint`: the surface found on their cross-section `cs` (of settings
+// `c`; their grain centres reach `reach` from the axis, their radii are
+// `largest` at most), the samples taken again, carried into the drum's
+// coordinates and coarse-grained on a grid resolved along d.
+DrumLayer drum_layer(const analysis::Fields& cs, const analysis::CgSettings& c, double reach, double largest,
+                     io::Checkpoint checkpoint, const RunFieldsOptions& o) {
+    DrumLayer out;
+    out.surface = analysis::find_drum_surface(cs, reach, o.span);
+    // The grid: d from 3 widths above the surface to the deepest grain
+    // surface there can be under it, where the circle the grain centres
+    // reach is deepest (d = level + reach), the cross-section's cell size.
+    const double half = o.span * out.surface.half_length, w = c.width, cell = cs.grid.spacing(0);
+    const double deepest = out.surface.level + reach + largest;
+    analysis::CgSettings p;
+    p.kernel = c.kernel;
+    p.width = w;
+    p.grid.averaged = {true, false, true};
+    p.grid.periodic = {false, false, cs.grid.periodic[2]};
+    const double cells = std::max(2.0, std::ceil((deepest + 3.0 * w) / cell));
+    p.grid.cells = {1, static_cast<std::size_t>(cells), 1};
+    p.grid.lo = {-half, -3.0 * w, cs.grid.lo.z};
+    p.grid.hi = {half, -3.0 * w + cells * cell, cs.grid.hi.z};
+    // The resolved grid: the profile's, with frame_cells along s and z.
+    std::optional<analysis::FieldAccumulator> resolved;
+    if (o.frame_cells[0] > 1.0 || o.frame_cells[1] > 1.0) {
+        analysis::CgSettings r = p;
+        r.grid.cells = {static_cast<std::size_t>(o.frame_cells[0]), p.grid.cells[1],
+                        static_cast<std::size_t>(o.frame_cells[1])};
+        r.grid.averaged = {r.grid.cells[0] == 1, false, r.grid.cells[2] == 1};
+        r.grid.periodic = {false, false, r.grid.averaged[2] && p.grid.periodic[2]};
+        const double nodes = o.frame_cells[0] * cells * o.frame_cells[1];
+        if (!(nodes <= max_nodes)) throw Error("frame_cells: more nodes than any memory holds");
+        check_memory({analysis::cg_memory_bytes(r.grid.nodes()),
+                      fmt::format("a grid of {:g} x {:g} x {:g} nodes in the drum's coordinates (frame_cells)",
+                                  o.frame_cells[0], cells, o.frame_cells[1])},
+                     memory_limit_bytes(o.settings.max_memory_gib), "fields", o.memory_option);
+        resolved.emplace(r);
+    }
+    analysis::FieldAccumulator sum(p);
+    for_each_sample(std::move(checkpoint), o.samples, o.every, [&](const analysis::GrainState& s, const Simulation&) {
+        const analysis::GrainState in_frame = analysis::to_drum_frame(s, out.surface);
+        sum.add(in_frame.grains(), in_frame.contacts);
+        if (resolved) resolved->add(in_frame.grains(), in_frame.contacts);
+    });
+    out.profile = std::move(sum).finish();
+    out.layer = analysis::flowing_layer(out.profile);
+    if (resolved) out.resolved = std::move(*resolved).finish();
+    return out;
+}
+
+}  // namespace
+
+RunFields run_fields(const RunFieldsOptions& given, const std::function<void(const std::string&)>& say) {
+    RunFieldsOptions o = given;
+    if (const std::string problem = frame_problem(o); !problem.empty()) throw Error(problem);
+    const bool drum = o.frame == "drum";
+    if (drum) o.settings.average = std::string(1, 'z');  // (not = "z": GCC 12 warns falsely, -Wrestrict)
     if (const std::string problem = field_settings_problem(o.settings); !problem.empty()) throw Error(problem);
     if (o.samples < 1) throw Error(fmt::format("samples: at least 1, got {}", o.samples));
     if (o.samples > 1 && !(std::isfinite(o.every) && o.every > 0.0))
@@ -167,30 +263,26 @@ RunFields run_fields(const RunFieldsOptions& o, const std::function<void(const s
     std::error_code ec;
     if (!fs::is_directory(o.run_directory, ec))
         throw Error("run directory: no such directory: " + o.run_directory.string());
+    if (drum && !fs::exists(o.run_directory / "drum_run.toml", ec))
+        throw Error("frame: drum takes the directory of a tumble drum run (it has drum_run.toml); " +
+                    o.run_directory.string() + " has none");
     // A grid given in full is checked, its memory too, before the checkpoint is read.
     if (const auto early = grid_settings(o.settings, o.memory_option))
         say("grid " + grid_summary(o.settings, early->grid));
 
     io::LoadedCheckpoint loaded = load_checkpoint(o.run_directory, o.checkpoint);
     say("states from " + loaded.file.string());
-    Simulation sim(std::move(loaded.checkpoint.scenario));
-    sim.restore(std::move(loaded.checkpoint.state));
-    const std::int64_t between = o.samples > 1 ? step_count(o.every, sim.dt(), "every") : 1;
-
     RunFields out;
     out.checkpoint = loaded.file;
     std::optional<analysis::FieldAccumulator> sum;
-    for (int k = 0; k < o.samples; ++k) {
-        if (k > 0 && between > 1) {
-            sim.set_contact_recording(false);
-            sim.advance(between - 1);
-        }
-        sim.set_contact_recording(true);
-        sim.step();
-        const analysis::GrainState state = analysis::grain_state(sim);
+    analysis::CgSettings settings;
+    double reach = 0.0, largest = 0.0;  // m: the largest distance of a grain centre from the z axis, radius
+    // The drum frame takes the samples twice: the first pass a copy of the
+    // checkpoint, the second the checkpoint itself.
+    for_each_sample(drum ? io::Checkpoint(loaded.checkpoint) : std::move(loaded.checkpoint), o.samples, o.every,
+                    [&](const analysis::GrainState& state, const Simulation& sim) {
         if (!sum) {
-            const analysis::CgSettings settings =
-                grid_settings(o.settings, state.grains(), o.memory_option, &sim.scenario().domain);
+            settings = grid_settings(o.settings, state.grains(), o.memory_option, &sim.scenario().domain);
             if (!o.settings.lo || !o.settings.hi || !o.settings.width)
                 say("grid " + grid_summary(o.settings, settings.grid));
             sum.emplace(settings);
@@ -199,10 +291,18 @@ RunFields run_fields(const RunFieldsOptions& o, const std::function<void(const s
         sum->add(state.grains(), state.contacts);
         out.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         out.times.push_back(state.time);
-    }
+        for (std::size_t i = 0; i < state.position.size(); ++i) {
+            reach = std::max(reach, std::hypot(state.position[i].x, state.position[i].y));
+            largest = std::max(largest, state.radius[i]);
+        }
+    });
     const auto start = std::chrono::steady_clock::now();
     out.fields = std::move(*sum).finish();
     out.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (drum) {
+        say("the drum frame: the samples again, in the free surface's coordinates");
+        out.drum = drum_layer(out.fields, settings, reach, largest, std::move(loaded.checkpoint), o);
+    }
     return out;
 }
 

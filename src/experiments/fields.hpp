@@ -22,6 +22,7 @@
 #include <string>
 
 #include "tumble/analysis/coarse_grain.hpp"
+#include "tumble/analysis/flowing_layer.hpp"
 #include "tumble/analysis/simulation_fields.hpp"
 #include "tumble/core/domain.hpp"
 
@@ -60,20 +61,49 @@ std::optional<analysis::CgSettings> grid_settings(const FieldSettings& s, const 
 
 // The samples of a run directory: `samples` states `every` seconds of
 // simulated time apart, from the checkpoint (empty: the run's newest).
+//
+// frame "drum" (a run of tumble drum): `fields` is the drum's cross-section
+// (the settings' grid, averaged along z), the free surface is found on it
+// (analysis::find_drum_surface, fitted over the middle `span` of its length),
+// and the samples are taken again from the checkpoint (the same states: no
+// state is kept) and coarse-grained in the drum's coordinates (s, d, z)
+// into the depth profile: resolved along d at the cross-section's cell size
+// from 3 widths above the surface to the deepest a grain can reach under it,
+// averaged along s over the span and along z over the cross-section's
+// extent (docs/FIELDS.md, "The drum's frame").
 struct RunFieldsOptions {
     std::filesystem::path run_directory;
     std::filesystem::path checkpoint;
     int samples = 1;
     double every = 0.01;  // s
     FieldSettings settings;
+    std::string frame = "lab";  // "lab" or "drum"
+    double span = 0.5;          // the drum frame: the middle part of the surface averaged, in (0, 1]
+    // The drum frame: cells along s (across the span) and z (along the
+    // cross-section's extent) of a second grid in the drum's coordinates,
+    // resolved along d as the profile is (DrumLayer::resolved); (1, 1): none.
+    std::array<double, 2> frame_cells{1.0, 1.0};
     std::string memory_option = "--max-memory GIB";
+};
+struct DrumLayer {
+    analysis::DrumSurface surface;
+    analysis::Fields profile;  // in the drum's coordinates: x = s, y = d, z
+    analysis::FlowingLayer layer;
+    // The fields resolved along s and z too (RunFieldsOptions::frame_cells),
+    // on the profile's extent and its nodes along d.
+    std::optional<analysis::Fields> resolved;
 };
 struct RunFields {
     analysis::Fields fields;
     std::filesystem::path checkpoint;  // the file the states came from
     std::vector<double> times;         // s, of the samples
     double seconds = 0.0;              // the coarse-graining's own time (wall clock), s
+    std::optional<DrumLayer> drum;     // frame "drum"
 };
+
+// What is wrong with the frame, span and frame cells on their own (and the
+// averaged axes the drum frame needs), naming the key; "" if nothing.
+std::string frame_problem(const RunFieldsOptions& o);
 // `say` hears what is about to happen (the checkpoint, the grid and its
 // memory before it is allocated). tumble::Error naming the option or the
 // file for bad settings, a missing directory or checkpoint, before any step.

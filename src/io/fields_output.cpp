@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "io/fields_output.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "io/output.hpp"
+#include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
 
 namespace tumble::io {
@@ -19,11 +22,17 @@ std::span<const double> doubles(const std::vector<T>& v) {
 }
 
 FieldColumn scalar(std::string name, const std::vector<double>& v) { return {std::move(name), {""}, doubles(v)}; }
-FieldColumn vector(std::string name, const std::vector<Vec3>& v) {
-    return {std::move(name), {"x", "y", "z"}, doubles(v)};
+FieldColumn vector(std::string name, const std::vector<Vec3>& v, const std::string& axes) {
+    std::vector<std::string> components;
+    for (const char a : axes) components.emplace_back(1, a);
+    return {std::move(name), components, doubles(v)};
 }
-FieldColumn tensor(std::string name, const std::vector<analysis::Tensor>& v) {
-    return {std::move(name), {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"}, doubles(v)};
+// Row by row: (a, b) is "ab".
+FieldColumn tensor(std::string name, const std::vector<analysis::Tensor>& v, const std::string& axes) {
+    std::vector<std::string> components;
+    for (const char a : axes)
+        for (const char b : axes) components.push_back({a, b});
+    return {std::move(name), components, doubles(v)};
 }
 
 // The doubles per node of every field.
@@ -31,22 +40,22 @@ constexpr double doubles_per_node = 9 + 2 * 3 + 3 * 9;
 
 }  // namespace
 
-std::vector<FieldColumn> field_columns(const analysis::Fields& f) {
+std::vector<FieldColumn> field_columns(const analysis::Fields& f, const std::string& axes) {
     std::vector<FieldColumn> columns;
     columns.push_back(scalar("solid_fraction", f.solid_fraction));
     columns.push_back(scalar("density", f.density));
     columns.push_back(scalar("diameter", f.diameter));
-    columns.push_back(vector("velocity", f.velocity));
-    columns.push_back(vector("momentum", f.momentum));
+    columns.push_back(vector("velocity", f.velocity, axes));
+    columns.push_back(vector("momentum", f.momentum, axes));
     columns.push_back(scalar("temperature", f.temperature));
     columns.push_back(scalar("pressure", f.pressure));
     columns.push_back(scalar("shear_stress", f.shear_stress));
     columns.push_back(scalar("shear_rate", f.shear_rate));
     columns.push_back(scalar("inertial_number", f.inertial_number));
     columns.push_back(scalar("friction", f.friction));
-    columns.push_back(tensor("stress", f.stress));
-    columns.push_back(tensor("kinetic_stress", f.kinetic_stress));
-    columns.push_back(tensor("contact_stress", f.contact_stress));
+    columns.push_back(tensor("stress", f.stress, axes));
+    columns.push_back(tensor("kinetic_stress", f.kinetic_stress, axes));
+    columns.push_back(tensor("contact_stress", f.contact_stress, axes));
     return columns;
 }
 
@@ -58,10 +67,11 @@ double fields_file_bytes(std::size_t nodes) {
 namespace {
 
 // The CSV rows into `stream`, a block of rows at a time.
-void write_rows(std::ofstream& stream, const std::filesystem::path& part, const analysis::Fields& f) {
-    const std::vector<FieldColumn> columns = field_columns(f);
+void write_rows(std::ofstream& stream, const std::filesystem::path& part, const analysis::Fields& f,
+                const std::string& axes) {
+    const std::vector<FieldColumn> columns = field_columns(f, axes);
     fmt::memory_buffer out;
-    fmt::format_to(fmt::appender(out), "x,y,z,samples");
+    fmt::format_to(fmt::appender(out), "{},{},{},samples", axes[0], axes[1], axes[2]);
     for (const FieldColumn& c : columns)
         for (const std::string& k : c.components)
             fmt::format_to(fmt::appender(out), ",{}{}{}", c.name, k.empty() ? "" : "_", k);
@@ -90,11 +100,11 @@ void write_rows(std::ofstream& stream, const std::filesystem::path& part, const 
 
 }  // namespace
 
-void write_fields_csv(const std::filesystem::path& file, const analysis::Fields& f) {
+void write_fields_csv(const std::filesystem::path& file, const analysis::Fields& f, const std::string& axes) {
     const std::filesystem::path part = file.string() + ".tmp";
     std::ofstream stream = open_for_writing(part);
     try {
-        write_rows(stream, part, f);
+        write_rows(stream, part, f, axes);
     } catch (...) {  // no partial file left behind
         stream.close();
         std::error_code ec;
@@ -105,6 +115,24 @@ void write_fields_csv(const std::filesystem::path& file, const analysis::Fields&
     std::error_code ec;
     std::filesystem::rename(part, file, ec);
     if (ec) throw Error(part.string() + ": cannot rename to " + file.string() + ": " + ec.message());
+}
+
+Json drum_frame_json(const analysis::DrumSurface& surface, const analysis::FlowingLayer& layer, double span) {
+    constexpr double degrees = 180.0 / pi;
+    Json j;
+    j["angle_of_repose_deg"] = surface.angle * degrees;
+    j["surface_level_m"] = surface.level;
+    j["surface_half_length_m"] = surface.half_length;
+    j["span"] = span;
+    j["bed_solid_fraction"] = surface.solid_fraction;
+    j["surface_solid_fraction"] = 0.5 * surface.solid_fraction;
+    j["surface_velocity_m_per_s"] = layer.surface_velocity;
+    j["layer_thickness_m"] = layer.thickness;  // null where u does not turn
+    j["layer_thickness_diameters"] = layer.thickness / layer.diameter;
+    j["mean_diameter_m"] = layer.diameter;
+    j["fit_columns"] = surface.columns;
+    j["fit_iterations"] = surface.iterations;
+    return j;
 }
 
 }  // namespace tumble::io

@@ -82,7 +82,7 @@ inline constexpr std::string_view run_files[] = {
     "depth_mobility_long.csv", "axial_msd.csv", "bed_structure.csv", "flow_profile.csv", "bands.json",
     "bands.csv",     "band_positions.csv", "band_spectrum.csv", "band_edges.csv",   "kymograph.png",
     "particles.pvd", "contacts.pvd",    "walls.pvd",         "snapshots",         "checkpoints",        "figures",
-    "so_far",        "frames",          "fields"};
+    "so_far",        "frames",          "fields",            "flowing_layer"};
 
 // tumble render's movie by default: DIR/NAME.mp4, NAME the directory's.
 std::filesystem::path default_movie_file(const std::filesystem::path& directory);

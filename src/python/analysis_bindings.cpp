@@ -63,16 +63,16 @@ experiments::FieldSettings field_settings(std::optional<std::array<double, 3>> l
 
 // The fields as numpy arrays shaped by the grid, (nz, ny, nx) for a scalar,
 // then 3 for a vector, 3 x 3 for a tensor; the nodes' coordinates along
-// each axis as x, y, z.
-py::dict fields_dict(const analysis::Fields& f) {
+// each axis under the axes' names (x, y, z; s, d, z in the drum's frame).
+py::dict fields_dict(const analysis::Fields& f, const std::string& axes = "xyz") {
     py::dict d;
     const analysis::CgGrid& g = f.grid;
-    const std::array<const char*, 3> axes{"x", "y", "z"};
     for (int k = 0; k < 3; ++k) {
         std::vector<double> at(g.cells[static_cast<std::size_t>(k)]);
         for (std::size_t a = 0; a < at.size(); ++a)
             at[a] = g.lo[k] + (static_cast<double>(a) + 0.5) * g.spacing(k);
-        d[axes[static_cast<std::size_t>(k)]] = py::array_t<double>(static_cast<py::ssize_t>(at.size()), at.data());
+        d[py::str(std::string(1, axes[static_cast<std::size_t>(k)]))] =
+            py::array_t<double>(static_cast<py::ssize_t>(at.size()), at.data());
     }
     const std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(g.cells[2]), static_cast<py::ssize_t>(g.cells[1]),
                                          static_cast<py::ssize_t>(g.cells[0])};
@@ -236,7 +236,8 @@ void bind_analysis(py::module_& m) {
         [](const fs::path& directory, int samples, double every, const std::optional<fs::path>& checkpoint,
            std::optional<std::array<double, 3>> lo, std::optional<std::array<double, 3>> hi, std::optional<double> cell,
            std::optional<std::array<double, 3>> cells, const std::string& average, const std::string& kernel,
-           std::optional<double> width, double max_memory_gib) {
+           std::optional<double> width, double max_memory_gib, const std::string& frame, double span,
+           std::array<double, 2> frame_cells) {
             experiments::RunFieldsOptions o;
             o.run_directory = directory;
             o.checkpoint = checkpoint.value_or(fs::path());
@@ -244,6 +245,9 @@ void bind_analysis(py::module_& m) {
             o.every = every;
             o.settings = field_settings(lo, hi, cell, cells, average, kernel, width, max_memory_gib);
             o.memory_option = "max_memory_gib";
+            o.frame = frame;
+            o.span = span;
+            o.frame_cells = frame_cells;
             experiments::RunFields run;
             {
                 py::gil_scoped_release released;
@@ -252,16 +256,26 @@ void bind_analysis(py::module_& m) {
             py::dict d = fields_dict(run.fields);
             d["times"] = run.times;
             d["checkpoint"] = run.checkpoint;
+            if (run.drum) {
+                d["profile"] = fields_dict(run.drum->profile, "sdz");
+                if (run.drum->resolved) d["frame"] = fields_dict(*run.drum->resolved, "sdz");
+                d["surface"] = py::module_::import("json").attr("loads")(
+                    io::json_line(io::drum_frame_json(run.drum->surface, run.drum->layer, span)));
+            }
             return d;
         },
         py::arg("directory"), py::kw_only(), py::arg("samples") = 1, py::arg("every") = 0.01,
         py::arg("checkpoint") = py::none(), py::arg("lo") = py::none(), py::arg("hi") = py::none(),
         py::arg("cell") = py::none(), py::arg("cells") = py::none(), py::arg("average") = "",
         py::arg("kernel") = "gaussian", py::arg("width") = py::none(), py::arg("max_memory_gib") = 0.0,
+        py::arg("frame") = "lab", py::arg("span") = 0.5, py::arg("frame_cells") = std::array<double, 2>{1.0, 1.0},
         "Coarse-grained fields of a run directory, as tumble fields computes them (docs/FIELDS.md): `samples` "
         "states `every` s apart, continued in memory from the run's newest checkpoint (or `checkpoint`), every "
         "contact force exact. The grid and kernel as coarse_grain's; the dict of coarse_grain, with times (s) and "
-        "checkpoint");
+        "checkpoint. frame='drum' (a drum run): the cross-section averaged along z, and besides 'profile' (the "
+        "depth profile below the free surface, in the drum's coordinates s, d, z; averaged over the middle `span` "
+        "of the surface) and 'surface' (drum_frame.json's numbers); frame_cells=(NS, NZ) adds 'frame', the same "
+        "resolved along s and z too");
 }
 
 }  // namespace tumble::python

@@ -188,5 +188,39 @@ class Figures(unittest.TestCase):
         np.testing.assert_allclose(means[0].lines[0].get_ydata(), [1.05e-5, 2.0e-5])
 
 
+    def test_flowing_layer_draws_the_surface_it_was_given(self):
+        run = tiny_run(self.dir, [(2.0e-7, 1.0e-7), (2.5e-7, 1.2e-7)])
+        w = Capture()
+        plot_drum.fig_flowing_layer(run, w)  # no fields yet: skipped with a note
+        self.assertEqual(w.skipped, ["fig_flowing_layer"])
+        fields = os.path.join(self.dir, "flowing_layer")
+        os.makedirs(fields)
+        surface = dict(angle_of_repose_deg=30.0, surface_level_m=-0.01, surface_half_length_m=0.03, span=0.5,
+                       bed_solid_fraction=0.6, surface_solid_fraction=0.3, surface_velocity_m_per_s=0.1,
+                       layer_thickness_m=0.004, layer_thickness_diameters=2.0, mean_diameter_m=0.002,
+                       fit_columns=20, fit_iterations=3)
+        write(os.path.join(fields, "drum_frame.json"), plot_drum.json.dumps(surface))
+        rows = ["x,y,z,solid_fraction,velocity_x,velocity_y"]
+        for y in (-0.02, -0.01, 0.0):
+            for x in (-0.02, 0.0, 0.02):
+                rows.append(f"{x},{y},0,{0.6 if y < -0.005 else 0.0},0.1,0.0")
+        write(os.path.join(fields, "fields.csv"), "\n".join(rows) + "\n")
+        rows = ["s,d,z,solid_fraction,velocity_s,shear_rate,pressure,friction,inertial_number"]
+        for d in (-0.002, 0.0, 0.002, 0.004, 0.006):
+            rows.append(f"0,{d},0,{0.0 if d < 0 else 0.6},{0.1 - 25 * d},25,{1000 * max(d, 0)},0.5,0.2")
+        write(os.path.join(fields, "profile.csv"), "\n".join(rows) + "\n")
+        plot_drum.fig_flowing_layer(run, w)
+        cut = w.figures["fig_flowing_layer"].axes[0]
+        # The surface's solid line (the part averaged): its points lie on
+        # n . r = level, n = (-sin a, cos a), and it spans half the chord.
+        line = [ln for ln in cut.get_lines() if ln.get_linestyle() == "-"][0]
+        x, y = np.asarray(line.get_xdata()) * 1e-3, np.asarray(line.get_ydata()) * 1e-3
+        a = np.radians(30.0)
+        np.testing.assert_allclose(-np.sin(a) * x + np.cos(a) * y, -0.01, atol=1e-12)
+        self.assertAlmostEqual(float(np.hypot(x[1] - x[0], y[1] - y[0])), 0.03, places=12)
+        # Six profiles against depth, the surface's velocity panel first.
+        self.assertEqual(len(w.figures["fig_flowing_layer"].axes), 1 + 1 + 6)  # the cut, its colour bar, 6 panels
+
+
 if __name__ == "__main__":
     unittest.main()
