@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: MIT
 """docs/reference/outputs.md names every file tumble writes and every column
 and key in it, and nothing else. This runs tumble on small cases (a drum, a
-scenario with a wall and its fields, a sweep of two points, the benchmark's
-JSON), reads what they wrote (CSV headers, JSON and TOML keys, the data
+scenario with a wall and its fields, a deeper drum and its fields in the
+drum's frame, a sweep of two points, the benchmark's JSON), reads what they wrote (CSV headers, JSON and TOML keys, the data
 arrays of the VTK files, the columns of the extended XYZ files) and fails,
 naming them, on
 
@@ -119,11 +119,16 @@ def run(tumble, work, root):
     subprocess.run([tumble, "analyze", "drum", "--so-far"], **quiet)
     subprocess.run([tumble, "run", str(data / "scenario.toml"), "--out", "run", "-q"], **quiet)
     subprocess.run([tumble, "fields", "run", "-q"], **quiet)
+    # A drum deep enough for a free surface, and its fields in the drum's frame.
+    subprocess.run([tumble, "drum", "-q", "--grains", "600", "--revolutions", "0.3", "--no-plot", "--out", "frame"],
+                   **quiet)
+    subprocess.run([tumble, "fields", "frame", "--frame", "drum", "--frame-cells", "2,2", "--samples", "3", "-q"],
+                   **quiet)
     subprocess.run([tumble, "sweep", str(data / "sweep.toml"), "--out", "sweep", "-q"], **quiet)
     bench = subprocess.run([tumble, "bench", "--size", "4", "--steps", "10", "--warmup", "2", "--json"],
                            capture_output=True, text=True, check=True).stdout
     files = {}
-    for top in ("drum", "run", "sweep"):
+    for top in ("drum", "frame", "run", "sweep"):
         for path in sorted((work / top).rglob("*")):
             if path.is_file() and path.name != ".tumble.lock":
                 files[f"{top}: {path.relative_to(work / top)}"] = path

@@ -35,7 +35,7 @@ int fields_command(const FieldsOptions& options) {
         say(fmt::format("free surface at {:.2f} degrees, {:.4g} m from the axis; surface velocity {:.3g} m/s, {}",
                         s.angle * 180.0 / pi, s.level, l.surface_velocity, layer));
     }
-    say(fmt::format("{} sample{} from t = {} s to {} s (coarse-grained in {:.3g} s) into {}", run.times.size(),
+    say(fmt::format("{} sample{} from t = {:.6g} s to {:.6g} s (coarse-grained in {:.3g} s) into {}", run.times.size(),
                     run.times.size() == 1 ? "" : "s", run.times.front(), run.times.back(), run.seconds, out.string()));
     return 0;
 }

@@ -65,8 +65,11 @@ void flowing_layer_fields(const std::string& directory, bool quiet) {
         o.run.settings.kernel = analysis::CgKernel::lucy;
         o.run.settings.cell = info.inner_radius / 40.0;
         o.format = "csv";
-        o.quiet = quiet;
+        o.quiet = true;  // one line here; drum_frame.json has the numbers
         fields_command(o);
+        if (!quiet)
+            fmt::print("tumble plot: the flowing layer's fields ({} states after the run's end) into {}\n", samples,
+                       (fs::path(directory) / "flowing_layer").string());
     } catch (const Error& e) {
         fmt::print(stderr, "tumble plot: note: no flowing layer's fields for fig_flowing_layer: {}\n", e.what());
     }

@@ -26,7 +26,6 @@
 #include "tumble/sim/time_step.hpp"
 #include "tumble/walls/clearance.hpp"
 #include "tumble/walls/wall.hpp"
-#include "tumble/walls/wall_surface.hpp"
 #include "tumble/setup/generators.hpp"
 
 namespace tumble::io {
@@ -918,31 +917,13 @@ private:
             double& r = reach[static_cast<std::size_t>(q.motion)];
             r = std::isnan(from_axis) ? from_axis : std::max(r, from_axis);
         }
-        for (const Wall& w : sc.walls) {  // and the farthest point of each smooth wall it carries
-            if (w.motion < 0) continue;
-            const RigidMotion& m = sc.motions[static_cast<std::size_t>(w.motion)];
-            const Vec3 u = m.unit_axis();
-            double& r = reach[static_cast<std::size_t>(w.motion)];
-            const TriangleMesh* mesh = w.mesh >= 0 ? &sc.meshes[static_cast<std::size_t>(w.mesh)] : nullptr;
-            for (const Vec3& v : wall_surface(place_wall(w, nullptr), sc.domain, 48, mesh).vertices) {
-                const Vec3 d = v - m.axis_point;
-                r = std::max(r, length(d - dot(d, u) * u));
-            }
-        }
         const double limit = default_health_limits(sc).max_speed;
-        for (std::size_t k = 0; k < sc.motions.size(); ++k) {
-            if (reach[k] < 0.0) continue;
+        for (std::size_t k = 0; k < sc.motions.size(); ++k) {  // and the farthest point of each wall it carries
             const RigidMotion& m = sc.motions[k];
-            const double spin = m.angular_velocity == 0.0 ? 0.0 : std::abs(m.angular_velocity) * reach[k];
-            const double speed = length(m.velocity) + spin;
-            if (speed <= limit) continue;
-            r_.fail(join(at("motion", k), length(m.velocity) > limit ? "velocity" : "angular_velocity"),
-                    fmt::format("its spheres and walls would move at up to {:.3g} m/s (|velocity| {:.3g} m/s + "
-                                "|angular_velocity| {:.3g} rad/s x {:.3g} m, the farthest surface from the axis), faster than the "
-                                "{:.3g} m/s at which the blow-up check stops a run (100 x time_step.reference_speed): "
-                                "a free sphere it struck would be flung faster. If this motion is meant, raise "
-                                "time_step.reference_speed to its speed",
-                                speed, length(m.velocity), std::abs(m.angular_velocity), reach[k], limit));
+            reach[k] = std::max(reach[k], walls_reach(sc, k, m, nullptr));
+            if (auto why = motion_speed_problem(sc, m, reach[k]); !why.empty())
+                r_.fail(join(at("motion", k), length(m.velocity) > limit ? "velocity" : "angular_velocity"),
+                        why + ". If this motion is meant, raise time_step.reference_speed to its speed");
         }
     }
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "tumble/walls/wall_surface.hpp"
+
 namespace tumble {
 
 namespace {
@@ -72,6 +74,35 @@ HealthLimits default_health_limits(const Scenario& s) {
     limits.lo = s.domain.lo - Vec3{largest, largest, largest};
     limits.hi = s.domain.hi + Vec3{largest, largest, largest};
     return limits;
+}
+
+std::string motion_speed_problem(const Scenario& s, const RigidMotion& m, double reach) {
+    if (reach < 0.0) return {};
+    const double limit = default_health_limits(s).max_speed;
+    const double translation = std::hypot(m.velocity.x, m.velocity.y, m.velocity.z);  // without overflow
+    const double spin = m.angular_velocity == 0.0 ? 0.0 : std::abs(m.angular_velocity) * reach;
+    const double speed = translation + spin;
+    if (speed <= limit) return {};
+    std::ostringstream why;
+    why.precision(3);
+    why << "its spheres and walls would move at up to " << speed << " m/s (|velocity| " << translation
+        << " m/s + |angular_velocity| " << std::abs(m.angular_velocity) << " rad/s x " << reach
+        << " m, the farthest surface from the axis), faster than the " << limit
+        << " m/s at which the blow-up check stops a run (100 x time_step.reference_speed): a free sphere it struck "
+           "would be flung faster";
+    return why.str();
+}
+
+double walls_reach(const Scenario& s, std::size_t k, const RigidMotion& m, const MotionNow* now) {
+    const Vec3 u = m.unit_axis();
+    double reach = -1.0;
+    for (const Wall& w : s.walls) {
+        if (w.motion != static_cast<std::int32_t>(k)) continue;
+        const TriangleMesh* mesh = w.mesh >= 0 ? &s.meshes[static_cast<std::size_t>(w.mesh)] : nullptr;
+        for (const Vec3& v : wall_surface(place_wall(w, now), s.domain, 48, mesh).vertices)
+            reach = std::max(reach, distance_from_axis(v, m.axis_point, u));
+    }
+    return reach;
 }
 
 namespace {

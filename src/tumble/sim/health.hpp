@@ -29,6 +29,19 @@ struct HealthLimits {
 // walls plus the largest radius (a centre beyond has passed through a wall).
 HealthLimits default_health_limits(const Scenario& s);
 
+// A prescribed motion carries the spheres and walls that follow it at up to
+// |velocity| + |angular_velocity| x reach (m/s), reach the farthest of their
+// surfaces from its axis (m; negative where nothing follows it). Faster than
+// the scenario's max_speed (above), a free sphere it struck would be flung
+// faster than the blow-up check lets a run go on: the reason, else empty.
+// The scenario's reader and Simulation::set_motion() ask it alike.
+std::string motion_speed_problem(const Scenario& s, const RigidMotion& m, double reach);
+
+// The farthest point from motion m's axis of the scenario's walls that
+// follow motion k, placed where `now` carries them (null: where the
+// scenario places them at the start), m; -1 where no wall follows it.
+double walls_reach(const Scenario& s, std::size_t k, const RigidMotion& m, const MotionNow* now);
+
 // Empty if the run looks physical, else what is wrong: the step and time,
 // which particle (global id) or contact, where, and the limit it broke.
 // Checks non-finite positions, velocities and spins; speeds; the region;

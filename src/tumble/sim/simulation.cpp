@@ -18,7 +18,6 @@
 #include "tumble/sim/particle_setup.hpp"
 #include "tumble/sim/placement.hpp"
 #include "tumble/sim/health.hpp"
-#include "tumble/walls/wall_surface.hpp"
 
 namespace tumble {
 
@@ -979,35 +978,18 @@ void Simulation::set_motion(std::size_t k, const RigidMotion& motion) {
     if (k >= motions_.size()) throw Error("set_motion: no motion " + std::to_string(k));
     if (auto why = motion_problem(motion); !why.empty())
         throw Error("set_motion: motion " + std::to_string(k) + ": " + why);
-    // As a scenario's motions are checked when it is read: the fastest the
-    // motion would carry its spheres and walls, |V| + |Omega| reach (reach:
-    // the farthest of their surfaces from the new axis, where they are now),
-    // must stay below the speed at which the health check stops a run.
+    // As a scenario's motions are checked when it is read (reach: the
+    // farthest of the surfaces that follow it from the new axis, where they
+    // are now; -1: none follows it).
     const Vec3 u = motion.unit_axis();
-    double reach = -1.0;  // none follows the motion
+    double reach = -1.0;
     for (std::size_t i = 0; i < owned_; ++i)
         if (particles_.motion[i] == static_cast<std::int32_t>(k))
             reach = std::max(reach, distance_from_axis(particles_.position[i], motion.axis_point, u) + particles_.radius[i]);
     if (slabs_) reach = mpi::max(reach);
-    const std::vector<MotionNow> now = motions_now(time_);
-    for (const Wall& w : walls_) {
-        if (w.motion != static_cast<std::int32_t>(k)) continue;
-        const TriangleMesh* mesh = w.mesh >= 0 ? &scenario_.meshes[static_cast<std::size_t>(w.mesh)] : nullptr;
-        for (const Vec3& v : wall_surface(place_wall(w, &now[k]), scenario_.domain, 48, mesh).vertices)
-            reach = std::max(reach, distance_from_axis(v, motion.axis_point, u));
-    }
-    const double limit = default_health_limits(scenario_).max_speed;
-    const double speed = norm(motion.velocity) + std::abs(motion.angular_velocity) * std::max(reach, 0.0);
-    if (reach >= 0.0 && !(speed <= limit)) {
-        std::ostringstream why;
-        why.precision(3);
-        why << "set_motion: motion " << k << ": its spheres and walls would move at up to " << speed
-            << " m/s (|velocity| " << norm(motion.velocity) << " m/s + |angular_velocity| "
-            << std::abs(motion.angular_velocity) << " rad/s x " << reach
-            << " m, the farthest surface from the axis), faster than the " << limit
-            << " m/s at which the health check stops a run";
-        throw Error(why.str());
-    }
+    reach = std::max(reach, walls_reach(scenario_, k, motion, &motions_now(time_)[k]));
+    if (auto why = motion_speed_problem(scenario_, motion, reach); !why.empty())
+        throw Error("set_motion: motion " + std::to_string(k) + ": " + why);
     ParticleStore& p = particles_;
     for (std::size_t i = 0; i < owned_; ++i)
         if (p.motion[i] == static_cast<std::int32_t>(k)) p.reference_position[i] = p.position[i] - p.image_shift[i];
