@@ -32,6 +32,7 @@ struct RunOptions {
     int threads = 1;               // 0: every core of the machine (resolve_threads)
     double max_memory_gib = 0.0;   // refuse a run estimated to need more; 0: half the machine's (experiments/limits.hpp)
     bool allow_soft = false;       // accept grains that sink into each other under their weight (check_stiffness)
+    std::vector<std::string> fields;  // --fields KEY=VALUE: fields taken during the run (parse_fields_during_run)
 };
 int run_command(const RunOptions& options);
 

@@ -6,7 +6,6 @@
 
 #include "cli/commands.hpp"
 #include "io/fields_output.hpp"
-#include "io/vtk_output.hpp"
 #include "tumble/core/constants.hpp"
 
 namespace tumble::cli {
@@ -19,9 +18,7 @@ int fields_command(const FieldsOptions& options) {
     const std::filesystem::path out =
         options.out.empty() ? options.run.run_directory / (options.run.frame == "drum" ? "flowing_layer" : "fields")
                             : std::filesystem::path(options.out);
-    std::filesystem::create_directories(out);
-    if (options.format != "csv") io::write_vti_fields(out / "fields.vti", run.fields);
-    if (options.format != "vti") io::write_fields_csv(out / "fields.csv", run.fields);
+    write_fields_files(out, run.fields, options.format);
     if (run.drum) {
         const analysis::DrumSurface& s = run.drum->surface;
         const analysis::FlowingLayer& l = run.drum->layer;

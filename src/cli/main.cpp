@@ -165,6 +165,17 @@ int main(int argc, char** argv) {
     run_cmd->add_option("--threads", run.threads, threads_help)->check(thread_count);
     const char* memory_help = "Refuse a run estimated to need more memory than this, GiB (default: half the machine's)";
     run_cmd->add_option("--max-memory", run.max_memory_gib, memory_help)->check(finite_positive);
+    const char* fields_help =
+        "Coarse-grained fields averaged during the run into RUN/fields (fields.vti, fields.csv), KEY=VALUE items, "
+        "repeated or separated by spaces: every (s, default 0.01), from (s of simulated time, default 0), samples (the "
+        "most states), lo, hi (X,Y,Z; default the domain's box), cell, cells (NX,NY,NZ), average, kernel, width, format "
+        "(docs/FIELDS.md, \"During a run\")";
+    const auto add_fields_option = [&](CLI::App* command, std::vector<std::string>& items) {
+        command->add_option("--fields", items, fields_help)
+            ->expected(1)
+            ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    };
+    add_fields_option(run_cmd, run.fields);
     run_cmd->add_flag("--allow-soft", run.allow_soft,
                       "Accept a material whose grains sink more than 5 % of their radius into each other under their "
                       "own weight (refused otherwise: usually E in MPa given as Pa)");
@@ -332,6 +343,7 @@ int main(int argc, char** argv) {
         ->check(finite_non_negative);
     drum_cmd->add_option("--threads", drum.threads, threads_help)->check(thread_count);
     drum_cmd->add_option("--max-memory", drum.max_memory_gib, memory_help)->check(finite_positive);
+    add_fields_option(drum_cmd, drum.fields);
     drum_cmd->add_flag("--large-drum", drum.large_drum,
                        "Accept a drum whose wall takes more than 50 times as many spheres as it holds grains and more "
                        "than 100,000 (refused otherwise: usually a size in cm given as m)");

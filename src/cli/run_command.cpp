@@ -68,9 +68,10 @@ RunPlan load_plan(const io::CheckpointRecord& r) {
 // file; rank 0 alone writes the time series and run.json and talks.
 class RunLoop {
 public:
+    // fields: taken during the run and written at its end (none after a resume).
     RunLoop(Simulation& sim, RunPlan plan, fs::path dir, CheckpointPolicy policy, bool continuing,
-            const std::vector<double>& snapshot_times)
-        : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)),
+            const std::vector<double>& snapshot_times, FieldRecorder* fields = nullptr)
+        : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)), fields_(fields),
           checkpoints_(dir_, policy, default_health_limits(sim.scenario())) {
         if (mpi::rank() == 0) series_.emplace(dir_ / "time_series.csv", sim.scenario(), continuing);
         if (plan_.snapshot_every) snapshots_.emplace(dir_, snapshot_times, !sim.scenario().walls.empty());
@@ -82,7 +83,8 @@ public:
         Progress progress("run", sim_.step_count(), plan_.steps, plan_.progress,
                           {.particles = sim_.scenario().free_count(), .seconds_per_step = sim_.dt()});
         while (sim_.step_count() < plan_.steps) {
-            sim_.step();
+            if (fields_) fields_->advance(sim_, 1);
+            else sim_.step();
             sample();
             progress.update(sim_.step_count());
             const auto due = checkpoints_.after_steps(sim_, sim_.step_count());
@@ -106,6 +108,10 @@ public:
             io::write_run_json(dir_ / "run.json", sim_,
                                {plan_.scenario_file, plan_.seed, plan_.duration, plan_.steps, seconds,
                                 sim_.scenario().particles.size(), sim_.scenario().free_count(), phases});
+        if (fields_) {
+            const std::string written = fields_->write(dir_ / "fields");
+            if (talk) fmt::print("{}\n", written);
+        }
         checkpoint(true, progress.elapsed_seconds());
         if (talk) {
             // Three digits for a short run (a tenth of a second rounds it to "0.0 s").
@@ -146,6 +152,7 @@ private:
     Simulation& sim_;
     RunPlan plan_;
     fs::path dir_;
+    FieldRecorder* fields_;
     Checkpointer checkpoints_;
     std::optional<io::TimeSeriesWriter> series_;  // rank 0
     std::optional<io::SnapshotSeries> snapshots_;
@@ -175,6 +182,8 @@ int run_command(const RunOptions& options) {
                  options.quiet,
                  progress_style(options.quiet, options.progress_every)};
     check_stiffness(sim.scenario(), options.allow_soft, options.scenario_file);  // after what no run can do
+    std::optional<FieldRecorder> fields;
+    if (!options.fields.empty()) fields.emplace(options.fields, sim, plan.steps, options.max_memory_gib);
 
     const auto& dir = config.output.directory;
     std::optional<io::RunLock> lock;  // rank 0's: the other ranks write only their checkpoints
@@ -190,8 +199,9 @@ int run_command(const RunOptions& options) {
                    shared ? fmt::format(", shared among {} MPI ranks (slabs along {})", mpi::size(),
                                         "xyz"[sim.slabs()->axis()])
                           : "");
+        if (fields) fmt::print("{}\n", fields->summary());
     }
-    RunLoop loop(sim, plan, dir, options.checkpoints, false, {});
+    RunLoop loop(sim, plan, dir, options.checkpoints, false, {}, fields ? &*fields : nullptr);
     loop.sample();
     return loop.run();
 }

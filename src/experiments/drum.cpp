@@ -116,9 +116,10 @@ HealthLimits drum_limits(const Scenario& s) {
 // Settling and rotation from wherever `sim` stands, then the analysis.
 class DrumLoop {
 public:
+    // fields: taken during the run and written at its end (none after a resume).
     DrumLoop(Simulation& sim, DrumPlan plan, fs::path dir, CheckpointPolicy policy, bool continuing,
-             DrumSampleHook on_sample)
-        : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)), on_sample_(std::move(on_sample)),
+             DrumSampleHook on_sample, FieldRecorder* fields = nullptr)
+        : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)), on_sample_(std::move(on_sample)), fields_(fields),
           period_(2.0 * pi / plan_.info.omega),
           steps_(std::llround(plan_.info.revolutions * period_ / sim.dt())),
           sample_every_(std::max<std::int64_t>(1, std::llround(period_ / plan_.info.samples_per_revolution / sim.dt()))),
@@ -188,7 +189,7 @@ private:
         Progress progress("settling", sim_.step_count(), 0, plan_.progress,
                           {.particles = sim_.scenario().free_count()});
         while (sim_.time() < plan_.settle_max_time) {
-            sim_.advance(check_every);
+            advance(check_every);
             const double speed = rms_grain_speed(sim_);
             progress.update(sim_.step_count(),
                             fmt::format("t = {:.3f} s ({:.3g} to {:.3g} s), rms grain speed {:.2g} m/s, "
@@ -264,7 +265,7 @@ private:
             if (const std::int64_t stop = checkpoints_.policy().stop_at_step; stop > sim_.step_count())
                 next = std::min(next, k + stop - sim_.step_count());
             if (spin_up(k + 1)) next = k + 1;  // the ramp sets the speed before every step
-            sim_.advance(next - k);
+            advance(next - k);
             k = next;
             if (k % sample_every_ == 0) sample();
             if (snapshot_every_ && k % snapshot_every_ == 0) snapshots_->write(sim_);
@@ -285,6 +286,11 @@ private:
         rotation_times_ =
             io::step_times_spread(sim_.step_times(), progress.elapsed_seconds(), sim_.threads(), sim_.shared());
         return Checkpointer::Due::no;
+    }
+
+    void advance(std::int64_t steps) {
+        if (fields_) fields_->advance(sim_, steps);
+        else sim_.advance(steps);
     }
 
     // The spin-up ramp (spin_up_setting in setup/drum.hpp): sets the speed
@@ -366,6 +372,10 @@ private:
             }
             summary = io::analyze_drum_run(dir_);
         }
+        if (fields_) {
+            const std::string written = fields_->write(dir_ / "fields");
+            if (talk()) fmt::print("{}\n", written);
+        }
         checkpoint(true, 0.0);
         if (talk()) fmt::print("{}\nwritten to {}\n", summary, dir_.string());
         return 0;
@@ -390,6 +400,7 @@ private:
     DrumPlan plan_;
     fs::path dir_;
     DrumSampleHook on_sample_;
+    FieldRecorder* fields_;
     double period_;  // s per revolution
     std::int64_t steps_, sample_every_, snapshot_every_, band_every_;
     analysis::DrumFrame frame_;
@@ -456,6 +467,8 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     DrumSetup setup = build_drum(s, options.allow_unsafe_dt);
     Simulation sim(std::move(setup.scenario), threads, mpi::size() > 1 ? Ranks::world : Ranks::one);
     check_drum_durations(s.revolutions, omega, s.samples_per_revolution, s.settle_max_time, sim.dt());
+    std::optional<FieldRecorder> fields;
+    if (!options.fields.empty()) fields.emplace(options.fields, sim, 0, options.max_memory_gib);
 
     DrumPlan plan;
     io::DrumRunInfo& info = plan.info;
@@ -534,8 +547,10 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
                        "xyz"[sim.slabs()->axis()]);
         fmt::print("start: {}\n", describe(s.fill));
         fmt::print("settling (rms grain speed below {} m/s, at most {} s)\n", s.settle_speed, s.settle_max_time);
+        if (fields) fmt::print("{}\n", fields->summary());
     }
-    DrumLoop loop(sim, std::move(plan), s.output, options.checkpoints, false, options.on_sample);
+    DrumLoop loop(sim, std::move(plan), s.output, options.checkpoints, false, options.on_sample,
+                  fields ? &*fields : nullptr);
     return loop.run({});
 }
 

@@ -8,7 +8,9 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
+#include "experiments/fields.hpp"
 #include "experiments/progress.hpp"
 #include "experiments/run_control.hpp"
 #include "io/checkpoint.hpp"
@@ -44,6 +46,7 @@ struct DrumRunOptions {
     double max_memory_gib = 0.0;   // refuse a run estimated to need more; 0: half the machine's (limits.hpp)
     bool large_drum = false;       // accept a wall far larger than its grains (check_drum_size)
     DrumSampleHook on_sample;      // none by default (the Python module passes its callback)
+    std::vector<std::string> fields;  // KEY=VALUE: fields taken during the run (parse_fields_during_run); none if empty
 };
 
 // How a run ended: exit_code 0 (finished and analysed), exit_stopped (a

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <utility>
 
 #include <fmt/format.h>
@@ -13,6 +14,7 @@
 #include "io/checkpoint.hpp"
 #include "io/fields_output.hpp"
 #include "io/toml_reader.hpp"
+#include "io/vtk_output.hpp"
 #include "tumble/core/error.hpp"
 
 namespace tumble::experiments {
@@ -304,6 +306,159 @@ RunFields run_fields(const RunFieldsOptions& given, const std::function<void(con
         out.drum = drum_layer(out.fields, settings, reach, largest, std::move(loaded.checkpoint), o);
     }
     return out;
+}
+
+
+void write_fields_files(const fs::path& out, const analysis::Fields& fields, const std::string& format) {
+    fs::create_directories(out);
+    if (format != "csv") io::write_vti_fields(out / "fields.vti", fields);
+    if (format != "vti") io::write_fields_csv(out / "fields.csv", fields);
+}
+
+namespace {
+
+// A number of a KEY=VALUE item, the whole value.
+double number_of(const std::string& key, const std::string& value) {
+    std::size_t used = 0;
+    double x = 0.0;
+    try {
+        x = std::stod(value, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != value.size()) throw Error("fields: " + key + ": not a number: \"" + value + "\"");
+    return x;
+}
+
+// Three numbers X,Y,Z.
+std::array<double, 3> triple_of(const std::string& key, const std::string& value) {
+    std::array<double, 3> out{};
+    std::size_t start = 0;
+    for (std::size_t k = 0; k < 3; ++k) {
+        const std::size_t comma = value.find(',', start);
+        if ((k < 2) == (comma == std::string::npos))
+            throw Error("fields: " + key + ": three numbers X,Y,Z, got \"" + value + "\"");
+        out[k] = number_of(key, value.substr(start, comma - start));
+        start = comma + 1;
+    }
+    return out;
+}
+
+}  // namespace
+
+FieldsDuringRun parse_fields_during_run(const std::vector<std::string>& items) {
+    FieldsDuringRun o;
+    std::vector<std::string> seen;
+    for (const std::string& item : items) {
+        std::istringstream words(item);
+        for (std::string word; words >> word;) {
+            const std::size_t eq = word.find('=');
+            if (eq == std::string::npos || eq == 0)
+                throw Error("fields: KEY=VALUE items, got \"" + word + "\"");
+            const std::string key = word.substr(0, eq), value = word.substr(eq + 1);
+            if (std::find(seen.begin(), seen.end(), key) != seen.end())
+                throw Error("fields: " + key + ": given twice");
+            seen.push_back(key);
+            FieldSettings& f = o.settings;
+            if (key == "every") o.every = number_of(key, value);
+            else if (key == "from") o.from = number_of(key, value);
+            else if (key == "samples") {
+                const double n = number_of(key, value);
+                if (!(n >= 1.0 && n <= 1e9 && n == std::floor(n)))
+                    throw Error("fields: samples: a whole number >= 1, got " + value);
+                o.samples = static_cast<int>(n);
+            } else if (key == "lo") {
+                const auto v = triple_of(key, value);
+                f.lo = Vec3{v[0], v[1], v[2]};
+            } else if (key == "hi") {
+                const auto v = triple_of(key, value);
+                f.hi = Vec3{v[0], v[1], v[2]};
+            } else if (key == "cell") f.cell = number_of(key, value);
+            else if (key == "cells") f.cells = triple_of(key, value);
+            else if (key == "average") f.average = value;
+            else if (key == "width") f.width = number_of(key, value);
+            else if (key == "kernel") {
+                if (value != "gaussian" && value != "lucy")
+                    throw Error("fields: kernel: gaussian or lucy, got \"" + value + "\"");
+                f.kernel = value == "lucy" ? analysis::CgKernel::lucy : analysis::CgKernel::gaussian;
+            } else if (key == "format") {
+                if (value != "vti" && value != "csv" && value != "both")
+                    throw Error("fields: format: vti, csv or both, got \"" + value + "\"");
+                o.format = value;
+            } else if (key == "frame")
+                throw Error("fields: frame: the drum frame needs the free surface of the whole average before its "
+                            "profile; take it after the run with tumble fields --frame drum");
+            else
+                throw Error("fields: " + key + ": no such key; the keys are every, from, samples, lo, hi, cell, "
+                            "cells, average, kernel, width and format");
+        }
+    }
+    o.settings.vti = o.format != "csv";
+    return o;
+}
+
+FieldRecorder::FieldRecorder(const std::vector<std::string>& items, const Simulation& sim, std::int64_t last_step,
+                             double max_memory_gib)
+    : options_(parse_fields_during_run(items)), dt_(sim.dt()) {
+    FieldsDuringRun& o = options_;
+    o.settings.max_memory_gib = max_memory_gib;
+    if (sim.shared()) throw Error("fields: taken during a run on one MPI rank only; take them afterwards with tumble fields");
+    if (const std::string problem = field_settings_problem(o.settings); !problem.empty())
+        throw Error("fields: " + problem);
+    if (!(std::isfinite(o.every) && o.every > 0.0))
+        throw Error(fmt::format("fields: every: the time between the states must be a finite number > 0 s, got {}",
+                                o.every));
+    if (!(std::isfinite(o.from) && o.from >= 0.0))
+        throw Error(fmt::format("fields: from: a finite time >= 0 s, got {}", o.from));
+    between_ = std::max<std::int64_t>(1, step_count(o.every, dt_, "fields: every"));
+    first_ = std::max<std::int64_t>({1, sim.step_count() + 1, step_count(o.from, dt_, "fields: from")});
+    if (last_step > 0 && first_ > last_step)
+        throw Error(fmt::format("fields: from: {} s is after the run's end, {} s", o.from,
+                                static_cast<double>(last_step) * dt_));
+    const Domain& domain = sim.scenario().domain;
+    o.settings.lo = o.settings.lo.value_or(domain.lo);
+    o.settings.hi = o.settings.hi.value_or(domain.hi);
+    try {
+        settings_ = grid_settings(o.settings, analysis::grain_state(sim).grains(), "--max-memory GIB", &domain);
+    } catch (const Error& e) {  // named as a key of --fields (the memory's message names fields already)
+        const std::string why = e.what();
+        throw Error(why.starts_with("fields: ") ? why : "fields: " + why);
+    }
+    sum_.emplace(settings_);
+}
+
+std::string FieldRecorder::summary() const {
+    return fmt::format("fields: grid {}; a state every {} steps from step {}{}", grid_summary(options_.settings, grid()),
+                       between_, first_,
+                       options_.samples > 0 ? fmt::format(", {} states at most", options_.samples) : std::string());
+}
+
+void FieldRecorder::advance(Simulation& sim, std::int64_t steps) {
+    const std::int64_t end = sim.step_count() + steps;
+    while (sim.step_count() < end) {
+        const bool more = options_.samples == 0 || times_.size() < static_cast<std::size_t>(options_.samples);
+        const std::int64_t next = first_ + std::max<std::int64_t>(0, (sim.step_count() - first_ + between_) / between_) * between_;
+        if (!more || next > end) {
+            sim.advance(end - sim.step_count());
+            return;
+        }
+        if (next - 1 > sim.step_count()) sim.advance(next - 1 - sim.step_count());
+        sim.set_contact_recording(true);
+        sim.step();
+        sim.set_contact_recording(false);
+        const analysis::GrainState state = analysis::grain_state(sim);
+        sum_->add(state.grains(), state.contacts);
+        times_.push_back(state.time);
+    }
+}
+
+std::string FieldRecorder::write(const fs::path& out) {
+    if (times_.empty())
+        throw Error(fmt::format("fields: from: no state was taken; the run ended before {} s", options_.from));
+    write_fields_files(out, std::move(*sum_).finish(), options_.format);
+    sum_.reset();
+    return fmt::format("fields: {} state{} from t = {} s to {} s into {}", times_.size(), times_.size() == 1 ? "" : "s",
+                       times_.front(), times_.back(), out.string());
 }
 
 }  // namespace tumble::experiments

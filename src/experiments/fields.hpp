@@ -16,10 +16,12 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "tumble/analysis/coarse_grain.hpp"
 #include "tumble/analysis/flowing_layer.hpp"
@@ -108,6 +110,57 @@ std::string frame_problem(const RunFieldsOptions& o);
 // memory before it is allocated). tumble::Error naming the option or the
 // file for bad settings, a missing directory or checkpoint, before any step.
 RunFields run_fields(const RunFieldsOptions& options, const std::function<void(const std::string&)>& say);
+
+// The files of the fields in `out` (created if missing): fields.vti and
+// fields.csv, or the one `format` ("vti", "csv", "both") names.
+void write_fields_files(const std::filesystem::path& out, const analysis::Fields& fields, const std::string& format);
+
+// Fields taken while a run goes (tumble run --fields, tumble drum --fields,
+// tumble.run_drum(fields=...); docs/FIELDS.md, "During a run"): the state at
+// the end of every `every` seconds of simulated time from `from` on, each a
+// step taken with its contacts recorded, as tumble fields takes them from a
+// checkpoint, averaged into one grid and written when the run ends.
+struct FieldsDuringRun {
+    FieldSettings settings;  // lo, hi default: the simulation's domain
+    double every = 0.01;     // s between the states
+    double from = 0.0;       // s of simulated time: the first state is the first step's end at or after it
+    int samples = 0;         // the most states taken (0: until the run ends)
+    std::string format = "both";
+};
+// The settings from KEY=VALUE items (an item may hold several, separated by
+// spaces): the keys every, from, samples, lo, hi (X,Y,Z), cell, cells
+// (NX,NY,NZ), average, kernel, width, format. tumble::Error "fields: KEY:
+// reason" for an unknown key or a value that is not one.
+FieldsDuringRun parse_fields_during_run(const std::vector<std::string>& items);
+
+// The plan of the fields of `items` (parse_fields_during_run) for one
+// simulation, made and checked before its first step: the grid (its lo and
+// hi the domain's unless given, its width the grains' mean radius at the
+// start unless given) and its memory against the run's limit
+// (`max_memory_gib`, --max-memory; 0: half the machine's), the steps of the
+// states. `last_step`: the run's last step where it is known (0
+// otherwise), which `from` must not pass. tumble::Error naming the key
+// otherwise, and for a simulation shared among MPI ranks.
+class FieldRecorder {
+public:
+    FieldRecorder(const std::vector<std::string>& items, const Simulation& sim, std::int64_t last_step,
+                  double max_memory_gib);
+    // `steps` steps of `sim`, the states due among them taken (Simulation::advance otherwise).
+    void advance(Simulation& sim, std::int64_t steps);
+    // The fields of the states taken so far into `out` (write_fields_files);
+    // a line that says what was written.
+    std::string write(const std::filesystem::path& out);
+    const analysis::CgGrid& grid() const { return settings_.grid; }
+    std::string summary() const;  // the grid and its memory, and the states' steps
+
+private:
+    FieldsDuringRun options_;
+    analysis::CgSettings settings_;
+    std::int64_t first_ = 0, between_ = 0;  // the steps of the states: first_ + k between_
+    double dt_ = 0.0;
+    std::vector<double> times_;  // s, of the states taken
+    std::optional<analysis::FieldAccumulator> sum_;
+};
 
 // The memory the fields of grid g need (analysis::cg_memory_bytes, and the
 // .vti file's buffer where s.vti), and the grid's size as said before it

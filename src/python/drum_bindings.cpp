@@ -126,7 +126,7 @@ void bind_drum(py::module_& m) {
         "run_drum",
         [](const io::DrumSettings& settings, const std::function<void(py::object)>& on_sample, int threads, bool force,
            bool quiet, double checkpoint_revolutions, double checkpoint_minutes, std::int64_t stop_at_step,
-           bool allow_unsafe_dt, double max_memory_gib) {
+           bool allow_unsafe_dt, double max_memory_gib, const std::vector<std::string>& fields) {
             // As the command line checks --threads and --max-memory (0: the default).
             if (const std::string why = experiments::thread_count_problem(threads, std::to_string(threads));
                 !why.empty())
@@ -143,6 +143,7 @@ void bind_drum(py::module_& m) {
             o.checkpoints.stop_at_step = stop_at_step;
             o.allow_unsafe_dt = allow_unsafe_dt;
             o.max_memory_gib = max_memory_gib;
+            o.fields = fields;
             if (on_sample)
                 o.on_sample = [&on_sample](const experiments::DrumSample& s) {
                     py::gil_scoped_acquire python;
@@ -159,9 +160,9 @@ void bind_drum(py::module_& m) {
         py::arg("settings"), py::arg("on_sample") = nullptr, py::arg("threads") = 1, py::arg("force") = false,
         py::arg("quiet") = true, py::arg("checkpoint_every_revolutions") = 1.0,
         py::arg("checkpoint_every_minutes") = 10.0, py::arg("stop_at_step") = 0, py::arg("allow_unsafe_dt") = false,
-        py::arg("max_memory_gib") = 0.0,
-        "The drum protocol (experiments/drum.hpp) into settings.output; on_sample(sample) after every sample. "
-        "Returns (exit code, directory)");
+        py::arg("max_memory_gib") = 0.0, py::arg("fields") = std::vector<std::string>{},
+        "The drum protocol (experiments/drum.hpp) into settings.output; on_sample(sample) after every sample; fields: KEY=VALUE items "
+        "(experiments::parse_fields_during_run). Returns (exit code, directory)");
 
     const analysis::BandOptions band_defaults;
     m.def(

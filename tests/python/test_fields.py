@@ -10,6 +10,7 @@ import pandas as pd
 import pytest
 
 import tumble
+from conftest import TINY_DRUM
 
 
 def lattice(n, a):
@@ -255,3 +256,16 @@ def test_the_drum_frame_refuses_bad_settings(tiny_drum, tmp_path):
         tumble.fields(directory, frame="drum", frame_cells=(2.5, 1))
     with pytest.raises(tumble.Error, match="^frame_cells: .* for the drum frame"):
         tumble.fields(directory, frame_cells=(1, 4))
+
+
+def test_fields_during_a_drum_run_refuse_bad_settings_before_any_work(tmp_path):
+    """tumble.run_drum(fields=...) checks its settings before the run starts,
+    naming the key, as tumble drum --fields does (tests/data/bad/cli)."""
+    out = tmp_path / "run"
+    with pytest.raises(tumble.Error, match="^fields: every: the time between the states must be a finite number > 0 s"):
+        tumble.run_drum(out=out, fields={"every": 0.0}, **TINY_DRUM)
+    with pytest.raises(tumble.Error, match="^fields: lo: three numbers X,Y,Z"):
+        tumble.run_drum(out=out, fields={"lo": [0.0, 0.0]}, **TINY_DRUM)
+    with pytest.raises(tumble.Error, match="^fields: colour: no such key"):
+        tumble.run_drum(out=out, fields={"colour": "red"}, **TINY_DRUM)
+    assert not out.exists()

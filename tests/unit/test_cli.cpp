@@ -31,6 +31,7 @@ namespace {
 
 using tumble::test_support::read_file;
 using Result = tumble::test_support::CommandResult;
+using tumble::test_support::small_scenario;
 
 Result run_tumble(const std::string& arguments) {
     return tumble::test_support::run_command(std::string(TUMBLE_BINARY) + " " + arguments);
@@ -43,54 +44,6 @@ std::string last_line(const std::string& output) {
 }
 
 class Cli : public tumble::test_support::ScratchTest {};
-
-// A small, fast scenario: 60 grains of the paper's material 1 falling onto a
-// flat floor, with random velocities so the run exercises the RNG.
-const char* small_scenario = R"(
-[simulation]
-duration = 0.02
-seed = 11
-gravity = [0.0, 0.0, -9.81]
-
-[domain]
-lo = [-0.03, -0.03, 0.0]
-hi = [0.03, 0.03, 0.06]
-walls = [false, false, true]
-wall_material = "material-1"
-
-[neighbor]
-skin = 0.0002
-
-[time_step]
-dt = 1e-5
-
-[[material]]
-name = "material-1"
-E = 1.0e6
-G = 0.3e6
-nu = 0.25
-xi = 500.0
-eta = 500.0
-rho = 1000.0
-radius = 0.0036
-
-[[pair]]
-materials = ["material-1", "material-1"]
-mu = 0.1
-W = 0.2
-
-[[particles]]
-kind = "random_fill"
-material = "material-1"
-lo = [-0.03, -0.03, 0.0]
-hi = [0.03, 0.03, 0.04]
-count = 60
-speed = 0.3
-
-[output]
-time_series_interval = 0.001
-snapshot_interval = 0.01
-)";
 
 }  // namespace
 

@@ -147,7 +147,8 @@ def drum_scenario(config=None, allow_unsafe_dt=False, **options):
 
 
 def run_drum(config=None, *, on_sample=None, threads=1, force=False, quiet=True, checkpoint_every_revolutions=1.0,
-             checkpoint_every_minutes=10.0, stop_at_step=0, allow_unsafe_dt=False, max_memory_gib=0.0, **options):
+             checkpoint_every_minutes=10.0, stop_at_step=0, allow_unsafe_dt=False, max_memory_gib=0.0, fields=None,
+             **options):
     """The drum experiment of `tumble drum` (docs/DRUM.md) into the settings'
     output directory (option `out`): settle, turn, sample, photograph,
     analyse; no figures (tumble plot DIR draws them).
@@ -162,13 +163,30 @@ def run_drum(config=None, *, on_sample=None, threads=1, force=False, quiet=True,
     resume DIR continues it). Ctrl-C writes a checkpoint, stops the run and
     raises KeyboardInterrupt.
 
+    fields: a dict of the keys of `tumble drum --fields` (every, from,
+    samples, lo, hi, cell, cells, average, kernel, width, format; lo, hi and
+    cells as sequences of three), e.g. {"every": 0.01, "from": 1.0,
+    "average": "z"}: coarse-grained fields averaged during the run into
+    DIR/fields (docs/FIELDS.md, "During a run"); bad ones raise tumble.Error
+    before any work.
+
     Returns the run directory (pathlib.Path); read it with tumble.io.Run."""
     settings = drum_settings(config, **options)
     _, directory = _core.run_drum(settings, on_sample=on_sample, threads=threads, force=force, quiet=quiet,
                                   checkpoint_every_revolutions=checkpoint_every_revolutions,
                                   checkpoint_every_minutes=checkpoint_every_minutes, stop_at_step=stop_at_step,
-                                  allow_unsafe_dt=allow_unsafe_dt, max_memory_gib=max_memory_gib)
+                                  allow_unsafe_dt=allow_unsafe_dt, max_memory_gib=max_memory_gib,
+                                  fields=_field_items(fields))
     return pathlib.Path(directory)
+
+
+def _field_items(fields):
+    """The KEY=VALUE items of a dict of fields' settings (sequences joined by commas)."""
+    def text(value):
+        if isinstance(value, (list, tuple)):
+            return ",".join(repr(float(v)) for v in value)
+        return repr(value) if isinstance(value, float) else str(value)
+    return [f"{key}={text(value)}" for key, value in (fields or {}).items()]
 
 def find_tumble_binary():
     """The tumble program that run_sweep's points run: $TUMBLE_BINARY if it is

@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: MIT
+// Fields taken during a run (tumble run --fields; docs/FIELDS.md, "During a
+// run") are those tumble fields computes afterwards from the same states.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "test_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tumble::test_support::read_file;
+
+class RunFields : public tumble::test_support::ScratchTest {
+protected:
+    tumble::test_support::CommandResult tumble(const std::string& arguments) {
+        return tumble::test_support::run_command(std::string(TUMBLE_BINARY) + " " + arguments);
+    }
+};
+
+// The small scenario (2000 steps of 10 us, 60 grains falling onto a floor,
+// periodic sideways) averaged over x and y: a profile in z.
+const std::string grid = "--lo -0.03,-0.03,0 --hi 0.03,0.03,0.06 --average xy --cells 1,1,24 --kernel lucy --width 0.004";
+
+TEST_F(RunFields, EqualThoseOfTumbleFieldsFromTheSameStatesBitForBit) {
+    const fs::path scenario = write("small.toml", tumble::test_support::small_scenario);
+    // Run A takes 5 states 2 ms apart from t = 10 ms (steps 1000, 1200, ..., 1800).
+    const auto a = tumble("run -q " + scenario.string() + " --out " + (dir_ / "a").string() +
+                          " --fields 'from=0.01 every=0.002 samples=5' --fields 'lo=-0.03,-0.03,0 hi=0.03,0.03,0.06 "
+                          "average=xy cells=1,1,24 kernel=lucy width=0.004'");
+    ASSERT_EQ(a.exit_code, 0) << a.output;
+    // Run B, the same, stops at step 999 with a checkpoint, from which tumble
+    // fields takes its 5 states 2 ms apart: steps 1000 to 1800 again.
+    const fs::path b = dir_ / "b";
+    const auto stopped = tumble("run -q " + scenario.string() + " --out " + b.string() + " --stop-at-step 999");
+    ASSERT_EQ(stopped.exit_code, 4) << stopped.output;  // exit_stopped: a checkpoint to resume from
+    const auto after = tumble("fields -q " + b.string() + " --samples 5 --every 0.002 " + grid + " -o " +
+                              (dir_ / "after").string());
+    ASSERT_EQ(after.exit_code, 0) << after.output;
+    // Tolerance: none, bit for bit. The states are the same (the simulation
+    // is deterministic, a checkpoint continues it bit for bit, and recording
+    // the contacts of a step does not change it), and both sum them with the
+    // same FieldAccumulator in the same order.
+    for (const char* file : {"fields.csv", "fields.vti"}) {
+        const std::string during = read_file(dir_ / "a" / "fields" / file);
+        EXPECT_GT(during.size(), 1000u) << file;  // 25 nodes of 46 fields: not an empty file
+        EXPECT_EQ(during, read_file(dir_ / "after" / file)) << file;
+    }
+    // Taking the fields does not change the run: B resumed to the end has
+    // A's time series, byte for byte (tolerance none: the same steps).
+    const auto resumed = tumble("resume -q " + b.string());
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+    EXPECT_EQ(read_file(dir_ / "a" / "time_series.csv"), read_file(b / "time_series.csv"));
+    EXPECT_FALSE(fs::exists(b / "fields"));  // a resumed run takes no fields
+}
+
+}  // namespace
