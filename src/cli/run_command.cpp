@@ -183,7 +183,9 @@ int run_command(const RunOptions& options) {
                  progress_style(options.quiet, options.progress_every)};
     check_stiffness(sim.scenario(), options.allow_soft, options.scenario_file);  // after what no run can do
     std::optional<FieldRecorder> fields;
-    if (!options.fields.empty()) fields.emplace(options.fields, sim, plan.steps, options.max_memory_gib);
+    std::vector<std::string> field_items = config.fields;  // the command line's after the file's: they replace them
+    field_items.insert(field_items.end(), options.fields.begin(), options.fields.end());
+    if (!field_items.empty()) fields.emplace(field_items, sim, plan.steps, options.max_memory_gib);
 
     const auto& dir = config.output.directory;
     std::optional<io::RunLock> lock;  // rank 0's: the other ranks write only their checkpoints

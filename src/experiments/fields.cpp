@@ -9,9 +9,11 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "experiments/limits.hpp"
 #include "io/checkpoint.hpp"
+#include "io/config.hpp"
 #include "io/fields_output.hpp"
 #include "io/toml_reader.hpp"
 #include "io/vtk_output.hpp"
@@ -348,7 +350,6 @@ std::array<double, 3> triple_of(const std::string& key, const std::string& value
 
 FieldsDuringRun parse_fields_during_run(const std::vector<std::string>& items) {
     FieldsDuringRun o;
-    std::vector<std::string> seen;
     for (const std::string& item : items) {
         std::istringstream words(item);
         for (std::string word; words >> word;) {
@@ -356,9 +357,6 @@ FieldsDuringRun parse_fields_during_run(const std::vector<std::string>& items) {
             if (eq == std::string::npos || eq == 0)
                 throw Error("fields: KEY=VALUE items, got \"" + word + "\"");
             const std::string key = word.substr(0, eq), value = word.substr(eq + 1);
-            if (std::find(seen.begin(), seen.end(), key) != seen.end())
-                throw Error("fields: " + key + ": given twice");
-            seen.push_back(key);
             FieldSettings& f = o.settings;
             if (key == "every") o.every = number_of(key, value);
             else if (key == "from") o.from = number_of(key, value);
@@ -389,8 +387,8 @@ FieldsDuringRun parse_fields_during_run(const std::vector<std::string>& items) {
                 throw Error("fields: frame: the drum frame needs the free surface of the whole average before its "
                             "profile; take it after the run with tumble fields --frame drum");
             else
-                throw Error("fields: " + key + ": no such key; the keys are every, from, samples, lo, hi, cell, "
-                            "cells, average, kernel, width and format");
+                throw Error("fields: " + key + ": no such key; the keys are " +
+                            fmt::format("{}", fmt::join(io::field_keys, ", ")));
         }
     }
     o.settings.vti = o.format != "csv";

@@ -128,9 +128,9 @@ struct FieldsDuringRun {
     std::string format = "both";
 };
 // The settings from KEY=VALUE items (an item may hold several, separated by
-// spaces): the keys every, from, samples, lo, hi (X,Y,Z), cell, cells
-// (NX,NY,NZ), average, kernel, width, format. tumble::Error "fields: KEY:
-// reason" for an unknown key or a value that is not one.
+// spaces; a later one replaces an earlier one of the same key): the keys
+// io::field_keys, lo and hi as X,Y,Z, cells as NX,NY,NZ. tumble::Error
+// "fields: KEY: reason" for an unknown key or a value that is not one.
 FieldsDuringRun parse_fields_during_run(const std::vector<std::string>& items);
 
 // The plan of the fields of `items` (parse_fields_during_run) for one

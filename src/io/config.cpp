@@ -72,7 +72,7 @@ public:
 
     RunConfig read(const toml::table& root) {
         r_.only_keys(root, "", {"simulation", "time_step", "domain", "model", "neighbor", "material", "pair",
-                                "motion", "wall", "particles", "insert", "output"});
+                                "motion", "wall", "particles", "insert", "output", "fields"});
         config_.source = r_.file();
         read_simulation(*r_.table(root, "simulation", true));
         read_materials(root);
@@ -83,6 +83,7 @@ public:
         read_time_step(r_.table(root, "time_step", false));
         read_neighbor(r_.table(root, "neighbor", false));
         read_output(r_.table(root, "output", false));
+        read_fields(r_.table(root, "fields", false));
         read_particles(root);
         check_assembled();
         return std::move(config_);
@@ -383,6 +384,21 @@ private:
         if (const toml::node* n = t->get("directory")) o.directory = r_.string(*n, join(p, "directory"));
         o.time_series_interval = r_.number(*t, p, "time_series_interval", Bound::non_negative, o.time_series_interval);
         o.snapshot_interval = r_.number(*t, p, "snapshot_interval", Bound::non_negative, 0.0);
+    }
+
+    // [fields]: the values as text, checked with the command line's (RunConfig::fields).
+    void read_fields(const toml::table* t) {
+        if (!t) return;
+        r_.only_keys(*t, "fields", std::vector<std::string_view>(std::begin(field_keys), std::end(field_keys)));
+        for (const auto& [name, node] : *t) {
+            const std::string key = join("fields", name.str());
+            std::string value;
+            if (node.is_string()) value = r_.string(node, key);
+            else if (node.is_array())
+                for (const double x : r_.numbers(node, key)) value += (value.empty() ? "" : ",") + fmt::format("{}", x);
+            else value = fmt::format("{}", r_.number(node, key));
+            config_.fields.push_back(std::string(name.str()) + "=" + value);
+        }
     }
 
     // ---- [[particles]] ----

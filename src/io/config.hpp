@@ -28,6 +28,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "tumble/core/error.hpp"
 #include "tumble/sim/scenario.hpp"
@@ -52,11 +53,20 @@ struct OutputSettings {
     double snapshot_interval = 0.0;
 };
 
+// The keys of the coarse-grained fields taken during a run: the scenario's
+// [fields], tumble run --fields KEY=VALUE (experiments::parse_fields_during_run;
+// docs/FIELDS.md, "During a run").
+inline constexpr std::string_view field_keys[] = {"every", "from",    "samples", "lo",    "hi",    "cell",
+                                                  "cells", "average", "kernel",  "width", "format"};
+
 struct RunConfig {
     Scenario scenario;
     double duration = 0.0;  // s of simulated time
     std::uint64_t seed = 1;
     OutputSettings output;
+    // [fields] as KEY=VALUE items (numbers written to round-trip, arrays as
+    // X,Y,Z), checked when the run plans them; none: no fields during the run.
+    std::vector<std::string> fields;
     std::filesystem::path source;  // the scenario file (or the name given to parse_run_config)
 };
 
