@@ -411,7 +411,7 @@ FieldRecorder::FieldRecorder(const std::vector<std::string>& items, const Simula
     between_ = std::max<std::int64_t>(1, step_count(o.every, dt_, "fields: every"));
     first_ = std::max<std::int64_t>({1, sim.step_count() + 1, step_count(o.from, dt_, "fields: from")});
     if (last_step > 0 && first_ > last_step)
-        throw Error(fmt::format("fields: from: {} s is after the run's end, {} s", o.from,
+        throw Error(fmt::format("fields: from: {} s is after the run's end, {:.6g} s", o.from,
                                 static_cast<double>(last_step) * dt_));
     const Domain& domain = sim.scenario().domain;
     o.settings.lo = o.settings.lo.value_or(domain.lo);
