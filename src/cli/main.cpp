@@ -169,7 +169,7 @@ int main(int argc, char** argv) {
         "Coarse-grained fields averaged during the run into RUN/fields (fields.vti, fields.csv), KEY=VALUE items, "
         "repeated or separated by spaces: every (s, default 0.01), from (s of simulated time, default 0), samples (the "
         "most states), lo, hi (X,Y,Z; default the domain's box), cell, cells (NX,NY,NZ), average, kernel, width, format "
-        "(replacing the scenario file's [fields]; docs/FIELDS.md, \"During a run\")";
+        "(tumble run: they replace the scenario file's [fields]; docs/FIELDS.md, \"During a run\")";
     const auto add_fields_option = [&](CLI::App* command, std::vector<std::string>& items) {
         command->add_option("--fields", items, fields_help)
             ->expected(1)

@@ -269,3 +269,15 @@ def test_fields_during_a_drum_run_refuse_bad_settings_before_any_work(tmp_path):
     with pytest.raises(tumble.Error, match="^fields: colour: no such key"):
         tumble.run_drum(out=out, fields={"colour": "red"}, **TINY_DRUM)
     assert not out.exists()
+
+
+def test_fields_during_a_drum_run_are_written_at_its_end(tmp_path):
+    """tumble.run_drum(fields=...) writes DIR/fields/fields.csv with the states
+    asked for (tests/unit/test_run_fields.cpp checks that they are those of
+    tumble fields, bit for bit)."""
+    d = tumble.run_drum(out=tmp_path / "run", fields={"from": 0.2, "every": 0.005, "samples": 3, "average": "z",
+                                                      "cell": 1e-3, "format": "csv"}, **TINY_DRUM)
+    f = pd.read_csv(d / "fields" / "fields.csv")
+    assert (f["samples"] == 3).all()  # exact: a count
+    assert not (d / "fields" / "fields.vti").exists()
+    assert f["solid_fraction"].max() > 0.05  # the grains are on the grid (0.2 measured: 6 grains averaged along z)
