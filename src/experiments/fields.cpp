@@ -455,7 +455,7 @@ std::string FieldRecorder::write(const fs::path& out) {
         throw Error(fmt::format("fields: from: no state was taken; the run ended before {} s", options_.from));
     write_fields_files(out, std::move(*sum_).finish(), options_.format);
     sum_.reset();
-    return fmt::format("fields: {} state{} from t = {} s to {} s into {}", times_.size(), times_.size() == 1 ? "" : "s",
+    return fmt::format("fields: {} state{} from t = {:.6g} s to {:.6g} s into {}", times_.size(), times_.size() == 1 ? "" : "s",
                        times_.front(), times_.back(), out.string());
 }
 
