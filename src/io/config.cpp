@@ -395,7 +395,7 @@ private:
             std::string value;
             if (node.is_string()) value = r_.string(node, key);
             else if (node.is_array())
-                for (const double x : r_.numbers(node, key)) value += (value.empty() ? "" : ",") + fmt::format("{}", x);
+                for (const double x : r_.numbers(node, key)) value += fmt::format("{}{}", value.empty() ? "" : ",", x);
             else value = fmt::format("{}", r_.number(node, key));
             config_.fields.push_back(std::string(name.str()) + "=" + value);
         }
