@@ -322,7 +322,9 @@ TEST(MeshDrum, LiftersCarryGrainsOverTheTop) {
         for (int k = 0; k < 6; ++k) {
             const double phi = pi / 3.0 * k;
             const Vec3 u{std::cos(phi), std::sin(phi), 0.0}, across{-u.y, u.x, 0.0};
-            if (dot(p.position, u) > R - h) EXPECT_GE(std::abs(dot(p.position, across)), p.radius) << k;
+            if (dot(p.position, u) > R - h) {
+                EXPECT_GE(std::abs(dot(p.position, across)), p.radius) << k;
+            }
         }
     EXPECT_GT(above_the_axis(g), 0.05);
 }

@@ -130,7 +130,9 @@ TEST(WallShapes, TheEngineTakesTheCylindersHertzRadius) {
     EXPECT_EQ(F.z, 0.0);
     // And the time step takes the wall's contact at that radius.
     for (const tumble::ContactPair& pair : tumble::contact_pairs(s))
-        if (pair.name == "material-2-drum (wall)") EXPECT_NEAR(pair.R_star, R_star, 1e-18);
+        if (pair.name == "material-2-drum (wall)") {
+            EXPECT_NEAR(pair.R_star, R_star, 1e-18);
+        }
 }
 
 // A grain thrown at a slant with spin onto the floor and sliding along it:

@@ -28,7 +28,12 @@ namespace fs = std::filesystem;
 // A small drum (173 wall spheres, 20 grains) and a walled box with adhesive
 // grains: together every part of the state (kinematic particles, pair and
 // flat-wall contact history, sorting, a changed motion).
-Scenario small_drum() { return build_drum_scenario(DrumGeometry{0.03, 0.03, 3e-3}, "self", 20, 3).scenario; }
+Scenario small_drum() {
+    DrumGeometry g;
+    g.length = g.diameter = 0.03;
+    g.wall_radius = 3e-3;
+    return build_drum_scenario(g, "self", 20, 3).scenario;
+}
 
 Scenario walled_box() {
     return io::parse_run_config(tumble::test_support::walled_box_scenario("0.1", "gravity = [0.0, 0.0, -9.81]\n"),

@@ -170,18 +170,25 @@ TEST(DrumWall, RefusesAWallThatLetsTheSmallestGrainThrough) {
 }
 
 TEST(DrumWall, RefusesImpossibleParametersNamingThem) {
+    const auto geometry = [](double length, double diameter, double wall_radius) {
+        DrumGeometry g;
+        g.length = length;
+        g.diameter = diameter;
+        g.wall_radius = wall_radius;
+        return g;
+    };
     auto expect_named = [](const DrumGeometry& g, const std::string& name, std::int32_t motion = 0,
                            double grain = smallest_grain) {
         const std::string why = error_of([&] { build_drum_wall(g, 2, motion, grain); });
         EXPECT_NE(why.find(name), std::string::npos) << "expected '" << name << "' in: '" << why << "'";
     };
-    expect_named({0.0, 0.08, 3e-3}, "length");
-    expect_named({-0.12, 0.08, 3e-3}, "length");
-    expect_named({NAN, 0.08, 3e-3}, "length");
-    expect_named({0.12, 0.0, 3e-3}, "diameter");
-    expect_named({0.12, INFINITY, 3e-3}, "diameter");
-    expect_named({0.12, 0.08, 0.0}, "wall_radius");
-    expect_named({0.12, 0.017, 3e-3}, "diameter");  // < 6 wall radii
+    expect_named(geometry(0.0, 0.08, 3e-3), "length");
+    expect_named(geometry(-0.12, 0.08, 3e-3), "length");
+    expect_named(geometry(NAN, 0.08, 3e-3), "length");
+    expect_named(geometry(0.12, 0.0, 3e-3), "diameter");
+    expect_named(geometry(0.12, INFINITY, 3e-3), "diameter");
+    expect_named(geometry(0.12, 0.08, 0.0), "wall_radius");
+    expect_named(geometry(0.12, 0.017, 3e-3), "diameter");  // < 6 wall radii
     expect_named({}, "motion", -1);
     expect_named({}, "smallest_grain_radius", 0, 0.0);
 }

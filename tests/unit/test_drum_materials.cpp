@@ -123,7 +123,9 @@ TEST(DrumMaterials, TheSelfModeNeedsNoSmallGrains) {
     const DrumSetup d = build_drum_scenario(s.geometry, s.mode, 200, 1, s.fill, s.materials);
     ASSERT_EQ(d.scenario.materials.size(), 2u);  // glass-2mm, steel
     for (const ParticleSpec& p : d.scenario.particles)
-        if (p.motion == free_motion) EXPECT_EQ(p.radius, 2.0e-3);
+        if (p.motion == free_motion) {
+            EXPECT_EQ(p.radius, 2.0e-3);
+        }
 }
 
 // --fill aims at a fill fraction with the grains' own radii: in the self
