@@ -272,17 +272,23 @@ struct FaceTest {
     double s_max;
 };
 
-FaceTest test_face(const FaceGeometry& g, const Vec3& c) {
+// d = (c - x_0) . N, m.
+double plane_distance(const FaceGeometry& g, const Vec3& c) { return dot(c - g.corner[0], g.normal); }
+
+// The test with d already known (plane_distance()).
+FaceTest test_face(const FaceGeometry& g, const Vec3& c, double d) {
     const std::array<double, 3> s{g.side_distance(0, c), g.side_distance(1, c), g.side_distance(2, c)};
-    return {dot(c - g.corner[0], g.normal), s, std::max({s[0], s[1], s[2]})};
+    return {d, s, std::max({s[0], s[1], s[2]})};
 }
+
+FaceTest test_face(const FaceGeometry& g, const Vec3& c) { return test_face(g, c, plane_distance(g, c)); }
 
 // The contact with face f's plane: n = sign(d) N, q = c - d N, h = R - |d|
 // (h <= 0: out of reach). Also the contact of a flat edge or vertex.
 MeshContact plane_contact(const MeshTopology& mesh, MeshFeature feature, std::uint32_t id, std::uint32_t f,
                           const Vec3& c, double R) {
     const FaceGeometry& g = mesh.face(f);
-    const double d = dot(c - g.corner[0], g.normal);
+    const double d = plane_distance(g, c);
     return {feature, id, c - d * g.normal, d >= 0.0 ? g.normal : -g.normal, R - std::abs(d)};
 }
 
@@ -417,9 +423,9 @@ void mesh_contacts(const MeshTopology& mesh, const Vec3& c, double R, std::span<
         // A face whose plane lies R or more from c (by both tests below) gives
         // nothing: most faces near a sphere, its sides' distances not worked out.
         const FaceGeometry& g = mesh.face(f);
-        const double d = dot(c - g.corner[0], g.normal);
+        const double d = plane_distance(g, c);
         if (!(std::abs(d) < R) && !(d * d < R2)) continue;
-        const FaceTest t = test_face(g, c);
+        const FaceTest t = test_face(g, c, d);
         // Rule 1: c projects into the face, its plane within R.
         if (t.s_max < 0.0) {
             if (std::abs(t.d) < R) {
