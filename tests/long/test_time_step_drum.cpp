@@ -43,8 +43,13 @@ std::map<std::string, double> observables(const fs::path& run) {
     const tumble::io::Json summary = tumble::io::parse_json(read_file(run / "summary.json"), "summary.json");
     std::map<std::string, double> values{
         {"angle of repose", tumble::io::json_number(summary, "angle_of_repose").value_or(NAN)}};
-    for (const tumble::io::Json& c : summary.at("components"))
-        values["MSD D " + c.value("name", "")] = tumble::io::json_number(c.at("msd"), "D").value_or(NAN);
+    // D where the fit has settled, else its best estimate (4 revolutions
+    // may leave it undetermined: summary.json, docs/reference/outputs.md).
+    for (const tumble::io::Json& c : summary.at("components")) {
+        std::optional<double> D = tumble::io::json_number(c.at("msd"), "D");
+        if (!D) D = tumble::io::json_number(c.at("msd"), "D_best_estimate");
+        values["MSD D " + c.value("name", "")] = D.value_or(NAN);
+    }
     // drum_series.csv: the mean over N >= 1 of each kinetic_per_grain_* column.
     std::istringstream csv(read_file(run / "drum_series.csv"));
     std::string line, cell;

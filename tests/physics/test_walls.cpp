@@ -4,7 +4,7 @@
 // force, an infinite plane that is the box's flat wall to the last bit and
 // the same wall tilted, a moving wall's surface velocity (a grain set
 // rolling by a belt ends at 2/7 of its speed), a turned wall where its
-// motion has carried it, and the load the grains put on a wall. Mesh walls
+// motion has carried it, a still wall touched where it lies, and the load the grains put on a wall. Mesh walls
 // (walls/mesh.hpp) in the engine: a floor of triangles is the plane it
 // tessellates, for a grain rolling and sliding over its edges and vertices,
 // for an impact, as a belt, and turning about an axis. The examples with
@@ -254,6 +254,57 @@ TEST(Walls, ATurnedWallIsWhereItsMotionCarriedIt) {
         EXPECT_LT(tumble::norm(c.velocity - tumble::cross({0.0, 0.0, omega}, point)), 1e-15);
         EXPECT_EQ(c.angular_velocity, (Vec3{0.0, 0.0, omega}));
     }
+}
+
+// A wall whose motion leaves its surface in place (a drum's mantle and cap
+// turning about their axis, a plane about its normal, after a translation
+// that has stopped) is still: touched where it lies, in the lab frame, it
+// gives the touch found in its own frame and turned forward, to round-off
+// (1e-15 m on distances of order 1 m; 4e-15 on the unit normal, a few
+// units of the last place, 2.2e-16, from turning there and back), with
+// the surface velocity
+// Omega u x (c - axis point). A cylinder tilted off the motion's axis, or
+// turned about a parallel axis, is not still.
+TEST(Walls, AStillWallIsTouchedWhereItLies) {
+    const Vec3 u{0.0, 0.6, 0.8};  // unit to round-off
+    const double omega = 3.0;
+    // The axis began through (0.1, 0.2, 0.3) and has since been carried to
+    // (0.4, 0.2, 0.3), then turned 1.1 rad about.
+    const tumble::MotionNow now{{0.1, 0.2, 0.3}, {0.4, 0.2, 0.3}, {}, tumble::Rotation(u, 1.1), omega};
+    Wall mantle = shape(WallShape::cylinder);
+    mantle.point = {0.1, 0.2, 0.3};  // on the axis exactly (stays_put() asks it to the bit)
+    mantle.normal = u;
+    mantle.radius = 0.4;
+    mantle.length = 1.0;
+    Wall cap = shape(WallShape::disc);
+    cap.point = mantle.point;
+    cap.normal = u;
+    cap.radius = 0.4;
+    Wall plane = shape(WallShape::plane);
+    plane.point = {0.7, -0.3, 0.2};
+    plane.normal = -u;
+    for (const Wall* w : {&mantle, &cap, &plane}) {
+        const tumble::PlacedWall placed = tumble::place_wall(*w, &now);
+        ASSERT_TRUE(placed.still);
+        for (const Vec3 x : {Vec3{0.5, 0.3, 0.1}, Vec3{0.2, -0.1, 0.4}, Vec3{0.6, 0.1, 0.0}}) {
+            const tumble::WallContact c = tumble::wall_contact(placed, x);
+            const WallTouch framed = tumble::wall_touch(*w, tumble::to_start_frame(&now, x));
+            EXPECT_NEAR(c.touch.distance, framed.distance, 1e-15);
+            EXPECT_LT(tumble::norm(c.touch.n - tumble::to_lab_direction(&now, framed.n)), 4e-15);
+            EXPECT_EQ(c.touch.curvature, framed.curvature);
+            const Vec3 point = x - c.touch.distance * c.touch.n;
+            EXPECT_LT(tumble::norm(c.velocity - tumble::cross(omega * u, point - now.axis_point)), 4e-15);
+        }
+    }
+    Wall tilted = mantle;
+    tilted.normal = {0.0, 0.0, 1.0};
+    EXPECT_FALSE(tumble::place_wall(tilted, &now).still);
+    Wall beside = mantle;
+    beside.point = mantle.point + Vec3{0.05, 0.0, 0.0};
+    EXPECT_FALSE(tumble::place_wall(beside, &now).still);
+    tumble::MotionNow sliding = now;
+    sliding.velocity = {0.0, 0.0, 0.01};
+    EXPECT_FALSE(tumble::place_wall(mantle, &sliding).still);
 }
 
 // A grain resting on a plane wall, off its point: the wall carries the

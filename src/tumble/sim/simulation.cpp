@@ -551,7 +551,7 @@ void Simulation::compute_forces(Team& team, Sums sums, double time, const std::v
         // wall histories, before the walls' phase below).
         if (c == 0 && !walls.empty()) {
             bool put = !recording_;
-            for (const PlacedWall& w : walls) put = put && (w.wall->shape == WallShape::mesh || stays_put(*w.wall, w.now));
+            for (const PlacedWall& w : walls) put = put && (w.wall->shape == WallShape::mesh || w.still);
             if (put && !wall_list_.valid) build_wall_list(walls);
             if (!put && wall_list_.valid) flush_wall_list();
             if (!recording_ && !mesh_walls_.empty() && !mesh_list_holds(time)) build_mesh_list(walls, time);

@@ -93,28 +93,6 @@ struct WallList {
     std::vector<ContactHistory> history;        // its history while the list is valid
 };
 
-// Whether the wall's surface stays where it is under its motion now: at
-// rest; or turning (without translation) about its own axis, a disc, a
-// cylinder or a cone whose axis is the motion's, or an infinite plane
-// normal to the motion's axis. Exactly so: a wall tilted by round-off
-// counts as moving.
-inline bool stays_put(const Wall& w, const MotionNow* now) {
-    if (!now) return true;
-    if (!(now->velocity == Vec3{})) return false;
-    if (now->angular_velocity == 0.0) return true;
-    const Vec3& u = now->turn.u;
-    const bool along = cross(w.normal, u) == Vec3{};
-    switch (w.shape) {
-        case WallShape::plane: return along;
-        case WallShape::disc:
-        case WallShape::cylinder:
-        case WallShape::cone: return along && cross(w.point - now->start_axis_point, u) == Vec3{};
-        case WallShape::rectangle:
-        case WallShape::mesh: return false;  // (a mesh is not listed: it finds its own contacts)
-    }
-    return false;
-}
-
 // What the wall loop works on: the spheres, the walls where their motions
 // have carried them, each one's history slot and number (wall_id(): 6 + k
 // for the scenario's wall k), the history by global id (`slots` records a
@@ -193,18 +171,19 @@ inline void put_wall_lane(const WallLoop& w, WallContactBlock& b, std::size_t i,
 // Sphere i against wall k: whether they touch, and if they do, the contact
 // into the next lane of the block (its history at `history`, an index into
 // the histories the block is settled with). `x` is i's centre in the frame
-// of `frame`'s motion once `found`, for the next wall of the same motion.
+// of `frame`'s motion once `found`, for the next moving wall of the same
+// motion (a still wall is touched in the lab frame, where i's centre is).
 inline bool wall_touches(const WallLoop& w, std::size_t i, std::size_t k, std::size_t history, WallContactBlock& b,
                          const MotionNow*& frame, bool& found, Vec3& x) {
     const ParticleStore& p = w.p;
     const PlacedWall& wall = w.walls[k];
     if (surely_beyond(wall, p.position[i], p.radius[i])) return false;
-    if (!found || wall.now != frame) {
+    if (!wall.still && (!found || wall.now != frame)) {
         frame = wall.now;
         found = true;
         x = wall_frame_point(wall, p.position[i]);
     }
-    const WallTouch in_wall_frame = wall_touch(*wall.wall, x);
+    const WallTouch in_wall_frame = frame_touch(wall, wall.still ? p.position[i] : x);
     if (in_wall_frame.distance >= p.radius[i]) return false;
     const WallContact contact = wall_contact_of(wall, p.position[i], in_wall_frame);
     if (p.radius[i] != b.last_R || contact.touch.curvature != b.last_curvature || b.last_R == 0.0) {
@@ -223,9 +202,10 @@ inline bool wall_touches(const WallLoop& w, std::size_t i, std::size_t k, std::s
 // each wall where its motion has carried it (surely_beyond(): a few
 // products, no square root, no turning of the sphere into the wall's
 // frame), and a history record is read only where history_set says it may
-// be non-zero. Near a wall the sphere's centre is turned into the frame of
-// the wall's motion (once for all the walls of one motion: the drum's
-// mantle and caps share one) and its touch found there.
+// be non-zero. Near a wall the touch is found where the wall lies if it is
+// still (a drum's mantle and caps turning about their axis), else in the
+// frame of the wall's motion, the sphere's centre turned into it once for
+// all the moving walls of one motion.
 template <class Model>
 void add_wall_contacts(const WallLoop& w, IndexRange r, const Model& model) {
     const ParticleStore& p = w.p;

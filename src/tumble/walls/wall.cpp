@@ -52,7 +52,7 @@ double largest_curvature(const Wall& w) {
 }
 
 PlacedWall place_wall(const Wall& w, const MotionNow* now) {
-    PlacedWall p{&w, now, w.point, w.normal};
+    PlacedWall p{&w, now, w.point, w.normal, stays_put(w, now)};
     if (now) {
         p.origin = now->axis_point + rotate(w.point - now->start_axis_point, now->turn);
         p.normal = rotate(w.normal, now->turn);

@@ -9,7 +9,9 @@
 //
 // Every shape is described in its own frame at the moment its motion
 // began (for a wall without motion, always): the caller turns the sphere's
-// centre into that frame, asks wall_touch(), and turns the normal back.
+// centre into that frame, asks wall_touch(), and turns the normal back;
+// a wall whose motion leaves its surface in place (a drum's mantle turning
+// about its axis) is touched where it lies, with no turning.
 #pragma once
 
 #include <algorithm>
@@ -173,51 +175,58 @@ inline WallTouch revolution_touch(const Vec3& point, const Vec3& u, double r0, d
 
 }  // namespace wall_detail
 
-inline WallTouch wall_touch(const Wall& w, const Vec3& x) {
-    const Vec3 d = x - w.point;
+// The touch of x with the wall's shape lying at `point` with its normal
+// (or axis) `normal`: its own point and normal, or where a motion that
+// leaves its surface in place has carried them (a still wall, below; a
+// rectangle, whose edge is its own, only ever at its own).
+inline WallTouch wall_touch(const Wall& w, const Vec3& point, const Vec3& normal, const Vec3& x) {
+    const Vec3 d = x - point;
     switch (w.shape) {
         case WallShape::plane: {  // one-sided: the grains are on the side n points to
             WallTouch t;
-            t.distance = dot(d, w.normal);
-            t.n = w.normal;
+            t.distance = dot(d, normal);
+            t.n = normal;
             return t;
         }
         case WallShape::rectangle: {
-            const Vec3 e2 = cross(w.normal, w.edge);
-            const double a = dot(d, w.edge), b = dot(d, e2), c = dot(d, w.normal);
+            const Vec3 e2 = cross(normal, w.edge);
+            const double a = dot(d, w.edge), b = dot(d, e2), c = dot(d, normal);
             if (std::abs(a) <= w.half_width && std::abs(b) <= w.half_height) {  // across its face, from either side
                 WallTouch t;
                 t.distance = std::abs(c);
-                t.n = c < 0.0 ? -w.normal : w.normal;
+                t.n = c < 0.0 ? -normal : normal;
                 return t;
             }
             const double a_edge = std::clamp(a, -w.half_width, w.half_width);
             const double b_edge = std::clamp(b, -w.half_height, w.half_height);
-            return wall_detail::from_edge((a - a_edge) * w.edge + (b - b_edge) * e2 + c * w.normal, w.normal);
+            return wall_detail::from_edge((a - a_edge) * w.edge + (b - b_edge) * e2 + c * normal, normal);
         }
         case WallShape::disc: {
-            const double c = dot(d, w.normal);
-            const Vec3 in_plane = d - c * w.normal;
+            const double c = dot(d, normal);
+            const Vec3 in_plane = d - c * normal;
             const double rho = norm(in_plane);
             if (rho <= w.radius && rho >= w.hole_radius) {  // across its face, from either side
                 WallTouch t;
                 t.distance = std::abs(c);
-                t.n = c < 0.0 ? -w.normal : w.normal;
+                t.n = c < 0.0 ? -normal : normal;
                 return t;
             }
             // From the nearer rim: the outer one, or the hole's.
             const double rim = rho > w.radius ? w.radius : w.hole_radius;
-            const Vec3 out = rho > 0.0 ? (1.0 / rho) * in_plane : wall_detail::any_normal(w.normal);
-            return wall_detail::from_edge(d - rim * out, w.normal);
+            const Vec3 out = rho > 0.0 ? (1.0 / rho) * in_plane : wall_detail::any_normal(normal);
+            return wall_detail::from_edge(d - rim * out, normal);
         }
         case WallShape::cylinder:
-            return wall_detail::revolution_touch(w.point, w.normal, w.radius, w.radius, w.length, w.inside, x);
+            return wall_detail::revolution_touch(point, normal, w.radius, w.radius, w.length, w.inside, x);
         case WallShape::cone:
-            return wall_detail::revolution_touch(w.point, w.normal, w.radius, w.end_radius, w.length, w.inside, x);
+            return wall_detail::revolution_touch(point, normal, w.radius, w.end_radius, w.length, w.inside, x);
         case WallShape::mesh: return {};  // no single touch (walls/mesh.hpp: mesh_contacts): an infinite distance
     }
     return {};
 }
+
+// The touch of x (in the wall's own frame) with the wall where it was described.
+inline WallTouch wall_touch(const Wall& w, const Vec3& x) { return wall_touch(w, w.point, w.normal, x); }
 
 // Whether the centre x lies for sure at least `reach`
 // (> 0) from the wall, wall_touch(w, x).distance >= reach, found without a
@@ -258,14 +267,39 @@ inline bool surely_beyond(const Wall& w, const Vec3& point, const Vec3& normal, 
 // takes the wall's contacts at the R* it gives.
 double largest_curvature(const Wall& w);
 
+// Whether the wall's surface stays where it is under its motion now: at
+// rest; or turning (without translation) about its own axis, a disc, a
+// cylinder or a cone whose axis is the motion's, or an infinite plane
+// normal to the motion's axis. Exactly so: a wall tilted by round-off
+// counts as moving. (A mesh in motion never does: it finds its own
+// contacts, in its own frame.)
+inline bool stays_put(const Wall& w, const MotionNow* now) {
+    if (!now) return true;
+    if (!(now->velocity == Vec3{})) return false;
+    if (now->angular_velocity == 0.0) return true;
+    const Vec3& u = now->turn.u;
+    const bool along = cross(w.normal, u) == Vec3{};
+    switch (w.shape) {
+        case WallShape::plane: return along;
+        case WallShape::disc:
+        case WallShape::cylinder:
+        case WallShape::cone: return along && cross(w.point - now->start_axis_point, u) == Vec3{};
+        case WallShape::rectangle:
+        case WallShape::mesh: return false;
+    }
+    return false;
+}
+
 // A wall where its motion has carried it at one time: `now` is its motion
 // then (particles/rigid_motion.hpp), or null for a wall at rest; `origin` where
-// its `point` is (m).
+// its `point` is (m). A still wall (stays_put()) is touched where it lies,
+// in the lab frame; any other in its own frame (wall_contact() below).
 struct PlacedWall {
     const Wall* wall = nullptr;
     const MotionNow* now = nullptr;
     Vec3 origin;
     Vec3 normal;  // the wall's normal (or axis) turned as its motion has turned it
+    bool still = true;
 };
 PlacedWall place_wall(const Wall& w, const MotionNow* now);
 
@@ -278,9 +312,10 @@ inline bool surely_beyond(const PlacedWall& w, const Vec3& x, double reach) {
 // The touch of a sphere's centre x (lab frame) with a placed wall, its
 // normal in the lab frame, and the wall's surface velocity at the nearest
 // point c = x - distance n (m/s: V + Omega u x (c - axis point)) and its
-// angular velocity (rad/s: Omega u); zero for a wall at rest. The shape
-// is evaluated in its frame at the start of its motion: x turned back by
-// the rotation since and carried back by the translation.
+// angular velocity (rad/s: Omega u); zero for a wall at rest. A still
+// wall's shape is evaluated where it lies now; any other's in its frame at
+// the start of its motion: x turned back by the rotation since and carried
+// back by the translation, and the normal found there turned forward.
 struct WallContact {
     WallTouch touch;
     Vec3 velocity, angular_velocity;
@@ -309,26 +344,30 @@ inline void surface_motion(const MotionNow* now, const Vec3& point, Vec3& veloci
     velocity = now->velocity + cross(angular_velocity, point - now->axis_point);
 }
 
-// wall_contact() in two parts, for a loop over many spheres and walls:
-// the centre x in the frame of the wall's motion (x itself for a wall at
-// rest; the same for every wall of one motion), whose wall_touch() with the
-// wall is the touch in that frame; and, where it is a contact, the touch
-// turned into the lab frame with the wall's surface velocity and spin.
-// wall_contact(w, x) is wall_contact_of(w, x, wall_touch(*w.wall,
-// wall_frame_point(w, x))), to the bit.
-inline Vec3 wall_frame_point(const PlacedWall& w, const Vec3& x) { return to_start_frame(w.now, x); }
+// wall_contact() in three parts, for a loop over many spheres and walls:
+// the centre x in the frame the wall is touched in (x itself for a still
+// wall; the same for every other wall of one motion); the touch there
+// (frame_touch()); and, where it is a contact, the touch turned into the
+// lab frame with the wall's surface velocity and spin. wall_contact(w, x)
+// is wall_contact_of(w, x, frame_touch(w, wall_frame_point(w, x))), to the
+// bit.
+inline Vec3 wall_frame_point(const PlacedWall& w, const Vec3& x) { return w.still ? x : to_start_frame(w.now, x); }
+
+inline WallTouch frame_touch(const PlacedWall& w, const Vec3& x_frame) {
+    return w.still ? wall_touch(*w.wall, w.origin, w.normal, x_frame) : wall_touch(*w.wall, x_frame);
+}
 
 inline WallContact wall_contact_of(const PlacedWall& w, const Vec3& x, const WallTouch& in_wall_frame) {
     WallContact c;
     c.touch = in_wall_frame;
     if (!w.now) return c;
-    c.touch.n = to_lab_direction(w.now, c.touch.n);
+    if (!w.still) c.touch.n = to_lab_direction(w.now, c.touch.n);
     surface_motion(w.now, x - c.touch.distance * c.touch.n, c.velocity, c.angular_velocity);
     return c;
 }
 
 inline WallContact wall_contact(const PlacedWall& w, const Vec3& x) {
-    return wall_contact_of(w, x, wall_touch(*w.wall, wall_frame_point(w, x)));
+    return wall_contact_of(w, x, frame_touch(w, wall_frame_point(w, x)));
 }
 
 // The Hertz radius R* (m) of a sphere of radius R against a surface that
