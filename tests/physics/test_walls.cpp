@@ -264,7 +264,8 @@ TEST(Walls, ATurnedWallIsWhereItsMotionCarriedIt) {
 // units of the last place, 2.2e-16, from turning there and back), with
 // the surface velocity
 // Omega u x (c - axis point). A cylinder tilted off the motion's axis, or
-// turned about a parallel axis, is not still.
+// turned about a parallel axis, is not still; nor is a rectangle a motion
+// has turned, whose edge only its own frame knows.
 TEST(Walls, AStillWallIsTouchedWhereItLies) {
     const Vec3 u{0.0, 0.6, 0.8};  // unit to round-off
     const double omega = 3.0;
@@ -305,6 +306,21 @@ TEST(Walls, AStillWallIsTouchedWhereItLies) {
     tumble::MotionNow sliding = now;
     sliding.velocity = {0.0, 0.0, 0.01};
     EXPECT_FALSE(tumble::place_wall(mantle, &sliding).still);
+    // A rectangle turned by a motion that has since stopped: its edge has
+    // turned too, so it is touched in its own frame, where it is right.
+    tumble::MotionNow stopped = now;
+    stopped.angular_velocity = 0.0;
+    Wall gate = shape(WallShape::rectangle);
+    gate.point = {0.1, 0.2, 0.3};
+    gate.normal = {1.0, 0.0, 0.0};
+    gate.edge = {0.0, 1.0, 0.0};
+    gate.half_width = 0.05;
+    gate.half_height = 0.5;
+    const tumble::PlacedWall placed_gate = tumble::place_wall(gate, &stopped);
+    EXPECT_FALSE(placed_gate.still);
+    const Vec3 x{0.3, 0.3, 0.3};
+    const WallTouch framed = tumble::wall_touch(gate, tumble::to_start_frame(&stopped, x));
+    EXPECT_EQ(tumble::wall_contact(placed_gate, x).touch.distance, framed.distance);
 }
 
 // A grain resting on a plane wall, off its point: the wall carries the

@@ -52,7 +52,11 @@ double largest_curvature(const Wall& w) {
 }
 
 PlacedWall place_wall(const Wall& w, const MotionNow* now) {
-    PlacedWall p{&w, now, w.point, w.normal, stays_put(w, now)};
+    // Still where its surface stays put and its shape is given by its point
+    // and normal alone (a rectangle's edge turns with it: one carried by a
+    // motion, even a motion that has stopped, is touched in its own frame).
+    const bool still = stays_put(w, now) && !(now && w.shape == WallShape::rectangle);
+    PlacedWall p{&w, now, w.point, w.normal, still};
     if (now) {
         p.origin = now->axis_point + rotate(w.point - now->start_axis_point, now->turn);
         p.normal = rotate(w.normal, now->turn);
