@@ -13,6 +13,8 @@ Two steps:
 
     python3 studies/bands/core_baseline.py collect   # the core_* runs of out/ -> core_baseline.csv
     python3 studies/bands/core_baseline.py           # core_baseline.csv -> core_baseline.md (the table)
+    python3 studies/bands/core_baseline.py --check   # core_baseline.md is core_baseline.csv's table (a test)
+    python3 studies/bands/core_baseline.py --figure  # docs/results/bands/core_baseline.png
 
 `collect` reads each run of runs.txt named core_* from out/NAME (a finished
 run's bands.csv and radial_shells.csv; `tumble analyze` is run first on a
@@ -29,6 +31,10 @@ writes one row per run (core_baseline.csv, kept in git):
   N = 0 and averaged over the snapshots of N = 4 to 15;
 - phi_shell_<k>_late: phi per shell over N = 4 to 15 (k = 0 innermost).
 
+A_dry's seeds 1 and 2, where not run here, are the index (no shells) of
+the kept 500-revolution runs A_dry_fr0.1_seed1 and _seed2 over their
+first 16 revolutions: the same drum, speed, start and step.
+
 The table gives, per kind of run (null, A, A_dry; settle_*: settling only,
 N = 0), the mean over seeds with its 95 % Student's t interval
 (n - 1 degrees of freedom: 4.30 for 3 seeds), and the excess of A (and
@@ -39,11 +45,13 @@ spread is all that the interval rests on.
 Standard library only.
 """
 import csv
+import io
 import math
 import os
 import re
 import subprocess
 import sys
+import tarfile
 from pathlib import Path
 
 STUDY = Path(__file__).resolve().parent
@@ -92,6 +100,18 @@ def window(means, lo, hi):
     return mean([v for k, v in means.items() if lo <= k < hi])
 
 
+def index_row(name, kind, seed, samples):
+    """A run's row of the index from its bands.csv rows."""
+    index = revolution_means(samples, "core_excess")
+    row = {"run": name, "kind": kind, "seed": seed,
+           "last_N": float(samples[-1]["revolutions"]),
+           "index_N0": float(samples[0]["core_excess"]) if float(samples[0]["revolutions"]) == 0 else float("nan")}
+    for lo, hi in BLOCKS:
+        row[f"index_B_{lo}_{hi}"] = window(index, lo, hi)
+    row["index_late"] = window(index, *LATE)
+    return row
+
+
 def collect():
     rows = []
     for name, kind, seed in core_runs():
@@ -103,16 +123,9 @@ def collect():
             subprocess.run([os.environ.get("TUMBLE", str(STUDY.parent.parent / "build" / "tumble")), "analyze",
                             str(out)], check=True, stdout=subprocess.DEVNULL)
         with open(out / "bands.csv") as f:
-            samples = list(csv.DictReader(f))
+            row = index_row(name, kind, seed, list(csv.DictReader(f)))
         with open(out / "radial_shells.csv") as f:
             shell_rows = list(csv.DictReader(f))
-        index = revolution_means(samples, "core_excess")
-        row = {"run": name, "kind": kind, "seed": seed,
-               "last_N": float(samples[-1]["revolutions"]),
-               "index_N0": float(samples[0]["core_excess"]) if float(samples[0]["revolutions"]) == 0 else float("nan")}
-        for lo, hi in BLOCKS:
-            row[f"index_B_{lo}_{hi}"] = window(index, lo, hi)
-        row["index_late"] = window(index, *LATE)
         # Per snapshot: phi per shell; the shells hold equal volumes (to a
         # grain), so the inner and outer thirds are the means of two shells.
         snapshots = {}
@@ -125,12 +138,24 @@ def collect():
         for k in range(SHELLS):
             row[f"phi_shell_{k}_late"] = mean([snapshots[N][k] for N in late])
         rows.append(row)
-    fields = list(rows[0].keys()) if rows else ["run"]
+    # The kept 500-revolution runs without the attraction at Froude 0.1, at
+    # the same step, give A_dry's index (not the shells: no snapshots kept)
+    # for the seeds not run here, over their first 16 revolutions.
+    for seed in (1, 2):
+        if any(r["kind"] == "A_dry" and r["seed"] == seed for r in rows):
+            continue
+        name = f"A_dry_fr0.1_seed{seed}"
+        with tarfile.open(STUDY / "kept" / f"{name}.tar.gz") as tar:
+            samples = list(csv.DictReader(io.TextIOWrapper(tar.extractfile("bands.csv"))))
+        rows.append(index_row(f"{name} (kept)", "A_dry", seed,
+                              [r for r in samples if turn(float(r["revolutions"])) < LATE[1]]))
+    fields = list(max(rows, key=len).keys()) if rows else ["run"]
     with open(CSV, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields, lineterminator="\n")
         w.writeheader()
         for row in rows:
-            w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
+            w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()} |
+                       {k: "nan" for k in fields if k not in row})
     print(f"{CSV.relative_to(STUDY.parent.parent)}: {len(rows)} runs")
 
 
@@ -178,11 +203,11 @@ def table():
     lines.append("| " + " | ".join(["quantity"] + kinds + [f"{k} - null" for k in excesses]) + " |")
     lines.append("|---" * (1 + len(kinds) + len(excesses)) + "|")
     for q in quantities:
-        # A settling-only column at N = 0 also holds the turned runs' seeds:
-        # their N = 0 is the same settled bed.
+        # A settling-only column at N = 0 also holds the turned runs' seeds
+        # (their N = 0 is a settled bed too; a seed once, the turned run's).
         def runs(k):
             turned = k[len("settle_"):] if k.startswith("settle_") and q.endswith("_N0") else None
-            return list(by_kind[k].values()) + (list(by_kind[turned].values()) if turned in by_kind else [])
+            return list((by_kind[k] | by_kind.get(turned, {})).values())
         cells = [fmt(*t_interval([float(r[q]) for r in runs(k)]), q.startswith("phi")) for k in kinds]
         for k in excesses:
             seeds = sorted(set(by_kind[k]) & set(by_kind["null"]))
@@ -190,11 +215,76 @@ def table():
         lines.append(f"| {labels[q]} | " + " | ".join(cells) + " |")
     lines += ["", "Seeds: " + "; ".join(f"{k} {', '.join(str(s) for s in sorted(by_kind[k]))}" for k in kinds)
               + " (the settle_* columns at N = 0 also hold the seeds of the turned runs of their kind).", ""]
-    TABLE.write_text("\n".join(lines))
-    print("\n".join(lines))
+    return "\n".join(lines)
+
+
+def figure(path):
+    """The index per block of N and phi per shell over N = 4-16, per kind
+    of turned run: the mean over seeds with its 95 % t interval."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    with open(CSV) as f:
+        rows = list(csv.DictReader(f))
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    colours = {"null": "0.4", "A": "tab:blue", "A_dry": "tab:orange"}
+    for k, (kind, colour) in enumerate(colours.items()):
+        runs = [r for r in rows if r["kind"] == kind]
+        if not runs:
+            continue
+        label = {"null": "null (one size, tags only)", "A": "A (paper's grains)", "A_dry": "A_dry (W = 0)"}[kind]
+        shift = 1.0 + 0.04 * (k - 1)  # the kinds side by side
+        xs = [0.5 * shift] + [math.sqrt(lo * hi) * shift for lo, hi in BLOCKS[1:]]
+        stats = [t_interval([float(r["index_N0"]) for r in runs])] + \
+                [t_interval([float(r[f"index_B_{lo}_{hi}"]) for r in runs]) for lo, hi in BLOCKS[1:]]
+        for x, (m, lo, hi, n) in zip(xs, stats):
+            if math.isfinite(lo):
+                left.plot([x, x], [lo, hi], color=colour, lw=1.5)
+        left.plot(xs, [st[0] for st in stats], "o-", color=colour, label=f"{label}, {len(runs)} seeds")
+        shells = [t_interval([float(r[f"phi_shell_{j}_late"]) for r in runs]) for j in range(SHELLS)]
+        if all(math.isfinite(st[0]) for st in shells):
+            x = [j + 1 + 0.08 * (k - 1) for j in range(SHELLS)]
+            for xi, (m, lo, hi, n) in zip(x, shells):
+                if math.isfinite(lo):
+                    right.plot([xi, xi], [lo, hi], color=colour, lw=1.5)
+            right.plot(x, [st[0] for st in shells], "o-", color=colour, label=f"{label}, {shells[0][3]} seeds")
+    left.axhline(0.0, color="k", lw=0.5)
+    left.set_xscale("log", base=2)
+    left.set_xticks([0.5, 1.41, 2.83, 5.66, 11.3], ["N = 0", "1-2", "2-4", "4-8", "8-16"])
+    left.set_xlabel("revolutions (N = 0: the settled bed; then blocks of N)")
+    left.set_ylabel("radial core index, phi_core - phi_periphery")
+    left.legend(fontsize=8)
+    right.axhline(0.5, color="k", lw=0.5)
+    right.set_xlabel("shell of equal grain volume about the bed's centre (1: innermost)")
+    right.set_ylabel("phi, N = 4-16")
+    right.legend(fontsize=8)
+    fig.suptitle("The radial core against its null: means over seeds, 95 % t intervals", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    print(f"{path}")
+
+
+def main(args):
+    if args == ["--check"]:  # the kept table is the one the kept summary gives (ctest core_baseline_table)
+        if TABLE.read_text() != table():
+            print(f"{TABLE}: not the table of {CSV.name}; run python3 studies/bands/core_baseline.py")
+            return 1
+        print(f"{TABLE.name}: the table of {CSV.name}")
+        return 0
+    if args == ["--figure"]:
+        figure(STUDY.parent.parent / "docs" / "results" / "bands" / "core_baseline.png")
+        return 0
+    if args == ["collect"]:
+        collect()
+    elif args:
+        print(__doc__)
+        return 2
+    TABLE.write_text(table())
+    print(TABLE.read_text())
+    return 0
 
 
 if __name__ == "__main__":
-    if sys.argv[1:] == ["collect"]:
-        collect()
-    table()
+    sys.exit(main(sys.argv[1:]))
