@@ -199,19 +199,22 @@ def table():
              "two of six equal-volume shells about the bed's centre less the outer two, whole drum.",
              ""]
     kinds = [k for k in KINDS if by_kind[k]]
-    excesses = [k for k in ("A", "A_dry") if by_kind[k] and by_kind["null"]]
-    lines.append("| " + " | ".join(["quantity"] + kinds + [f"{k} - null" for k in excesses]) + " |")
-    lines.append("|---" * (1 + len(kinds) + len(excesses)) + "|")
+    pairs = [(k, n) for k, n in (("A", "null"), ("A_dry", "null"), ("settle_A", "settle_null"))
+             if by_kind[k] and by_kind[n]]
+    lines.append("| " + " | ".join(["quantity"] + kinds + [f"{k} - {n}" for k, n in pairs]) + " |")
+    lines.append("|---" * (1 + len(kinds) + len(pairs)) + "|")
     for q in quantities:
-        # A settling-only column at N = 0 also holds the turned runs' seeds
-        # (their N = 0 is a settled bed too; a seed once, the turned run's).
+        # {seed: row} of a kind for q. A settling-only kind has N = 0 only
+        # (its runs turn 0.3 revolutions), and also holds there the turned
+        # runs' seeds (their N = 0 is a settled bed too; a seed once).
         def runs(k):
-            turned = k[len("settle_"):] if k.startswith("settle_") and q.endswith("_N0") else None
-            return list((by_kind[k] | by_kind.get(turned, {})).values())
-        cells = [fmt(*t_interval([float(r[q]) for r in runs(k)]), q.startswith("phi")) for k in kinds]
-        for k in excesses:
-            seeds = sorted(set(by_kind[k]) & set(by_kind["null"]))
-            cells.append(fmt(*t_interval([float(by_kind[k][s][q]) - float(by_kind["null"][s][q]) for s in seeds]), False))
+            if not k.startswith("settle_"):
+                return by_kind[k]
+            return by_kind[k] | by_kind[k[len("settle_"):]] if q.endswith("_N0") else {}
+        cells = [fmt(*t_interval([float(r[q]) for r in runs(k).values()]), q.startswith("phi")) for k in kinds]
+        for k, n in pairs:
+            a, b = runs(k), runs(n)
+            cells.append(fmt(*t_interval([float(a[s][q]) - float(b[s][q]) for s in sorted(set(a) & set(b))]), False))
         lines.append(f"| {labels[q]} | " + " | ".join(cells) + " |")
     lines += ["", "Seeds: " + "; ".join(f"{k} {', '.join(str(s) for s in sorted(by_kind[k]))}" for k in kinds)
               + " (the settle_* columns at N = 0 also hold the seeds of the turned runs of their kind).", ""]
