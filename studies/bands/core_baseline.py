@@ -31,10 +31,6 @@ writes one row per run (core_baseline.csv, kept in git):
   N = 0 and averaged over the snapshots of N = 4 to 15;
 - phi_shell_<k>_late: phi per shell over N = 4 to 15 (k = 0 innermost).
 
-A_dry's seeds 1 and 2, where not run here, are the index (no shells) of
-the kept 500-revolution runs A_dry_fr0.1_seed1 and _seed2 over their
-first 16 revolutions: the same drum, speed, start and step.
-
 The table gives, per kind of run (null, A, A_dry; settle_*: settling only,
 N = 0), the mean over seeds with its 95 % Student's t interval
 (n - 1 degrees of freedom: 4.30 for 3 seeds), and the excess of A (and
@@ -45,13 +41,11 @@ spread is all that the interval rests on.
 Standard library only.
 """
 import csv
-import io
 import math
 import os
 import re
 import subprocess
 import sys
-import tarfile
 from pathlib import Path
 
 STUDY = Path(__file__).resolve().parent
@@ -138,24 +132,12 @@ def collect():
         for k in range(SHELLS):
             row[f"phi_shell_{k}_late"] = mean([snapshots[N][k] for N in late])
         rows.append(row)
-    # The kept 500-revolution runs without the attraction at Froude 0.1, at
-    # the same step, give A_dry's index (not the shells: no snapshots kept)
-    # for the seeds not run here, over their first 16 revolutions.
-    for seed in (1, 2):
-        if any(r["kind"] == "A_dry" and r["seed"] == seed for r in rows):
-            continue
-        name = f"A_dry_fr0.1_seed{seed}"
-        with tarfile.open(STUDY / "kept" / f"{name}.tar.gz") as tar:
-            samples = list(csv.DictReader(io.TextIOWrapper(tar.extractfile("bands.csv"))))
-        rows.append(index_row(f"{name} (kept)", "A_dry", seed,
-                              [r for r in samples if turn(float(r["revolutions"])) < LATE[1]]))
-    fields = list(max(rows, key=len).keys()) if rows else ["run"]
+    fields = list(rows[0].keys()) if rows else ["run"]
     with open(CSV, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields, lineterminator="\n")
         w.writeheader()
         for row in rows:
-            w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()} |
-                       {k: "nan" for k in fields if k not in row})
+            w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
     print(f"{CSV.relative_to(STUDY.parent.parent)}: {len(rows)} runs")
 
 
