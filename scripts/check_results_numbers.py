@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Every interval docs/RESULTS.md quotes, "X [LO, HI]", is one the studies
+"""Every interval docs/RESULTS.md quotes, "X [LO, HI]", and every one of
+docs/BANDS.md's section "The radial core's baseline", is one the studies
 wrote: in a table generated from the runs (studies/*/*.md, written by the
-studies' scripts: verdicts.py, comparisons.py, ...), or, for the one-seed
+studies' scripts: verdicts.py, comparisons.py, core_baseline.py, ...), or, for the one-seed
 shear-model runs of 12 revolutions, the D and interval of a kept summary
 (studies/shear_models/summaries/*_12__*.json, in 1e-5 m^2/rev). A number
 typed into the report, or one left behind when a table is generated anew,
@@ -32,19 +33,42 @@ def kept_intervals(root):
     return out
 
 
+def section(text, heading):
+    """The text under the level-2 heading `heading`, to the next level-2 heading."""
+    start = text.index(f"\n## {heading}\n")
+    end = text.find("\n## ", start + 1)
+    return text[start:] if end < 0 else text[start:end]
+
+
 def main():
     root = Path(sys.argv[1] if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent)
-    report = (root / "docs" / 'RESULTS.md').read_text()
     tables = "\n".join(p.read_text() for p in sorted(root.glob("studies/*/*.md")))
     known = set(INTERVAL.findall(tables)) | kept_intervals(root)
-    quoted = INTERVAL.findall(report)
-    missing = sorted({q for q in quoted if q not in known}, key=quoted.index)
-    for q in missing:
-        print(f"docs/RESULTS.md: {q}: in no table of studies/ (nor a kept summary)")
-    if missing or not quoted:
-        return 1
-    print(f"docs/RESULTS.md: all {len(quoted)} intervals are the studies' own")
-    return 0
+    status = 0
+    for name, text in reports(root):
+        quoted = INTERVAL.findall(text)
+        missing = sorted({q for q in quoted if q not in known}, key=quoted.index)
+        for q in missing:
+            print(f"{name}: {q}: in no table of studies/ (nor a kept summary)")
+        if not quoted:
+            print(f"{name}: no interval quoted")
+        if missing or not quoted:
+            status = 1
+        else:
+            print(f"{name}: all {len(quoted)} intervals are the studies' own")
+    return status
+
+
+def reports(root):
+    """(name, text) of what is checked: docs/RESULTS.md, and of docs/BANDS.md
+    the section on the radial core's baseline (studies/bands/core_baseline.md).
+    The file names in single quotes: scripts/check_doc_refs.py reads a name
+    and a double-quoted string after it as a reference to a section."""
+    results = root / "docs" / 'RESULTS.md'
+    bands = root / "docs" / 'BANDS.md'
+    heading = "The radial core's baseline"
+    return [(str(results.relative_to(root)), results.read_text()),
+            (f"{bands.relative_to(root)}, section {heading}", section(bands.read_text(), heading))]
 
 
 if __name__ == "__main__":

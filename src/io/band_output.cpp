@@ -295,6 +295,48 @@ void write_edge_blocks(const fs::path& file, const analysis::EdgeDiffusion& e) {
     write_file_whole(file, out.str());
 }
 
+// The radial shells of each snapshot (analysis::radial_shells): radial_shells.csv,
+// one row per snapshot and shell: revolutions, shell (0 innermost), radius
+// (the shell's volume-weighted mean distance from the bed's centre, m),
+// grains, small_fraction (phi).
+void write_radial_shells(const fs::path& file, const std::vector<analysis::GrainFrame>& frames,
+                         const std::vector<analysis::RadialShells>& shells) {
+    std::ostringstream out;
+    out << "revolutions,shell,radius,grains,small_fraction\n";
+    for (std::size_t k = 0; k < shells.size(); ++k)
+        for (std::size_t s = 0; s < shells[k].size(); ++s)
+            out << fmt::format("{},{},{:.5g},{},{:.5g}\n", frames[k].revolutions, s, shells[k].mean_radius(s),
+                               shells[k].grains[s], shells[k].small_fraction(s));
+    write_file_whole(file, out.str());
+}
+
+// bands.json's "radial_shells": the shells pooled over the blocks of N.
+Json radial_shells_json(const std::vector<analysis::GrainFrame>& frames,
+                        const std::vector<analysis::RadialShells>& shells) {
+    std::vector<double> revolutions;
+    for (const analysis::GrainFrame& f : frames) revolutions.push_back(f.revolutions);
+    Json blocks = Json::array();
+    for (const analysis::ShellBlock& b : analysis::radial_shell_blocks(revolutions, shells)) {
+        Json phi = Json::array(), radius = Json::array(), grains = Json::array();
+        for (std::size_t s = 0; s < b.shells.size(); ++s) {
+            phi.push_back(b.shells.small_fraction(s));
+            radius.push_back(b.shells.mean_radius(s));
+            grains.push_back(b.shells.grains[s] / static_cast<double>(b.snapshots));
+        }
+        blocks.push_back(Json{{"from", b.from},
+                              {"to", b.to},
+                              {"snapshots", static_cast<std::int64_t>(b.snapshots)},
+                              {"small_fraction", phi},
+                              {"radius", radius},
+                              {"grains", grains},
+                              {"core_excess", b.shells.core_excess()}});
+    }
+    return Json{{"reference", "bed centroid"},
+                {"shells", analysis::radial_shell_count},
+                {"snapshots", static_cast<std::int64_t>(frames.size())},
+                {"blocks", blocks}};
+}
+
 Json band_json(const analysis::Band& b, const std::string& rich, const std::string& poor) {
     return Json{{"species", b.rich ? rich : poor}, {"rich", b.rich},       {"lo", b.lo},
                 {"hi", b.hi},                      {"centre", b.centre},   {"small_fraction", b.small_fraction}};
@@ -378,6 +420,9 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
     const analysis::CrossingEstimate crossing = crossing_of_run(h, field, frames);
     const analysis::EdgeDiffusion edges = analysis::edge_diffusion(field, info.band_edges);
     if (!edges.boundaries.empty()) write_edge_blocks(out / "band_edges.csv", edges);
+    std::vector<analysis::RadialShells> shells;
+    for (const analysis::GrainFrame& f : frames) shells.push_back(analysis::radial_shells(f, 1));  // tag 1: as the field
+    if (!shells.empty()) write_radial_shells(out / "radial_shells.csv", frames, shells);
     Json events = Json::array();
     std::size_t merges = 0;
     for (const analysis::BandEvent& e : h.events) {
@@ -412,6 +457,7 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
                                       return w;
                                   }()}}},
                {"radial_core", radial_core_json(field.revolutions, core, periphery, record.axis_samples)},
+               {"radial_shells", shells.empty() ? Json(nullptr) : radial_shells_json(frames, shells)},
                {"end_layers", field.periodic ? Json(nullptr) : end_layers_json(field, layer_bins, layer_width)},
                {"crossing", crossing_json(crossing, small_msd)},
                {"edges", edges_json(edges, small_msd)},
@@ -483,6 +529,15 @@ void analyze_band_run(const fs::path& dir, const fs::path& out, const DrumRunInf
                             "at N = {:.3g} ({:.3f}, {:.3f} at N = {:.3g})\n",
                             core.back(), periphery.back(), last.revolutions, core.front(), periphery.front(),
                             first.revolutions);
+        if (!shells.empty()) {
+            std::vector<double> phi;  // the last snapshot's, innermost first
+            for (std::size_t s = 0; s < shells.back().size(); ++s) phi.push_back(shells.back().small_fraction(s));
+            lines << fmt::format("    radial shells ({} of equal grain volume about the bed's centre, {} particle "
+                                "snapshots; radial_shells.csv): phi from the innermost out {:.3f} at N = {:.3g}, inner "
+                                "third less outer third {:+.3f}\n",
+                                analysis::radial_shell_count, shells.size(), fmt::join(phi, " "),
+                                frames.back().revolutions, shells.back().core_excess());
+        }
         if (record.axis_samples > 0)
             lines << fmt::format("    radial core: {} of the {} samples of band_profile.csv were measured from the drum "
                                 "axis by an earlier tumble (rows core_fraction, wall_fraction) and are left out "

@@ -80,7 +80,7 @@ inline constexpr std::string_view run_files[] = {
     "summary.json",  "summary.txt",     "run.json",          "drum_run.toml",      "time_series.csv",
     "drum_series.csv", "profiles.csv",  "band_profile.csv",  "profile_comparison.csv", "depth_mobility.csv",
     "depth_mobility_long.csv", "axial_msd.csv", "bed_structure.csv", "flow_profile.csv", "bands.json",
-    "bands.csv",     "band_positions.csv", "band_spectrum.csv", "band_edges.csv",   "kymograph.png",
+    "bands.csv",     "band_positions.csv", "band_spectrum.csv", "band_edges.csv",   "radial_shells.csv", "kymograph.png",
     "particles.pvd", "contacts.pvd",    "walls.pvd",         "snapshots",         "checkpoints",        "figures",
     "so_far",        "frames",          "fields",            "flowing_layer"};
 

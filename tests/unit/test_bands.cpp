@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <random>
 
 #include "tumble/analysis/bands.hpp"
@@ -316,6 +317,114 @@ TEST(Bands, RadialCoreAboutTheBedsCentreNotTheAxis) {
     const BandSample surface_layer = measure_bands(top.p, {L, 1, 1});
     EXPECT_LT(surface_layer.core_fraction[0], 0.1);
     EXPECT_GT(surface_layer.periphery_fraction[0], surface_layer.core_fraction[0]);
+}
+
+// A snapshot's grains on a square lattice of spacing 2 mm within a disc of
+// radius 3 cm, centred at (x0, y0) (not the axis: the shells are ranked from
+// the grains' centroid): the lattice is symmetric through its centre, so that
+// is the volume-weighted centroid whenever a grain's radius depends on its
+// distance from it only. kind(r) gives a grain at distance r its radius and
+// tag.
+template <class Kind>
+GrainFrame lattice_frame(double x0, double y0, Kind kind) {
+    constexpr double R = 0.03, spacing = 0.002;
+    GrainFrame f;
+    for (int i = -15; i <= 15; ++i)
+        for (int j = -15; j <= 15; ++j) {
+            const double x = i * spacing, y = j * spacing, r = std::hypot(x, y);
+            if (r > R) continue;
+            const auto [radius, tag] = kind(r);
+            f.id.push_back(static_cast<std::int64_t>(f.id.size()));
+            f.position.push_back({x0 + x, y0 + y, 0.0});
+            f.radius.push_back(radius);
+            f.tag.push_back(tag);
+        }
+    return f;
+}
+
+// Small grains exactly inside r0 = 1.5 cm, large ones outside, their radii
+// chosen so that the small grains hold exactly a third of the volume:
+// m rs^3 = (m rs^3 + (n - m) rl^3) / 3, rl^3 = 2 m rs^3 / (n - m). The two
+// inner shells (of 6 of equal volume) are then all small, phi = 1, the four
+// outer ones all large, phi = 0 (a grain's shell is that of the middle of its
+// volume: the last small grain's lies half a small grain inside the third,
+// the first large one's half a large grain outside), and the core excess is
+// 1. Also exact: each shell's mean radius lies between the radii of its
+// innermost and outermost grains.
+TEST(Bands, RadialShellsOfAKnownCore) {
+    constexpr double r0 = 0.015, rs = 0.0008;
+    const GrainFrame lattice = lattice_frame(0.0, 0.0, [&](double r) { return std::pair{rs, r < r0 ? 1 : 0}; });
+    const std::size_t n = lattice.tag.size(), m = static_cast<std::size_t>(std::count(lattice.tag.begin(), lattice.tag.end(), 1));
+    const double rl = std::cbrt(2.0 * m * rs * rs * rs / static_cast<double>(n - m));
+    const GrainFrame f = lattice_frame(0.011, -0.024, [&](double r) { return r < r0 ? std::pair{rs, 1} : std::pair{rl, 0}; });
+    const auto [cx, cy] = bed_centre(f);
+    EXPECT_NEAR(cx, 0.011, 1e-12);
+    EXPECT_NEAR(cy, -0.024, 1e-12);
+    const RadialShells s = radial_shells(f, 1);
+    ASSERT_EQ(s.size(), 6u);
+    for (std::size_t k = 0; k < 6; ++k) EXPECT_DOUBLE_EQ(s.small_fraction(k), k < 2 ? 1.0 : 0.0) << "shell " << k;
+    EXPECT_DOUBLE_EQ(s.core_excess(), 1.0);
+    EXPECT_DOUBLE_EQ(s.grains[0] + s.grains[1], static_cast<double>(m));
+    EXPECT_LT(s.mean_radius(1), r0);
+    EXPECT_GT(s.mean_radius(2), r0);
+    EXPECT_GT(s.mean_radius(5), s.mean_radius(4));
+    EXPECT_THROW(radial_shells(f, 1, 4), Error);  // not a multiple of 3
+}
+
+// Grains of one size: each shell holds n / 6 grains (to one grain), so with
+// the m grains inside r0 tagged, shell k holds min(max(m - k n / 6, 0), n / 6)
+// of them: 1, a fraction at the shell that r0 cuts, then 0.
+TEST(Bands, RadialShellsOfEqualGrainsCutAtR0) {
+    constexpr double r0 = 0.0185, radius = 0.0009;
+    const GrainFrame f = lattice_frame(-0.005, 0.002, [&](double r) { return std::pair{radius, r < r0 ? 1 : 0}; });
+    const RadialShells s = radial_shells(f, 1);
+    double m = 0.0;
+    for (int t : f.tag) m += t;
+    for (std::size_t k = 0; k < 6; ++k) {
+        const double expected = std::clamp(m - std::accumulate(s.grains.begin(), s.grains.begin() + k, 0.0), 0.0,
+                                           s.grains[k]) / s.grains[k];
+        EXPECT_NEAR(s.small_fraction(k), expected, 1e-12) << "shell " << k;
+        EXPECT_NEAR(s.grains[k], static_cast<double>(f.tag.size()) / 6.0, 1.0);
+    }
+    EXPECT_GT(s.small_fraction(2), 0.0);  // r0 cuts the third shell (m = 277 of 701 grains: 2.37 shells)
+    EXPECT_LT(s.small_fraction(2), 1.0);
+}
+
+// The null the shells are for: grains of one size tagged at random with
+// probability 1/2. Each shell's phi then departs from the whole bed's by
+// the binomial noise only, sqrt(phi (1 - phi) / n_k) (n_k = 117 grains, about
+// 0.046); 4 standard errors is a two-sided tail of 6e-5 per shell. The core
+// excess (two shells against two) has sqrt(2) times a third's noise.
+TEST(Bands, RadialShellsOfARandomMixShowNoCore) {
+    std::mt19937_64 random(7);
+    std::bernoulli_distribution small(0.5);
+    const GrainFrame f = lattice_frame(0.0, -0.02, [&](double) { return std::pair{0.001, small(random) ? 1 : 0}; });
+    const RadialShells s = radial_shells(f, 1);
+    double all = 0.0;
+    for (int t : f.tag) all += t;
+    const double phi = all / static_cast<double>(f.tag.size());
+    for (std::size_t k = 0; k < 6; ++k)
+        EXPECT_NEAR(s.small_fraction(k), phi, 4.0 * std::sqrt(phi * (1.0 - phi) / s.grains[k])) << "shell " << k;
+    EXPECT_NEAR(s.core_excess(), 0.0, 4.0 * std::sqrt(2.0 * phi * (1.0 - phi) / (s.grains[0] + s.grains[1])));
+}
+
+// Snapshots pooled in the radial core's blocks of N: [0, 1), [1, 2), [2, 4),
+// [4, 8); a snapshot a hair before N counts in N.
+TEST(Bands, RadialShellsInBlocksOfRevolutions) {
+    const GrainFrame inner = lattice_frame(0.0, 0.0, [](double r) { return std::pair{0.001, r < 0.0125 ? 1 : 0}; });
+    const GrainFrame none = lattice_frame(0.0, 0.0, [](double) { return std::pair{0.001, 0}; });
+    const std::vector<double> N{0.0, 1.0, 2.0, 3.0 - 1e-12, 4.5};
+    const std::vector<RadialShells> shells{radial_shells(inner, 1), radial_shells(none, 1), radial_shells(inner, 1),
+                                           radial_shells(none, 1), radial_shells(none, 1)};
+    const std::vector<ShellBlock> blocks = radial_shell_blocks(N, shells);
+    ASSERT_EQ(blocks.size(), 4u);
+    EXPECT_DOUBLE_EQ(blocks[2].from, 2.0);
+    EXPECT_DOUBLE_EQ(blocks[2].to, 4.0);
+    EXPECT_EQ(blocks[2].snapshots, 2u);
+    EXPECT_DOUBLE_EQ(blocks[2].shells.core_excess(), 0.5 * shells[0].core_excess());  // pooled with an untagged bed
+    EXPECT_DOUBLE_EQ(blocks[1].shells.core_excess(), 0.0);
+    EXPECT_DOUBLE_EQ(blocks[3].from, 4.0);
+    EXPECT_EQ(blocks[3].snapshots, 1u);
 }
 
 // The radial core per block of revolutions: blocks [0, 1), [1, 2), [2, 4),

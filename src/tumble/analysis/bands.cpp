@@ -21,14 +21,31 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 int default_band_bins(double inner_length) { return std::max(2, static_cast<int>(std::lround(inner_length / 0.004))); }
 
-std::pair<double, double> bed_centre(const ParticleStore& p) {
+namespace {
+
+// The volume-weighted centroid of the grains i < position.size() with
+// counted(i): x_c = sum r_i^3 x_i / sum r_i^3 (r^3 the volume up to
+// 4 pi / 3), the same for y; m. (0, 0) without such grains.
+template <class Counted>
+std::pair<double, double> volume_centroid(const std::vector<Vec3>& position, const std::vector<double>& radius,
+                                          Counted counted) {
     double volume = 0.0, x = 0.0, y = 0.0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        if (p.is_kinematic(i)) continue;
-        const double v = p.radius[i] * p.radius[i] * p.radius[i];  // the volume up to 4 pi / 3
-        volume += v, x += v * p.position[i].x, y += v * p.position[i].y;
+    for (std::size_t i = 0; i < position.size(); ++i) {
+        if (!counted(i)) continue;
+        const double v = radius[i] * radius[i] * radius[i];
+        volume += v, x += v * position[i].x, y += v * position[i].y;
     }
     return volume > 0.0 ? std::pair{x / volume, y / volume} : std::pair{0.0, 0.0};
+}
+
+}  // namespace
+
+std::pair<double, double> bed_centre(const ParticleStore& p) {
+    return volume_centroid(p.position, p.radius, [&](std::size_t i) { return !p.is_kinematic(i); });
+}
+
+std::pair<double, double> bed_centre(const GrainFrame& f) {
+    return volume_centroid(f.position, f.radius, [](std::size_t) { return true; });
 }
 
 BandSample measure_bands(const ParticleStore& p, const BandFrame& frame) {
@@ -78,6 +95,81 @@ BandSample measure_bands(const ParticleStore& p, const BandFrame& frame) {
         s.periphery_fraction[b] = outer > 0.0 ? outer_species / outer : nan;
     }
     return s;
+}
+
+RadialShells& RadialShells::operator+=(const RadialShells& other) {
+    for (auto [to, from] : {std::pair{&volume, &other.volume}, std::pair{&species_volume, &other.species_volume},
+                            std::pair{&moment, &other.moment}, std::pair{&grains, &other.grains}}) {
+        if (to->size() < from->size()) to->resize(from->size());
+        for (std::size_t k = 0; k < from->size(); ++k) (*to)[k] += (*from)[k];
+    }
+    return *this;
+}
+
+double RadialShells::small_fraction(std::size_t shell) const {
+    return volume[shell] > 0.0 ? species_volume[shell] / volume[shell] : nan;
+}
+
+double RadialShells::mean_radius(std::size_t shell) const {
+    return volume[shell] > 0.0 ? moment[shell] / volume[shell] : nan;
+}
+
+double RadialShells::core_excess() const {
+    const std::size_t third = size() / 3;
+    // phi over shells [from, to), pooled by volume.
+    const auto pooled = [&](std::size_t from, std::size_t to) {
+        double v = 0.0, species = 0.0;
+        for (std::size_t k = from; k < to; ++k) v += volume[k], species += species_volume[k];
+        return v > 0.0 ? species / v : nan;
+    };
+    return third > 0 ? pooled(0, third) - pooled(size() - third, size()) : nan;
+}
+
+RadialShells radial_shells(const GrainFrame& f, int species_tag, int shells) {
+    if (shells < 3 || shells % 3 != 0) throw Error("radial shells: a positive multiple of 3 shells expected");
+    const auto [cx, cy] = bed_centre(f);
+    std::vector<double> distance(f.position.size());
+    for (std::size_t i = 0; i < distance.size(); ++i)
+        distance[i] = std::hypot(f.position[i].x - cx, f.position[i].y - cy);
+    std::vector<std::size_t> order(distance.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
+        return distance[i] != distance[j] ? distance[i] < distance[j] : f.id[i] < f.id[j];
+    });
+    // V = 4 pi r^3 / 3 per grain, m^3.
+    const auto volume = [&](std::size_t i) { return 4.0 / 3.0 * pi * f.radius[i] * f.radius[i] * f.radius[i]; };
+    double total = 0.0;
+    for (std::size_t i : order) total += volume(i);
+    const auto n = static_cast<std::size_t>(shells);
+    RadialShells s;
+    for (auto* v : {&s.volume, &s.species_volume, &s.moment, &s.grains}) v->assign(n, 0.0);
+    double before = 0.0;
+    for (std::size_t i : order) {
+        const double v = volume(i), middle = before + 0.5 * v;
+        // The shell of the middle of the grain's volume: floor(middle / (total / shells)).
+        const auto k = std::min(n - 1, static_cast<std::size_t>(middle / total * static_cast<double>(n)));
+        s.volume[k] += v, s.moment[k] += v * distance[i], s.grains[k] += 1.0;
+        if (f.tag[i] == species_tag) s.species_volume[k] += v;
+        before += v;
+    }
+    return s;
+}
+
+std::vector<ShellBlock> radial_shell_blocks(const std::vector<double>& revolutions,
+                                            const std::vector<RadialShells>& shells) {
+    if (shells.size() != revolutions.size()) throw Error("radial shell blocks: one set of shells per snapshot expected");
+    std::vector<ShellBlock> blocks;
+    for (std::size_t k = 0; k < shells.size(); ++k) {
+        if (!(revolutions[k] >= 0.0)) continue;
+        // The block [from, 2 from) (from a power of 2) or [0, 1) holding N; a
+        // snapshot time rounded just below N counts in N (as in difference_blocks).
+        const double N = std::floor(revolutions[k] + 1e-9);
+        const double from = N < 1.0 ? 0.0 : std::exp2(std::floor(std::log2(N))), to = std::max(1.0, 2.0 * from);
+        if (blocks.empty() || blocks.back().from != from) blocks.push_back({from, to, 0, {}});
+        blocks.back().snapshots += 1;
+        blocks.back().shells += shells[k];
+    }
+    return blocks;
 }
 
 double BandField::bin_centre(std::size_t b) const {

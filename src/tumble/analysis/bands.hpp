@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "tumble/analysis/bootstrap.hpp"
+#include "tumble/analysis/depth_mobility.hpp"
 #include "tumble/particles/particle_store.hpp"
 
 namespace tumble::analysis {
@@ -94,8 +95,51 @@ struct BandSample {
 // sqrt(40)), half a small grain; the price is the bed's tilt within a grain
 // diameter or two of an end cap. x, y in m; (0, 0) without free grains.
 std::pair<double, double> bed_centre(const ParticleStore& p);
+// The same of a particle snapshot's grains.
+std::pair<double, double> bed_centre(const GrainFrame& f);
 
 BandSample measure_bands(const ParticleStore& p, const BandFrame& frame);
+
+// The radial core seen a second way (docs/BAND-ANALYSIS.md, "Radial
+// shells"): the whole drum's grains of one snapshot ranked by their
+// distance in the cross-section from the bed's centre (bed_centre; ties by
+// id) and cut into `shells` shells of equal grain volume, a grain in the
+// shell in which the middle of its volume falls, as the thirds of
+// BandSample are cut per bin. Equal volumes, not equal widths: a shell then
+// holds the same share of any bed, whatever its grains' size, so beds of
+// other grains compare shell by shell (a null of grains of one size
+// against the paper's two), and with 6 shells the
+// inner two are the core and the outer two the periphery of a ranking over
+// the whole drum rather than per axial bin. Sums per shell, so snapshots
+// pool by adding (operator+=).
+struct RadialShells {
+    std::vector<double> volume;          // grain volume, m^3
+    std::vector<double> species_volume;  // of the species counted, m^3
+    std::vector<double> moment;          // sum of volume x distance from the centre, m^4
+    std::vector<double> grains;          // grain count
+    RadialShells& operator+=(const RadialShells& other);
+    std::size_t size() const { return volume.size(); }
+    double small_fraction(std::size_t shell) const;  // phi = V_species / V; NaN when empty
+    double mean_radius(std::size_t shell) const;     // moment / V, the volume-weighted mean distance, m
+    // phi of the inner third of the shells less phi of the outer third
+    // (pooled by volume; the shell count a multiple of 3).
+    double core_excess() const;
+};
+inline constexpr int radial_shell_count = 6;
+// species_tag: the species counted (1: the small grains); shells >= 3, a
+// multiple of 3. Empty shells when the frame has fewer grains than shells.
+RadialShells radial_shells(const GrainFrame& f, int species_tag, int shells = radial_shell_count);
+
+// The shells of snapshots taken at `revolutions` (in time order) pooled
+// over the blocks of N that the radial core uses (difference_blocks: [0, 1),
+// [1, 2), [2, 4), ...), a block only where it holds a snapshot.
+struct ShellBlock {
+    double from = 0.0, to = 0.0;  // revolutions, [from, to)
+    std::size_t snapshots = 0;
+    RadialShells shells;          // summed over the block's snapshots
+};
+std::vector<ShellBlock> radial_shell_blocks(const std::vector<double>& revolutions,
+                                            const std::vector<RadialShells>& shells);
 
 // C(z, N): the samples of a run, in time order.
 struct BandField {
