@@ -160,7 +160,7 @@ SECTION = "## mu(I) in a drum's flowing layer"
 
 def quoted_intervals():
     """The intervals "X [LO, HI]" that docs/FIELDS.md's mu(I) section quotes."""
-    text = (HERE.parent.parent / "docs" / "FIELDS.md").read_text()
+    text = (HERE.parent.parent / "docs" / 'FIELDS.md').read_text()
     section = text[text.index(SECTION):]
     section = " ".join(section[:section.find("\n## ", 1)].split())  # an interval may run over a line's end
     return re.findall(r"\d+\.\d+ \[\d+\.\d+, \d+\.\d+\]", section)
@@ -202,7 +202,7 @@ def main(argv):
         return 0
     runs = Path(args[0]) if args else HERE / "kept"
     results = analyse(runs)
-    readme = (HERE / "README.md").read_text()
+    readme = (HERE / 'README.md').read_text()
     if check:
         if readme_with(readme, results) != readme:
             print("studies/mu_i/README.md: its table is not the kept runs' (python3 studies/mu_i/analyse.py)")
@@ -216,7 +216,7 @@ def main(argv):
         print(f"studies/mu_i/README.md: the table is the kept runs' own, and docs/FIELDS.md's {len(quoted)} intervals are in it")
         return 0
     (HERE / "results.json").write_text(json.dumps(results, indent=1) + "\n")
-    (HERE / "README.md").write_text(readme_with(readme, results))
+    (HERE / 'README.md').write_text(readme_with(readme, results))
     figure(results, HERE.parent.parent / "docs" / "images" / "fields_mu_i.png")
     print(table(results))
     return 0
