@@ -26,7 +26,7 @@ README.md.
 
     python3 studies/mu_i/analyse.py --keep RUNS (keep what the analysis reads of RUNS' runs)
     python3 studies/mu_i/analyse.py [KEPT]      (default studies/mu_i/kept)
-    python3 studies/mu_i/analyse.py --check     (README's table is the kept runs' own)
+    python3 studies/mu_i/analyse.py --check     (the estimator on a made-up run with a known answer; README's table is the kept runs' own)
 """
 
 import csv
@@ -194,6 +194,53 @@ def figure(results, path):
     fig.savefig(path, dpi=110)
 
 
+def synthetic_problem():
+    """The estimator on a made-up run whose answer is known, or what it got wrong.
+
+    A bed under a surface at 30 degrees, 5 mm below the axis, on a 1 mm
+    grid: phi 0.6 in the bed, I = 0.5 exp(-d / 3 mm) and mu = jop(I) at
+    each node. The nodes kept must be exactly those over the middle half of
+    the surface, below it and more than the margin above the wall (counted
+    here from (s, d) worked out independently by turning the grid back),
+    and each bin's mu the mean of jop over its nodes, to round-off."""
+    import tempfile
+    a, level, half = math.radians(30.0), -0.005, math.sqrt(R_DRUM**2 - 0.005**2)
+    frame = {"angle_of_repose_deg": 30.0, "surface_level_m": level, "surface_half_length_m": half,
+             "span": 0.5, "bed_solid_fraction": 0.6}
+    expected, rows = [], []
+    for i in range(-40, 41):
+        for j in range(-40, 41):
+            s, d = 1e-3 * i, 1e-3 * j  # the node's drum coordinates, then its place
+            x = -s * math.cos(a) - (level - d) * math.sin(a)
+            y = -s * math.sin(a) + (level - d) * math.cos(a)
+            if math.hypot(x, y) > R_DRUM or d <= 0.0:
+                continue
+            I = 0.5 * math.exp(-d / 3e-3)
+            rows.append((x, y, 0.6, I, jop(I)))
+            if abs(s) <= 0.5 * half and d <= math.sqrt(R_DRUM**2 - s**2) + level - 2 * BEAD - 3 * WIDTH:
+                expected.append(I)
+    with tempfile.TemporaryDirectory() as tmp:
+        run = Path(tmp) / "mu0.5_seed1" / "flowing_layer"
+        run.mkdir(parents=True)
+        (run / "drum_frame.json").write_text(json.dumps(frame))
+        with open(run / "cross_section.csv", "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(KEPT_COLUMNS)
+            w.writerows([[repr(v) for v in r] for r in rows])
+        _, points = layer_points(run.parent)
+        _, bins = run_bins(run.parent)
+    if sorted(p[0] for p in points) != sorted(expected):
+        return f"kept {len(points)} nodes, not the {len(expected)} over the span, below the surface, above the wall"
+    for (lo, hi), got in zip(BINS, bins):
+        inside = [I for I in expected if lo <= I < hi]
+        if len(inside) < MIN_NODES:
+            continue
+        want = sum(jop(I) for I in inside) / len(inside)
+        if got is None or abs(got[1] - want) > 1e-12:
+            return f"bin {lo}-{hi}: mu {got and got[1]} where the nodes give {want}"
+    return ""
+
+
 def main(argv):
     check = "--check" in argv
     args = [a for a in argv if not a.startswith("--")]
@@ -204,6 +251,10 @@ def main(argv):
     results = analyse(runs)
     readme = (HERE / 'README.md').read_text()
     if check:
+        problem = synthetic_problem()
+        if problem:
+            print(f"studies/mu_i/analyse.py on a made-up run: {problem}")
+            return 1
         if readme_with(readme, results) != readme:
             print("studies/mu_i/README.md: its table is not the kept runs' (python3 studies/mu_i/analyse.py)")
             return 1
@@ -213,7 +264,8 @@ def main(argv):
             print(f"docs/FIELDS.md, {SECTION}: {q}: not in studies/mu_i/README.md's table")
         if missing or not quoted:
             return 1
-        print(f"studies/mu_i/README.md: the table is the kept runs' own, and docs/FIELDS.md's {len(quoted)} intervals are in it")
+        print(f"studies/mu_i/analyse.py finds a made-up run's answer; studies/mu_i/README.md: the table is the kept runs' own, "
+              f"and docs/FIELDS.md's {len(quoted)} intervals are in it")
         return 0
     (HERE / "results.json").write_text(json.dumps(results, indent=1) + "\n")
     (HERE / 'README.md').write_text(readme_with(readme, results))
