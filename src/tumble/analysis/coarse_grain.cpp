@@ -3,8 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 #include <utility>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 #include "tumble/core/constants.hpp"
 #include "tumble/core/error.hpp"
@@ -22,6 +27,33 @@ constexpr double reach_in_widths = 3.0;
 // diameter, momentum 3, kinetic 9, contact 9) and the sample's (mass,
 // momentum 3); finish() adds the velocity, the stress and six scalars.
 constexpr double doubles_per_node = 24 + 4 + 18;
+
+// v becomes n zeros. A grid's arrays are large (hundreds of MB on a 3-D
+// grid) and fresh memory is mapped page by page on first touch, each page
+// a fault, which on a virtual machine takes longer than the coarse-graining
+// itself. On Linux the arrays are marked for transparent huge pages (2 MiB
+// pages instead of 4 KiB: a 512th of the faults) and mapped in one call
+// before they are zeroed. Hints only: where the kernel does not take them,
+// nothing else changes.
+template <class T>
+void assign_zeros(std::vector<T>& v, std::size_t n) {
+    std::vector<T>().swap(v);
+    v.reserve(n);
+#if defined(__linux__)
+    const auto advise = [&](std::uintptr_t page, int advice) {
+        const auto from = reinterpret_cast<std::uintptr_t>(v.data()), to = from + n * sizeof(T);
+        const std::uintptr_t start = (from + page - 1) & ~(page - 1);
+        if (to > start + page) madvise(reinterpret_cast<void*>(start), (to - start) & ~(page - 1), advice);
+    };
+#if defined(MADV_HUGEPAGE)
+    advise(std::uintptr_t{2} << 20, MADV_HUGEPAGE);
+#endif
+#if defined(MADV_POPULATE_WRITE)
+    advise(4096, MADV_POPULATE_WRITE);
+#endif
+#endif
+    v.resize(n);
+}
 
 std::string number(double v) {
     std::ostringstream out;
@@ -81,7 +113,79 @@ public:
     // m, W in 1/m^D; nothing if x lies outside [lo, hi) along an averaged axis.
     template <class Add>
     void spread(const Vec3& x, Add&& add) {
+        const double one = 1.0;
+        spread_sum({&x, 1}, {&one, 1}, add);
+    }
+
+    // The same for the sum of several points' kernels, psi(node) = sum_q
+    // weight_q W(node - x_q): add(node, psi) once for each node where psi is
+    // not zero. Points close together (a branch's quadrature points) share
+    // most of their nodes, and summing the scalar psi first makes one pass
+    // of add over the nodes instead of one per point.
+    template <class Add>
+    void spread_sum(std::span<const Vec3> xs, std::span<const double> weights, Add&& add) {
+        Box all{{0, 0, 0}, {0, 0, 0}};
+        bool any = false;
+        for (const Vec3& x : xs) {
+            Box box;
+            if (!reach(x, box)) continue;
+            for (int k = 0; k < 3; ++k) {
+                const std::size_t end = any ? std::max(all.first[k] + all.count[k], box.first[k] + box.count[k])
+                                            : box.first[k] + box.count[k];
+                all.first[k] = any ? std::min(all.first[k], box.first[k]) : box.first[k];
+                all.count[k] = end - all.first[k];
+            }
+            any = true;
+        }
+        if (!any) return;
+        psi_.assign(all.count[0] * all.count[1] * all.count[2], 0.0);
+        const double c2 = c_ * c_;
+        for (std::size_t q = 0; q < xs.size(); ++q) {
+            Box box;
+            if (!reach(xs[q], box)) continue;
+            // Whole rows of the point's box, the nodes beyond c given 0: a
+            // loop the compiler vectorises.
+            const std::size_t nx = box.count[0];
+            const double* d2x = d2_[0].data();
+            const double* ex = e_[0].data();
+            for (std::size_t cz = 0; cz < box.count[2]; ++cz)
+                for (std::size_t cy = 0; cy < box.count[1]; ++cy) {
+                    const double r2_yz = d2_[2][cz] + d2_[1][cy];
+                    if (r2_yz >= c2) continue;
+                    const double within = c2 - r2_yz;
+                    const std::size_t row =
+                        box.first[1] + cy - all.first[1] + all.count[1] * (box.first[2] + cz - all.first[2]);
+                    double* __restrict out = psi_.data() + (box.first[0] - all.first[0]) + all.count[0] * row;
+                    if (kind_ == CgKernel::gaussian) {
+                        const double scale = weights[q] * A_ * e_[2][cz] * e_[1][cy];
+                        for (std::size_t cx = 0; cx < nx; ++cx) out[cx] += d2x[cx] < within ? scale * ex[cx] : 0.0;
+                    } else {
+                        const double scale = weights[q];
+                        for (std::size_t cx = 0; cx < nx; ++cx)
+                            out[cx] += d2x[cx] < within ? scale * lucy(r2_yz + d2x[cx]) : 0.0;
+                    }
+                }
+        }
+        for (std::size_t c = 0; c < all.count[2]; ++c)
+            for (std::size_t b = 0; b < all.count[1]; ++b) {
+                const std::size_t local = all.count[0] * (b + all.count[1] * c);
+                const std::size_t global =
+                    all.first[0] + g_.cells[0] * (all.first[1] + b + g_.cells[1] * (all.first[2] + c));
+                for (std::size_t a = 0; a < all.count[0]; ++a)
+                    if (psi_[local + a] != 0.0) add(global + a, psi_[local + a]);
+            }
+    }
+
+private:
+    // The nodes a point reaches: first[k] .. first[k] + count[k] - 1 along axis k.
+    struct Box {
         std::array<std::size_t, 3> first{}, count{};
+    };
+
+    // The box of nodes within c of x, and per axis each of its nodes' squared
+    // distance from x along the axis and (Gaussian) exp(-d^2 / 2w^2), into
+    // d2_ and e_; false if x reaches no node.
+    bool reach(const Vec3& x, Box& box) {
         for (int k = 0; k < 3; ++k) {
             std::vector<double>& d2 = d2_[k];
             std::vector<double>& e = e_[k];
@@ -92,8 +196,8 @@ public:
                     const double L = g_.hi[k] - g_.lo[k];
                     at -= L * std::floor((at - g_.lo[k]) / L);
                 }
-                if (!(at >= g_.lo[k] && at < g_.hi[k])) return;
-                first[k] = 0, count[k] = 1;
+                if (!(at >= g_.lo[k] && at < g_.hi[k])) return false;
+                box.first[k] = 0, box.count[k] = 1;
                 d2.push_back(0.0), e.push_back(1.0);
                 continue;
             }
@@ -102,41 +206,18 @@ public:
             const double from = std::ceil((x[k] - c_ - g_.lo[k]) / h - 0.5);
             const double to = std::floor((x[k] + c_ - g_.lo[k]) / h - 0.5);
             const double last = static_cast<double>(g_.cells[k] - 1);
-            if (!(to >= 0.0 && from <= last)) return;  // (also a non-finite x)
-            first[k] = static_cast<std::size_t>(std::max(from, 0.0));
-            count[k] = static_cast<std::size_t>(std::min(to, last)) + 1 - first[k];
-            for (std::size_t a = 0; a < count[k]; ++a) {
-                const double d = g_.lo[k] + (static_cast<double>(first[k] + a) + 0.5) * h - x[k];
+            if (!(to >= 0.0 && from <= last)) return false;  // (also a non-finite x)
+            box.first[k] = static_cast<std::size_t>(std::max(from, 0.0));
+            box.count[k] = static_cast<std::size_t>(std::min(to, last)) + 1 - box.first[k];
+            for (std::size_t a = 0; a < box.count[k]; ++a) {
+                const double d = g_.lo[k] + (static_cast<double>(box.first[k] + a) + 0.5) * h - x[k];
                 d2.push_back(d * d);
                 e.push_back(kind_ == CgKernel::gaussian ? std::exp(-0.5 * d * d / (w_ * w_)) : 0.0);
             }
         }
-        const double c2 = c_ * c_;
-        for (std::size_t cz = 0; cz < count[2]; ++cz) {
-            for (std::size_t cy = 0; cy < count[1]; ++cy) {
-                const double r2_yz = d2_[2][cz] + d2_[1][cy];
-                if (r2_yz >= c2) continue;
-                const double e_yz = A_ * e_[2][cz] * e_[1][cy];
-                const std::size_t row = first[0] + g_.cells[0] * (first[1] + cy + g_.cells[1] * (first[2] + cz));
-                // The nodes of the row within c of x: |d_x| < sqrt(c^2 - r_yz^2).
-                std::size_t from = 0, to = count[0];
-                if (!g_.averaged[0]) {
-                    const double half = std::sqrt(c2 - r2_yz), h = g_.spacing(0), base = static_cast<double>(first[0]);
-                    from = static_cast<std::size_t>(
-                        std::clamp(std::ceil((x.x - half - g_.lo.x) / h - 0.5) - base, 0.0, static_cast<double>(to)));
-                    to = static_cast<std::size_t>(std::clamp(std::floor((x.x + half - g_.lo.x) / h - 0.5) - base + 1.0,
-                                                             static_cast<double>(from), static_cast<double>(to)));
-                }
-                for (std::size_t cx = from; cx < to; ++cx) {
-                    const double r2 = r2_yz + d2_[0][cx];
-                    if (r2 >= c2) continue;
-                    add(row + cx, kind_ == CgKernel::gaussian ? e_yz * e_[0][cx] : lucy(r2));
-                }
-            }
-        }
+        return true;
     }
 
-private:
     double lucy(double r2) const {
         const double u = std::sqrt(r2) / c_, v = 1.0 - u;
         return A_ * (1.0 + 3.0 * u) * v * v * v;
@@ -148,6 +229,7 @@ private:
     // Per axis, for the point at hand: each node's squared distance from it
     // along the axis, and (Gaussian) exp(-d^2 / 2w^2).
     std::array<std::vector<double>, 3> d2_, e_;
+    std::vector<double> psi_;  // spread_sum's nodes, 1/m^D
 };
 
 // The sample's velocity V = j / rho carried to x: multilinear interpolation
@@ -183,6 +265,29 @@ Vec3 velocity_at(const CgGrid& g, const std::vector<double>& mass, const std::ve
         weights += weight;
     }
     return weights > 0.0 ? (1.0 / weights) * sum : Vec3{};
+}
+
+// The points' indices in the order of the grid's nodes nearest to them
+// (x fastest, z slowest; ties by index). Points taken in this order spread
+// over nodes that overlap their predecessors', which are then still in the
+// cache: on a 3-D grid of a million nodes and more, taken in the order they
+// are stored the points' spreading waits mostly for memory.
+std::vector<std::size_t> grid_order(const CgGrid& g, std::size_t count, auto&& point) {
+    std::vector<std::pair<std::size_t, std::size_t>> key(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        const Vec3 x = point(i);
+        std::size_t node = 0;
+        for (int k = 2; k >= 0; --k) {
+            const double u = std::floor((x[k] - g.lo[k]) / g.spacing(k));
+            const double last = static_cast<double>(g.cells[k] - 1);
+            node = node * g.cells[k] + static_cast<std::size_t>(std::isfinite(u) ? std::clamp(u, 0.0, last) : 0.0);
+        }
+        key[i] = {node, i};
+    }
+    std::sort(key.begin(), key.end());
+    std::vector<std::size_t> order(count);
+    for (std::size_t i = 0; i < count; ++i) order[i] = key[i].second;
+    return order;
 }
 
 }  // namespace
@@ -223,10 +328,10 @@ double cg_memory_bytes(std::size_t nodes) { return doubles_per_node * 8.0 * stat
 FieldAccumulator::FieldAccumulator(const CgSettings& settings) : s_(settings) {
     if (const std::string problem = cg_settings_problem(settings); !problem.empty()) throw Error(problem);
     const std::size_t n = s_.grid.nodes();
-    mass_.assign(n, 0.0), volume_.assign(n, 0.0), mass_diameter_.assign(n, 0.0);
-    momentum_.assign(n, Vec3{});
-    kinetic_.assign(n, Tensor{}), contact_.assign(n, Tensor{});
-    sample_mass_.assign(n, 0.0), sample_momentum_.assign(n, Vec3{});
+    assign_zeros(mass_, n), assign_zeros(volume_, n), assign_zeros(mass_diameter_, n);
+    assign_zeros(momentum_, n);
+    assign_zeros(kinetic_, n), assign_zeros(contact_, n);
+    assign_zeros(sample_mass_, n), assign_zeros(sample_momentum_, n);
 }
 
 void FieldAccumulator::add(const CgGrains& grains, std::span<const CgContact> contacts) {
@@ -250,6 +355,7 @@ void FieldAccumulator::add(const CgGrains& grains, std::span<const CgContact> co
             throw Error("coarse-graining: contact " + std::to_string(k) + " has a force or branch that is not finite");
     }
     GridKernel W(s_);
+    const std::vector<std::size_t> by_node = grid_order(s_.grid, N, [&](std::size_t i) { return grains.position[i]; });
     std::fill(sample_mass_.begin(), sample_mass_.end(), 0.0);
     std::fill(sample_momentum_.begin(), sample_momentum_.end(), Vec3{});
 
@@ -257,7 +363,7 @@ void FieldAccumulator::add(const CgGrains& grains, std::span<const CgContact> co
     // vectors (core/isa.hpp): the same numbers on every level.
     run_for_isa([&] {
         // Mass, volume and momentum: rho(r) = sum_i m_i W(r - r_i) and so on.
-        for (std::size_t i = 0; i < N; ++i) {
+        for (const std::size_t i : by_node) {
             const double m = grains.mass[i], R = grains.radius[i];
             const double V = 4.0 / 3.0 * pi * R * R * R;
             const Vec3 p = m * grains.velocity[i];
@@ -282,7 +388,12 @@ void FieldAccumulator::add(const CgGrains& grains, std::span<const CgContact> co
         // s = 0 (at r_i) and s = 1 at the centre of j go with the grains' own
         // sums below; the others, and a wall's contact point, are spread here.
         std::vector<Tensor> at_grain(N);
-        for (const CgContact& c : contacts) {
+        std::vector<Vec3> xs;  // a branch's quadrature points spread here, m
+        std::vector<double> weights;
+        for (const std::size_t k : grid_order(s_.grid, contacts.size(), [&](std::size_t k) {
+                 return grains.position[contacts[k].i] - 0.5 * contacts[k].branch;
+             })) {
+            const CgContact& c = contacts[k];
             const double length = norm(c.branch);
             const double panels = std::max(1.0, std::ceil(length / s_.width));
             const Tensor fb = dyad(c.force, c.branch);
@@ -292,18 +403,19 @@ void FieldAccumulator::add(const CgGrains& grains, std::span<const CgContact> co
             const bool at_j = c.j != CgContact::wall && norm(other_end - grains.position[c.j]) <= 1e-9 * length;
             if (at_j) add_scaled(at_grain[c.j], end_weight, fb);
             const auto points = static_cast<std::size_t>(2.0 * panels);
+            xs.clear(), weights.clear();
             for (std::size_t q = 1; q <= points; ++q) {
                 if (q == points && at_j) break;
-                const double weight = (q == points ? 1.0 : (q % 2 == 1 ? 4.0 : 2.0)) * end_weight;
-                const Vec3 x = grains.position[c.i] - (static_cast<double>(q) / static_cast<double>(points)) * c.branch;
-                W.spread(x, [&](std::size_t n, double w) { add_scaled(contact_[n], weight * w, fb); });
+                weights.push_back((q == points ? 1.0 : (q % 2 == 1 ? 4.0 : 2.0)) * end_weight);
+                xs.push_back(grains.position[c.i] - (static_cast<double>(q) / static_cast<double>(points)) * c.branch);
             }
+            W.spread_sum(xs, weights, [&](std::size_t n, double psi) { add_scaled(contact_[n], psi, fb); });
         }
 
         // The kinetic stress, sum_i m_i v'_i (x) v'_i W(r - r_i) with the
         // fluctuation v'_i = v_i - V(r_i) from the sample's velocity field, and
         // the contacts' ends at the grains.
-        for (std::size_t i = 0; i < N; ++i) {
+        for (const std::size_t i : by_node) {
             const Vec3 u = grains.velocity[i] - velocity_at(s_.grid, sample_mass_, sample_momentum_, grains.position[i]);
             const Tensor k = dyad(grains.mass[i] * u, u);
             const Tensor& t = at_grain[i];
@@ -327,8 +439,9 @@ Fields FieldAccumulator::finish() && {
     const double per_sample = samples_ > 0 ? 1.0 / static_cast<double>(samples_) : 0.0;
     f.density = std::move(mass_), f.solid_fraction = std::move(volume_), f.diameter = std::move(mass_diameter_);
     f.momentum = std::move(momentum_), f.kinetic_stress = std::move(kinetic_), f.contact_stress = std::move(contact_);
-    f.velocity.resize(n), f.stress.resize(n), f.pressure.resize(n), f.shear_stress.resize(n);
-    f.temperature.resize(n), f.shear_rate.resize(n), f.inertial_number.resize(n), f.friction.resize(n);
+    assign_zeros(f.velocity, n), assign_zeros(f.stress, n), assign_zeros(f.pressure, n);
+    assign_zeros(f.shear_stress, n), assign_zeros(f.temperature, n), assign_zeros(f.shear_rate, n);
+    assign_zeros(f.inertial_number, n), assign_zeros(f.friction, n);
     for (std::size_t k = 0; k < n; ++k) {
         const double mass = f.density[k];
         f.diameter[k] = mass > 0.0 ? f.diameter[k] / mass : 0.0;
