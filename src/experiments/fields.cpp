@@ -241,13 +241,20 @@ DrumLayer drum_layer(const analysis::Fields& cs, const analysis::CgSettings& c, 
                      memory_limit_bytes(o.settings.max_memory_gib), "fields", o.memory_option);
         resolved.emplace(r);
     }
-    analysis::FieldAccumulator sum(p);
+    // The profile's depth nodes at two points across the span: the velocity
+    // gradient along s, for the shear rate (use_in_plane_shear_rate).
+    analysis::CgSettings two = p;
+    two.grid.cells[0] = 2;
+    two.grid.averaged[0] = false;
+    analysis::FieldAccumulator sum(p), across(two);
     for_each_sample(std::move(checkpoint), o.samples, o.every, [&](const analysis::GrainState& s, const Simulation&) {
         const analysis::GrainState in_frame = analysis::to_drum_frame(s, out.surface);
         sum.add(in_frame.grains(), in_frame.contacts);
+        across.add(in_frame.grains(), in_frame.contacts);
         if (resolved) resolved->add(in_frame.grains(), in_frame.contacts);
     });
     out.profile = std::move(sum).finish();
+    analysis::use_in_plane_shear_rate(out.profile, std::move(across).finish());
     out.layer = analysis::flowing_layer(out.profile);
     if (resolved) out.resolved = std::move(*resolved).finish();
     return out;

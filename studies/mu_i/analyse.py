@@ -7,10 +7,8 @@ mu_s = tan 20.9 deg, mu_2 = tan 32.76 deg, I_0 = 0.279 (glass beads).
 Reads each run's cross-section (flowing_layer/fields.csv: the fields
 averaged along the axis, with the strain rate from the whole velocity
 gradient in the plane) and free surface (drum_frame.json), as kept by
-`analyse.py --keep` (run.sh) in studies/mu_i/kept. (Not the depth profile:
-averaged along the surface, its shear rate is |du_s/dd| alone, and below
-the layer, where the bed turns with the drum, that is the rotation omega,
-not a strain.) Each node of the cross-section is placed in the drum's
+`analyse.py --keep` (run.sh) in studies/mu_i/kept: node by node, not the
+depth profile's mean along the surface. Each node of the cross-section is placed in the drum's
 coordinates (s along the surface, d the depth below it; docs/FIELDS.md,
 "The drum's frame"). Kept: the nodes over the middle part of the surface
 (|s| within the span the surface was fitted over), below the surface,

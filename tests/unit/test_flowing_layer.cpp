@@ -164,3 +164,59 @@ TEST(FlowingLayer, RefusesACrossSectionWithoutASurface) {
 }
 
 }  // namespace
+
+// The profile's shear rate is the strain rate of the whole gradient in the
+// plane (s, d): a bed turning as a solid has none, where |du_s/dd| alone
+// reads its angular velocity; a layer sheared along the surface keeps its
+// |du_s/dd|.
+TEST(FlowingLayer, ABedTurningAsASolidHasNoShearRateAndAShearedLayerKeepsIts) {
+    DrumSurface truth;
+    truth.angle = 35.0 * pi / 180.0;
+    truth.level = -0.01;
+    const double w = a, omega = 5.0;  // m; rad/s about +z
+    CgSettings ps;
+    ps.kernel = CgKernel::lucy;
+    ps.width = w;
+    const double half = 0.5 * std::sqrt(reach * reach - truth.level * truth.level), cell = 0.25 * w;
+    ps.grid.lo = {-half, -3.0 * w - 0.5 * cell, -0.5 * a};
+    ps.grid.hi = {half, -3.0 * w - 0.5 * cell + 100 * cell, (layers_z - 0.5) * a};
+    ps.grid.cells = {1, 100, 1};
+    ps.grid.averaged = {true, false, true};
+    CgSettings two = ps;
+    two.grid.cells[0] = 2;
+    two.grid.averaged[0] = false;
+    const std::size_t inside = 28;  // d = 4w, in the bed at both points across (s = +-half / 2)
+
+    // The whole bed turning with the drum: v = omega z x r.
+    GrainState turning = bed(truth);
+    for (std::size_t i = 0; i < turning.position.size(); ++i)
+        turning.velocity[i] = omega * Vec3{-turning.position[i].y, turning.position[i].x, 0.0};
+    const GrainState turned = to_drum_frame(turning, truth);
+    Fields profile = coarse_grain(ps, turned.grains(), {});
+    // |du_s/dd| of a rotation is omega: measured 5.045 1/s, 0.9 % high as the
+    // first test's 30.27 for 30 (Lucy's sum over layers a third of its reach
+    // apart); tolerance 2 %.
+    EXPECT_NEAR(profile.shear_rate[inside], omega, 0.02 * omega);
+    const double before = profile.shear_rate[inside];
+    use_in_plane_shear_rate(profile, coarse_grain(two, turned.grains(), {}));
+    // du_d/ds = -omega cancels it, up to that 0.9 % (the gradient along s,
+    // between two points half the span apart, has no layers to sum): measured
+    // 0.045 1/s; tolerance 3 % of omega, against the 100 % before.
+    EXPECT_LT(profile.shear_rate[inside], 0.03 * omega);
+    EXPECT_DOUBLE_EQ(profile.inertial_number[inside],
+                     inertial_number_at(profile, inside, profile.shear_rate[inside]));
+
+    // The layer sheared along the surface (u(d) along t, the same at every
+    // s): the gradient along s is zero and the shear rate stays |du_s/dd|,
+    // 30.27 1/s (the first test): measured the same to 1e-9; tolerance 1e-6.
+    const GrainState sheared = to_drum_frame(bed(truth), truth);
+    Fields layer = coarse_grain(ps, sheared.grains(), {});
+    const double along_d = layer.shear_rate[inside];
+    use_in_plane_shear_rate(layer, coarse_grain(two, sheared.grains(), {}));
+    EXPECT_NEAR(layer.shear_rate[inside], along_d, 1e-6 * along_d);
+    std::printf("  [measured] turning bed: |du_s/dd| %.5g 1/s, in-plane %.3g 1/s; sheared layer: %.6g -> %.6g 1/s\n",
+                before, profile.shear_rate[inside], along_d, layer.shear_rate[inside]);
+
+    // A grid other than the profile's depth nodes at two points is refused.
+    EXPECT_THROW(use_in_plane_shear_rate(layer, layer), tumble::Error);
+}

@@ -477,21 +477,26 @@ Fields FieldAccumulator::finish() && {
                     const double span = g.spacing(axis) * static_cast<double>((upper - lower) / stride[axis]);
                     G[axis] = (1.0 / span) * (f.velocity[upper] - f.velocity[lower]);
                 }
-                // D = (G + G^T) / 2, its deviatoric part D', gamma_dot = sqrt(2 D':D').
-                const double tr = (G[0].x + G[1].y + G[2].z) / 3.0;
-                const double dxx = G[0].x - tr, dyy = G[1].y - tr, dzz = G[2].z - tr;
-                const double dxy = 0.5 * (G[0].y + G[1].x), dxz = 0.5 * (G[0].z + G[2].x), dyz = 0.5 * (G[1].z + G[2].y);
-                const double gamma_dot =
-                    std::sqrt(2.0 * (dxx * dxx + dyy * dyy + dzz * dzz + 2.0 * (dxy * dxy + dxz * dxz + dyz * dyz)));
-                f.shear_rate[k] = gamma_dot;
-                const double p = f.pressure[k];
-                if (p > 0.0 && f.solid_fraction[k] > 0.0) {
-                    const double grain_density = f.density[k] / f.solid_fraction[k];
-                    f.inertial_number[k] = gamma_dot * f.diameter[k] / std::sqrt(p / grain_density);
-                    f.friction[k] = f.shear_stress[k] / p;
-                }
+                f.shear_rate[k] = shear_rate_of(G);
+                f.inertial_number[k] = inertial_number_at(f, k, f.shear_rate[k]);
+                if (f.pressure[k] > 0.0 && f.solid_fraction[k] > 0.0) f.friction[k] = f.shear_stress[k] / f.pressure[k];
             }
     return f;
+}
+
+double shear_rate_of(const std::array<Vec3, 3>& G) {
+    // D = (G + G^T) / 2, its deviatoric part D', gamma_dot = sqrt(2 D':D').
+    const double tr = (G[0].x + G[1].y + G[2].z) / 3.0;
+    const double dxx = G[0].x - tr, dyy = G[1].y - tr, dzz = G[2].z - tr;
+    const double dxy = 0.5 * (G[0].y + G[1].x), dxz = 0.5 * (G[0].z + G[2].x), dyz = 0.5 * (G[1].z + G[2].y);
+    return std::sqrt(2.0 * (dxx * dxx + dyy * dyy + dzz * dzz + 2.0 * (dxy * dxy + dxz * dxz + dyz * dyz)));
+}
+
+double inertial_number_at(const Fields& f, std::size_t k, double shear_rate) {
+    const double p = f.pressure[k];
+    if (!(p > 0.0 && f.solid_fraction[k] > 0.0)) return 0.0;
+    const double grain_density = f.density[k] / f.solid_fraction[k];
+    return shear_rate * f.diameter[k] / std::sqrt(p / grain_density);
 }
 
 Fields coarse_grain(const CgSettings& settings, const CgGrains& grains, std::span<const CgContact> contacts) {

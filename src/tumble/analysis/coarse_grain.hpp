@@ -144,6 +144,16 @@ struct Fields {
     std::vector<double> friction;        // mu = tau / p; 0 where p <= 0
 };
 
+// gamma_dot = sqrt(2 D':D') of a velocity gradient G[k][l] = dV_l / dx_k, D'
+// the deviatoric part of the strain rate D = (G + G^T) / 2, 1/s. A rigid
+// rotation has none; a simple shear du_x/dy = g has |g|.
+double shear_rate_of(const std::array<Vec3, 3>& G);
+
+// I = gamma_dot d / sqrt(p / rho_s) at a node of `f` (rho_s = rho / phi the
+// grains' own density), with the node's mean diameter d and pressure p; 0
+// where p <= 0 or phi <= 0.
+double inertial_number_at(const Fields& f, std::size_t node, double shear_rate);
+
 // Sums the samples of a time average: add() one state at a time, finish()
 // the fields of all added (the sums become the fields: the accumulator is
 // left empty). The constructor checks the settings (cg_settings_problem;

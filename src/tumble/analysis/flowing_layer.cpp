@@ -2,6 +2,7 @@
 #include "tumble/analysis/flowing_layer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -184,6 +185,27 @@ FlowingLayer flowing_layer(const Fields& p) {
     for (std::size_t k = 0; k < n; ++k) mass += p.density[k], diameter += p.density[k] * p.diameter[k];
     out.diameter = mass > 0.0 ? diameter / mass : 0.0;
     return out;
+}
+
+void use_in_plane_shear_rate(Fields& profile, const Fields& across) {
+    const CgGrid &p = profile.grid, &a = across.grid;
+    if (!(p.averaged[0] && !p.averaged[1] && p.averaged[2] && a.cells[0] == 2 && !a.averaged[0] &&
+          a.cells[1] == p.cells[1] && a.averaged[2] && a.lo.y == p.lo.y && a.hi.y == p.hi.y))
+        throw Error("drum frame: the shear rate across the span needs the profile's depth nodes at 2 points along s");
+    const std::size_t depths = p.cells[1];
+    for (std::size_t k = 0; k < depths; ++k) {
+        // G[k][l] = dV_l / dx_k in (s, d, z): along s across the span, along
+        // d central differences between the profile's nodes (one-sided at
+        // its ends), none along the averaged z.
+        std::array<Vec3, 3> G{};
+        G[0] = (1.0 / a.spacing(0)) * (across.velocity[1 + 2 * k] - across.velocity[2 * k]);
+        const std::size_t lower = k > 0 ? k - 1 : k, upper = k + 1 < depths ? k + 1 : k;
+        if (upper > lower)
+            G[1] = (1.0 / (p.spacing(1) * static_cast<double>(upper - lower))) *
+                   (profile.velocity[upper] - profile.velocity[lower]);
+        profile.shear_rate[k] = shear_rate_of(G);
+        profile.inertial_number[k] = inertial_number_at(profile, k, profile.shear_rate[k]);
+    }
 }
 
 }  // namespace tumble::analysis

@@ -64,6 +64,19 @@ DrumSurface find_drum_surface(const Fields& cross_section, double reach, double 
 // forces and branches to their components along (t, -n, z).
 GrainState to_drum_frame(const GrainState& state, const DrumSurface& surface);
 
+// The depth profile's shear rate and inertial number from the whole velocity
+// gradient in the plane (s, d). Averaged along s, the profile has only the
+// gradient along d: |du_s/dd| in a layer sheared along the surface, but in
+// the bed below, which turns with the drum as a solid, the drum's angular
+// velocity: a rotation, not a strain. `across` holds the same samples'
+// fields on the profile's depth nodes at two points across its span (its
+// grid: 2 cells along s over the profile's extent, the profile's along d,
+// averaged along z; tumble::Error otherwise); their difference over the
+// cells' spacing is the gradient along s, whose du_d/ds cancels the
+// rotation's du_s/dd. Each depth's shear rate becomes gamma_dot of that
+// gradient (shear_rate_of), its I follows (inertial_number_at).
+void use_in_plane_shear_rate(Fields& profile, const Fields& across);
+
 // The numbers of a depth profile: fields in the drum's coordinates resolved
 // along d (the grid's y) only.
 struct FlowingLayer {
