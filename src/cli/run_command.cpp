@@ -68,7 +68,7 @@ RunPlan load_plan(const io::CheckpointRecord& r) {
 // file; rank 0 alone writes the time series and run.json and talks.
 class RunLoop {
 public:
-    // fields: taken during the run and written at its end (none after a resume).
+    // fields: taken during the run, kept in its checkpoints, written at its end.
     RunLoop(Simulation& sim, RunPlan plan, fs::path dir, CheckpointPolicy policy, bool continuing,
             const std::vector<double>& snapshot_times, FieldRecorder* fields = nullptr)
         : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)), fields_(fields),
@@ -145,6 +145,7 @@ private:
         save_policy(c.record, checkpoints_.policy());
         c.record.set("finished", static_cast<std::int64_t>(finished));
         c.record.set("snapshot_times", snapshots_ ? snapshots_->times() : std::vector<double>{});
+        if (fields_) fields_->save(c.record);
         if (mpi::rank() == 0) io::record_file_lengths(c.record, dir_, {"time_series.csv"});
         checkpoints_.write(sim_, c);
     }
@@ -221,7 +222,9 @@ int resume_run(io::Checkpoint checkpoint, const fs::path& dir, bool quiet, doubl
     if (!quiet && mpi::rank() == 0)
         fmt::print("tumble resume: run of {} at step {} of {} (t = {:.6g} s)\n", plan.scenario_file, sim.step_count(),
                    plan.steps, sim.time());
-    RunLoop loop(sim, plan, dir, load_policy(checkpoint.record), true, checkpoint.record.numbers("snapshot_times"));
+    std::optional<FieldRecorder> fields = FieldRecorder::resumed(checkpoint.record, sim);
+    RunLoop loop(sim, plan, dir, load_policy(checkpoint.record), true, checkpoint.record.numbers("snapshot_times"),
+                 fields ? &*fields : nullptr);
     return loop.run();
 }
 

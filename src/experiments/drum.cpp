@@ -116,7 +116,7 @@ HealthLimits drum_limits(const Scenario& s) {
 // Settling and rotation from wherever `sim` stands, then the analysis.
 class DrumLoop {
 public:
-    // fields: taken during the run and written at its end (none after a resume).
+    // fields: taken during the run, kept in its checkpoints, written at its end.
     DrumLoop(Simulation& sim, DrumPlan plan, fs::path dir, CheckpointPolicy policy, bool continuing,
              DrumSampleHook on_sample, FieldRecorder* fields = nullptr)
         : sim_(sim), plan_(std::move(plan)), dir_(std::move(dir)), on_sample_(std::move(on_sample)), fields_(fields),
@@ -390,6 +390,7 @@ private:
         save_policy(c.record, checkpoints_.policy());
         c.record.set("finished", std::int64_t{finished});
         c.record.set("snapshot_times", snapshots_ ? snapshots_->times() : std::vector<double>{});
+        if (fields_) fields_->save(c.record);
         if (writer())
             io::record_file_lengths(c.record, dir_,
                                     {"time_series.csv", "drum_series.csv", "profiles.csv", "band_profile.csv"});
@@ -581,7 +582,8 @@ DrumOutcome resume_drum(io::Checkpoint checkpoint, const fs::path& dir, bool qui
     if (!quiet && mpi::rank() == 0)
         fmt::print("tumble resume: drum run at step {} (t = {:.6g} s, {})\n", sim.step_count(), sim.time(),
                    plan.rotating ? fmt::format("{:.4g} revolutions", turned) : std::string("settling"));
-    DrumLoop loop(sim, std::move(plan), dir, load_policy(checkpoint.record), true, {});
+    std::optional<FieldRecorder> fields = FieldRecorder::resumed(checkpoint.record, sim);
+    DrumLoop loop(sim, std::move(plan), dir, load_policy(checkpoint.record), true, {}, fields ? &*fields : nullptr);
     return loop.run(checkpoint.record.numbers("snapshot_times"));
 }
 

@@ -404,7 +404,7 @@ FieldsDuringRun parse_fields_during_run(const std::vector<std::string>& items) {
 
 FieldRecorder::FieldRecorder(const std::vector<std::string>& items, const Simulation& sim, std::int64_t last_step,
                              double max_memory_gib)
-    : options_(parse_fields_during_run(items)), dt_(sim.dt()) {
+    : items_(items), options_(parse_fields_during_run(items)), dt_(sim.dt()) {
     FieldsDuringRun& o = options_;
     o.settings.max_memory_gib = max_memory_gib;
     if (sim.shared()) throw Error("fields: taken during a run on one MPI rank only; take them afterwards with tumble fields");
@@ -430,6 +430,68 @@ FieldRecorder::FieldRecorder(const std::vector<std::string>& items, const Simula
         throw Error(why.starts_with("fields: ") ? why : "fields: " + why);
     }
     sum_.emplace(settings_);
+}
+
+void FieldRecorder::save(io::CheckpointRecord& record) const {
+    if (!sum_) return;  // written: the run has ended
+    std::string items;
+    for (const std::string& item : items_) items += item + "\n";
+    record.set("fields.items", items);
+    const analysis::CgGrid& g = settings_.grid;
+    std::vector<double> grid;
+    for (int k = 0; k < 3; ++k) grid.push_back(g.lo[k]);
+    for (int k = 0; k < 3; ++k) grid.push_back(g.hi[k]);
+    for (std::size_t k = 0; k < 3; ++k) grid.push_back(static_cast<double>(g.cells[k]));
+    for (std::size_t k = 0; k < 3; ++k) grid.push_back(g.averaged[k] ? 1.0 : 0.0);
+    for (std::size_t k = 0; k < 3; ++k) grid.push_back(g.periodic[k] ? 1.0 : 0.0);
+    grid.push_back(settings_.kernel == analysis::CgKernel::lucy ? 1.0 : 0.0);
+    grid.push_back(settings_.width);
+    record.set("fields.grid", grid);
+    record.set("fields.steps", std::vector<double>{static_cast<double>(first_), static_cast<double>(between_)});
+    record.set("fields.times", times_);
+    record.set("fields.sums", sum_->sums());
+}
+
+std::optional<FieldRecorder> FieldRecorder::resumed(const io::CheckpointRecord& record, const Simulation& sim) {
+    if (!record.has("fields.items")) return std::nullopt;
+    const auto bad = [&](const std::string& why) {
+        return Error(record.source + ": its fields taken during the run do not fit together: " + why);
+    };
+    FieldRecorder r;
+    std::istringstream lines(record.text("fields.items"));
+    for (std::string item; std::getline(lines, item);) r.items_.push_back(item);
+    r.options_ = parse_fields_during_run(r.items_);
+    r.dt_ = sim.dt();
+    const std::vector<double>& grid = record.numbers("fields.grid");
+    const std::vector<double>& steps = record.numbers("fields.steps");
+    if (grid.size() != 17 || steps.size() != 2) throw bad("fields.grid or fields.steps has the wrong length");
+    analysis::CgSettings& c = r.settings_;
+    for (std::size_t k = 0; k < 3; ++k) {
+        c.grid.lo[static_cast<int>(k)] = grid[k];
+        c.grid.hi[static_cast<int>(k)] = grid[3 + k];
+        if (!(grid[6 + k] >= 1.0 && grid[6 + k] <= 1e12 && grid[6 + k] == std::floor(grid[6 + k])))
+            throw bad("fields.grid: cells not a whole number >= 1");
+        c.grid.cells[k] = static_cast<std::size_t>(grid[6 + k]);
+        c.grid.averaged[k] = grid[9 + k] != 0.0;
+        c.grid.periodic[k] = grid[12 + k] != 0.0;
+    }
+    c.kernel = grid[15] != 0.0 ? analysis::CgKernel::lucy : analysis::CgKernel::gaussian;
+    c.width = grid[16];
+    if (const std::string problem = analysis::cg_settings_problem(c); !problem.empty()) throw bad(problem);
+    if (!(steps[0] >= 1.0 && steps[1] >= 1.0 && steps[0] <= 9e15 && steps[1] <= 9e15))
+        throw bad("fields.steps out of range");
+    r.first_ = static_cast<std::int64_t>(steps[0]);
+    r.between_ = static_cast<std::int64_t>(steps[1]);
+    r.times_ = record.numbers("fields.times");
+    check_memory({field_memory_bytes(r.options_.settings, c.grid), "the grid of the fields taken during the run"},
+                 memory_limit_bytes(0.0), record.source, "tumble resume's limit");
+    r.sum_.emplace(c);
+    try {
+        r.sum_->restore(record.numbers("fields.sums"), r.times_.size());
+    } catch (const Error& e) {
+        throw bad(e.what());
+    }
+    return r;
 }
 
 std::string FieldRecorder::summary() const {

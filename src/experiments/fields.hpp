@@ -26,6 +26,7 @@
 #include "tumble/analysis/coarse_grain.hpp"
 #include "tumble/analysis/flowing_layer.hpp"
 #include "tumble/analysis/simulation_fields.hpp"
+#include "io/checkpoint.hpp"
 #include "tumble/core/domain.hpp"
 
 namespace tumble::experiments {
@@ -141,10 +142,22 @@ FieldsDuringRun parse_fields_during_run(const std::vector<std::string>& items);
 // states. `last_step`: the run's last step where it is known (0
 // otherwise), which `from` must not pass. tumble::Error naming the key
 // otherwise, and for a simulation shared among MPI ranks.
+//
+// A checkpoint of the run keeps the recorder (save): its items, grid and
+// steps, the states' times and the sums, 24 numbers a node; a resumed run
+// goes on from them (resumed) and writes at its end the fields an
+// uninterrupted run would have written, bit for bit.
 class FieldRecorder {
 public:
     FieldRecorder(const std::vector<std::string>& items, const Simulation& sim, std::int64_t last_step,
                   double max_memory_gib);
+    // Into a checkpoint's record (keys "fields.*"); nothing once written.
+    void save(io::CheckpointRecord& record) const;
+    // The recorder a checkpoint's record saved, for the simulation restored
+    // from it; none if the run took no fields. tumble::Error naming the
+    // checkpoint if the record's fields do not fit together, or the grid's
+    // memory is more than half the machine's.
+    static std::optional<FieldRecorder> resumed(const io::CheckpointRecord& record, const Simulation& sim);
     // `steps` steps of `sim`, the states due among them taken (Simulation::advance otherwise).
     void advance(Simulation& sim, std::int64_t steps);
     // The fields of the states taken so far into `out` (write_fields_files);
@@ -154,6 +167,9 @@ public:
     std::string summary() const;  // the grid and its memory, and the states' steps
 
 private:
+    FieldRecorder() = default;
+
+    std::vector<std::string> items_;
     FieldsDuringRun options_;
     analysis::CgSettings settings_;
     std::int64_t first_ = 0, between_ = 0;  // the steps of the states: first_ + k between_

@@ -80,7 +80,22 @@ TEST_F(RunFields, EqualThoseOfTumbleFieldsFromTheSameStatesBitForBit) {
     const auto resumed = tumble("resume -q " + b.string());
     ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
     EXPECT_EQ(read_file(dir_ / "a" / "time_series.csv"), read_file(b / "time_series.csv"));
-    EXPECT_FALSE(fs::exists(b / "fields"));  // a resumed run takes no fields
+    EXPECT_FALSE(fs::exists(b / "fields"));  // a run that asked for none takes none when resumed
+
+    // Run C asks for A's fields, stops at step 1300 (two of the five states
+    // taken, at steps 1000 and 1200) and is resumed: its checkpoint keeps
+    // the sums, and the resumed run writes A's files, bit for bit
+    // (tolerance none: the same sums of the same states in the same order).
+    const fs::path c = dir_ / "c";
+    const auto c_stopped = tumble("run -q " + with_fields.string() + " --out " + c.string() +
+                                  " --stop-at-step 1300 --fields every=0.002 --fields 'lo=-0.03,-0.03,0 "
+                                  "hi=0.03,0.03,0.06 average=xy cells=1,1,24 kernel=lucy width=0.004'");
+    ASSERT_EQ(c_stopped.exit_code, 4) << c_stopped.output;
+    EXPECT_FALSE(fs::exists(c / "fields"));
+    const auto c_resumed = tumble("resume -q " + c.string());
+    ASSERT_EQ(c_resumed.exit_code, 0) << c_resumed.output;
+    for (const char* file : {"fields.csv", "fields.vti"})
+        EXPECT_EQ(read_file(dir_ / "a" / "fields" / file), read_file(c / "fields" / file)) << file;
 }
 
 }  // namespace

@@ -428,6 +428,37 @@ void FieldAccumulator::add(const CgGrains& grains, std::span<const CgContact> co
     ++samples_;
 }
 
+namespace {
+constexpr std::size_t sums_per_node = 24;
+}
+
+std::vector<double> FieldAccumulator::sums() const {
+    std::vector<double> out;
+    out.reserve(sums_per_node * mass_.size());
+    for (std::size_t n = 0; n < mass_.size(); ++n) {
+        out.insert(out.end(), {mass_[n], volume_[n], mass_diameter_[n], momentum_[n].x, momentum_[n].y, momentum_[n].z});
+        out.insert(out.end(), kinetic_[n].c.begin(), kinetic_[n].c.end());
+        out.insert(out.end(), contact_[n].c.begin(), contact_[n].c.end());
+    }
+    return out;
+}
+
+void FieldAccumulator::restore(std::span<const double> sums, std::size_t samples) {
+    if (sums.size() != sums_per_node * mass_.size())
+        throw Error("coarse-graining: " + std::to_string(sums.size()) + " sums to go on from, where a grid of " +
+                    std::to_string(mass_.size()) + " nodes has " + std::to_string(sums_per_node * mass_.size()));
+    if (!std::all_of(sums.begin(), sums.end(), [](double x) { return std::isfinite(x); }))
+        throw Error("coarse-graining: a sum to go on from is not finite");
+    for (std::size_t n = 0; n < mass_.size(); ++n) {
+        const double* x = sums.data() + sums_per_node * n;
+        mass_[n] = x[0], volume_[n] = x[1], mass_diameter_[n] = x[2];
+        momentum_[n] = Vec3{x[3], x[4], x[5]};
+        std::copy(x + 6, x + 15, kinetic_[n].c.begin());
+        std::copy(x + 15, x + 24, contact_[n].c.begin());
+    }
+    samples_ = samples;
+}
+
 Fields FieldAccumulator::finish() && {
     const std::size_t n = mass_.size();
     const CgGrid& g = s_.grid;

@@ -169,6 +169,17 @@ public:
     void add(const CgGrains& grains, std::span<const CgContact> contacts);
     Fields finish() &&;
 
+    // The sums so far, to go on from elsewhere (a checkpoint): per node its
+    // mass, volume, mass x diameter, momentum (3), kinetic (9) and contact
+    // (9) stress sums, 24 numbers, node after node; and the samples added.
+    std::vector<double> sums() const;
+    std::size_t samples() const { return samples_; }
+    // Goes on from sums() and samples() of an accumulator of the same
+    // settings: the fields finished later are bit for bit those of one
+    // accumulator that took every sample. tumble::Error if the length does
+    // not fit the grid or a number is not finite.
+    void restore(std::span<const double> sums, std::size_t samples);
+
 private:
     CgSettings s_;
     std::size_t samples_ = 0;
