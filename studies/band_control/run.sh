@@ -59,8 +59,8 @@ one_run() {
 }
 
 pids=()
-for case in ${CASES:-control}; do
-  for seed in ${SEEDS:-1 2 3}; do
+for seed in ${SEEDS:-1 2 3}; do
+  for case in ${CASES:-control}; do
     while (( $(jobs -rp | wc -l) >= ${JOBS:-2} )); do sleep 5; done
     one_run "$case" "$seed" &
     pids+=($!)
