@@ -43,6 +43,11 @@ def test_band_files_of_a_run(tiny_drum):
     _, core = run.band_profile("bed_core_fraction")
     assert core.shape == phi.shape
     assert run.band_summary["radial_core"]["reference"] == "bed centroid"
+    # Six shells per particle snapshot, holding every grain between them (exact: counts).
+    shells = run.radial_shells
+    assert list(shells.columns) == ["revolutions", "shell", "radius", "grains", "small_fraction"]
+    per_snapshot = shells.groupby("revolutions")
+    assert (per_snapshot.size() == 6).all() and (per_snapshot["grains"].sum() == 6).all()
     # The halves' boundary at z = 0: its blur is not measured in a drum 3 cm long (the windows keep 2 cm from
     # the caps), and no band_edges.csv is written.
     edges = run.band_summary["edges"]

@@ -126,6 +126,14 @@ class Run:
         return self.table("band_edges.csv")
 
     @property
+    def radial_shells(self):
+        """radial_shells.csv: per particle snapshot, the small grains' volume
+        fraction in each of 6 shells of equal grain volume about the bed's
+        centre (revolutions, shell from 0 innermost, radius, grains,
+        small_fraction; docs/BAND-ANALYSIS.md, "Radial shells")."""
+        return self.table("radial_shells.csv")
+
+    @property
     def band_summary(self):
         """bands.json: the thresholds, the final bands, the events (merges), the radial core per block of N."""
         return json.loads((self.directory / "bands.json").read_text())
