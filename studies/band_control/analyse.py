@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """The positive control's verdict (PLAN.md, "The test and its verdict";
-docs/BANDS.md, "The positive control").
+docs/BANDS.md, "A positive control: a short drum of glass-like beads bands").
 
     python3 studies/band_control/analyse.py collect   # out/<case>_seed<k> -> results.csv (kept in git)
     python3 studies/band_control/analyse.py           # results.csv -> results.md (the table)
@@ -136,7 +136,7 @@ SECTION = "### A positive control"
 
 def quoted_numbers():
     """The intervals "X [LO, HI]" and spreads "X (A, B: two seeds" that docs/BANDS.md's positive control quotes."""
-    text = (ROOT / "docs" / "BANDS.md").read_text()
+    text = (ROOT / "docs" / 'BANDS.md').read_text()
     section = text[text.index(SECTION):]
     section = " ".join(section[:section.find("\n#", 1)].split())  # an interval may run over a line's end
     return (re.findall(r"[+-]\d+\.\d+ \[[+-]\d+\.\d+, [+-]\d+\.\d+\]", section) +
