@@ -49,6 +49,9 @@ def block_name(a, b):
 
 
 def collect():
+    """Each finished run of out/ replaces its row; the rows of runs not here (made on another machine, kept
+    in results.csv) stay."""
+    kept = {(r["case"], int(r["seed"])): r for r in read_rows()} if CSV.exists() else {}
     rows = []
     for run in sorted(OUT.glob("*_seed*")):
         if not (run / "summary.json").exists() or not run.is_dir():
@@ -65,12 +68,14 @@ def collect():
                 if name is not None:
                     row[name] = round(block["excess"], 4)
         rows.append(row)
+        kept.pop((case, int(seed)), None)
+    rows = sorted(list(kept.values()) + rows, key=lambda r: (list(CASES).index(r["case"]), int(r["seed"])))
     with CSV.open("w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=FIELDS, lineterminator="\n")
         writer.writeheader()
         for row in rows:
             writer.writerow({k: ("" if row.get(k) is None else row.get(k)) for k in FIELDS})
-    print(f"{len(rows)} finished runs into {CSV.relative_to(ROOT)}")
+    print(f"{len(rows)} finished runs into {CSV.relative_to(ROOT)} ({len(kept)} of them kept from before)")
 
 
 def read_rows():
