@@ -140,12 +140,15 @@ SECTION = "### A positive control"
 
 
 def quoted_numbers():
-    """The intervals "X [LO, HI]" and spreads "X (A, B: two seeds" that docs/BANDS.md's positive control quotes."""
+    """The intervals "X [LO, HI]", spreads "X (A, B: two seeds", single values +-X.XXX and onset revolutions
+    that docs/BANDS.md's positive control quotes."""
     text = (ROOT / "docs" / 'BANDS.md').read_text()
     section = text[text.index(SECTION):]
     section = " ".join(section[:section.find("\n#", 1)].split())  # an interval may run over a line's end
     return (re.findall(r"[+-]\d+\.\d+ \[[+-]\d+\.\d+, [+-]\d+\.\d+\]", section) +
-            re.findall(r"[+-]\d+\.\d+ \([+-]\d+\.\d+, [+-]\d+\.\d+: two seeds", section))
+            re.findall(r"[+-]\d+\.\d+ \([+-]\d+\.\d+, [+-]\d+\.\d+: two seeds", section) +
+            re.findall(r"[+-]\d\.\d{3}\b", section) +  # every number of three decimals, one seed's too
+            re.findall(r"\b\d+\.\d\b(?= on\b|,| and)", section))  # the revolutions at which bands appeared
 
 
 def main():
