@@ -17,7 +17,7 @@ the revolution at which bands first appeared (null: none) and the radial
 core at the end.
 
 The table gives, per case (control: caps of the wall's friction; nocap:
-frictionless caps), each number's mean over the seeds with its 95 %
+frictionless caps; cohesive: the control with the paper's attraction), each number's mean over the seeds with its 95 %
 Student's t interval (n - 1 degrees of freedom; 4.30 for 3 seeds; with two
 seeds the two values, a spread, not an interval). The seeds are independent
 mixed packings: their spread is all that an interval rests on.
@@ -26,20 +26,21 @@ Standard library only (matplotlib for --figure).
 """
 import csv
 import json
-import math
 import re
 import sys
 from pathlib import Path
 
 STUDY = Path(__file__).resolve().parent
 ROOT = STUDY.parents[1]
+sys.path.insert(0, str(STUDY.parent))
+from seeds import interval  # noqa: E402
 OUT = STUDY / "out"
 CSV = STUDY / "results.csv"
 TABLE = STUDY / "results.md"
 FIGURE = ROOT / "docs" / "images" / "band_control.png"
-CASES = {"control": "caps of the wall's friction (0.4)", "nocap": "frictionless caps"}
+CASES = {"control": "caps of the wall's friction (0.4)", "nocap": "frictionless caps",
+         "cohesive": "the paper's attraction, W = 0.2 J/m^2"}
 BLOCKS = [(0, 1), (1, 2), (2, 4), (4, 8), (8, 16), (16, 32)]
-T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571}
 FIELDS = (["case", "seed", "revolutions", "bands_end", "onset_revolution", "core_end"] +
           [f"{side}_{a}_{b}" for a, b in BLOCKS for side in ("left", "right")])
 
@@ -94,9 +95,8 @@ def summary(values, digits=3):
         return f"{mean:+.{digits}f} (one seed)"
     if n == 2:
         return f"{mean:+.{digits}f} ({values[0]:+.{digits}f}, {values[1]:+.{digits}f}: two seeds, a spread)"
-    sd = math.sqrt(sum((v - mean) ** 2 for v in values) / (n - 1))
-    half = T95[n - 1] * sd / math.sqrt(n)
-    return f"{mean:+.{digits}f} [{mean - half:+.{digits}f}, {mean + half:+.{digits}f}]"
+    _, lo, hi = interval(values)
+    return f"{mean:+.{digits}f} [{lo:+.{digits}f}, {hi:+.{digits}f}]"
 
 
 def number(text):
@@ -186,7 +186,7 @@ def figure():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, len(CASES), figsize=(9, 4.2), sharey=True, constrained_layout=True)
+    fig, axes = plt.subplots(1, len(CASES), figsize=(3 + 3 * len(CASES), 4.2), sharey=True, constrained_layout=True)
     image = None
     for ax, case in zip(axes, CASES):
         run = OUT / f"{case}_seed1"

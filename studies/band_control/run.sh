@@ -17,7 +17,9 @@
 #   SEEDS        seeds (default "1 2 3")
 #   CASES        control: the drum as in drum.toml (caps of the wall's friction);
 #                nocap: the same with frictionless end caps (cap_friction 0),
-#                the negative control (default "control")
+#                the negative control; cohesive: the paper's attraction,
+#                W = 0.2 J/m^2 on every pair (--surface-energy 0.2), the
+#                fair test of Kohring's question (default "control")
 #   REVOLUTIONS  revolutions in all (default 100)
 #   OUT          where the run directories go (default studies/band_control/out)
 set -euo pipefail
@@ -38,7 +40,8 @@ one_run() {
   case $case in
     control) ;;
     nocap) extra=(--cap-friction 0) ;;
-    *) echo "band_control: unknown case $case (control, nocap)" >&2; return 2 ;;
+    cohesive) extra=(--surface-energy 0.2) ;;
+    *) echo "band_control: unknown case $case (control, nocap, cohesive)" >&2; return 2 ;;
   esac
   local had longer=()
   had=$(awk -F' = ' '$1 == "revolutions" {print $2}' "$dir/drum_run.toml" 2>/dev/null || true)

@@ -36,6 +36,8 @@ import tomllib
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent))
+from seeds import interval  # noqa: E402
 MU_S, MU_2, I_0 = math.tan(math.radians(20.9)), math.tan(math.radians(32.76)), 0.279
 BINS = [(0.001, 0.01), (0.01, 0.03), (0.03, 0.1), (0.1, 0.3), (0.3, 1.0)]
 DENSE = 0.8  # of the bed's solid fraction
@@ -44,7 +46,6 @@ SETTINGS = tomllib.loads((HERE / "drum.toml").read_text())
 R_DRUM = SETTINGS["drum"]["diameter"] / 2  # m, to the wall spheres' inner side
 BEAD = 2 * SETTINGS["material"][0]["radius"]  # m
 WIDTH = BEAD / 2  # m: the kernel's width, fields' default (the mean radius)
-T95 = {2: 12.706, 3: 4.303, 4: 3.182, 5: 2.776, 6: 2.571}  # Student t, two-sided 95 %, by number of seeds
 
 
 def jop(I):
@@ -100,16 +101,6 @@ def run_bins(run):
         enough = len(pts) >= MIN_NODES
         out.append((sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts), len(pts)) if enough else None)
     return frame, out
-
-
-def interval(values):
-    n = len(values)
-    m = sum(values) / n
-    if n < 2:
-        return m, float("nan"), float("nan")
-    s = math.sqrt(sum((v - m) ** 2 for v in values) / (n - 1))
-    h = T95[n] * s / math.sqrt(n)
-    return m, m - h, m + h
 
 
 def analyse(runs):

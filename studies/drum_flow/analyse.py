@@ -1,0 +1,335 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""The flowing layer of the drum of Alizadeh et al. (AIChE J. 59, 1894,
+2013) against their measured velocity profile (alizadeh_rpt.csv).
+
+Each run's depth profile (flowing_layer/profile.csv: the fields in the
+drum's frame along the middle fifth of the surface, docs/FIELDS.md, "The
+drum's frame") is placed on the experiment's line: y = level - d, the
+position on the normal to the surface through the drum's axis (0 on the
+axis, negative into the bed), with level the surface's (drum_frame.json).
+The same estimators then read the experiment's points and each run:
+
+- the layer's lower edge y0: where the velocity along the surface, going
+  down from the top, first turns from downhill (> 0) to uphill (linear
+  between points);
+- the velocity gradient in the layer, du/dy: the least-squares line
+  through the points above y0;
+- the velocity at the surface: that line at the surface (the run's fitted
+  surface; the experiment's highest point, since where its surface lies
+  was not read);
+- the flowing layer's thickness: the surface less y0;
+- the bed's rotation: u = w y fitted through the axis to the points
+  deeper than y = -0.09 m (well below the layer: the bed turning with the
+  drum gives the drum's omega, 1.2147 rad/s);
+- the difference of the profiles: the root mean square of the run's u,
+  linear between its nodes, less the experiment's, over the experiment's
+  points; on the experiment's line, and with each profile put below its
+  own surface (the experiment's highest point, the run's fitted surface).
+
+A column per bead friction run (run.sh: 0.3, the Lethe project's model of
+this experiment; 0.5, which follows Jop et al.'s mu(I) in studies/mu_i,
+when asked for); the seeds are the independent samples: mean and 95 % t
+interval (studies/seeds.py). Writes the table between the markers of README.md and
+of docs/FIELDS.md, and the figure docs/images/fields_drum_rpt.png.
+
+    python3 studies/drum_flow/analyse.py --keep OUT  (what the analysis reads of OUT's runs, into kept/)
+    python3 studies/drum_flow/analyse.py [--figure]  (the table from kept/, and the figure)
+    python3 studies/drum_flow/analyse.py --check     (the estimators on a made-up profile; the tables are the kept runs')
+"""
+
+import csv
+import json
+import math
+import re
+import shutil
+import sys
+import tempfile
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent.parent
+sys.path.insert(0, str(HERE.parent))
+from seeds import interval  # noqa: E402
+
+EXPERIMENT = HERE / "alizadeh_rpt.csv"
+FIGURE = ROOT / "docs" / "images" / "fields_drum_rpt.png"
+DOCS = [HERE / "README.md", ROOT / "docs" / "FIELDS.md"]
+BEGIN, END = "<!-- table: studies/drum_flow/analyse.py -->", "<!-- end of table -->"
+OMEGA = 1.2147  # rad/s, the drum's (alizadeh.toml)
+BEAD = 0.003  # m
+DEEP = -0.09  # m: the bed below this turns with the drum
+ANGLE_REPORTED = 27.0  # degrees: the experiment's angle as Lethe's example quotes it (not read in the paper)
+PROFILE_COLUMNS = ["d", "velocity_s", "solid_fraction", "shear_rate", "inertial_number", "friction"]
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+def experiment():
+    """The measured points, (y, u) from the top down."""
+    rows = read_csv(EXPERIMENT)
+    return sorted(((float(r["y_m"]), float(r["u_m_per_s"])) for r in rows), key=lambda p: -p[0])
+
+
+def run_profile(kept, name):
+    """A run's profile on the experiment's line, (y, u) from the top down, and its surface."""
+    frame = json.loads((kept / f"{name}_drum_frame.json").read_text())
+    level = frame["surface_level_m"]
+    points = [(level - float(r["d"]), float(r["velocity_s"])) for r in read_csv(kept / f"{name}_profile.csv")
+              if float(r["d"]) >= 0.0]  # inside the bed: from the surface down
+    return sorted(points, key=lambda p: -p[0]), frame
+
+
+def lower_edge(points):
+    """y where u first turns from > 0 to <= 0 going down (linear between points), or None."""
+    for (y1, u1), (y2, u2) in zip(points, points[1:]):
+        if u1 > 0.0 >= u2:
+            return y1 + (y2 - y1) * u1 / (u1 - u2)
+    return None
+
+
+def line(points):
+    """Least-squares u = a + b y: (a, b)."""
+    n = len(points)
+    my = sum(y for y, _ in points) / n
+    mu = sum(u for _, u in points) / n
+    b = sum((y - my) * (u - mu) for y, u in points) / sum((y - my) ** 2 for y, _ in points)
+    return mu - b * my, b
+
+
+def measures(points, surface):
+    """The estimators of the docstring on one profile (y, u from the top down) with its surface's y."""
+    y0 = lower_edge(points)
+    a, b = line([p for p in points if p[0] > y0])
+    deep = [p for p in points if p[0] < DEEP]
+    w = sum(y * u for y, u in deep) / sum(y * y for y, _ in deep)
+    return {"surface_y": surface, "lower_edge_y": y0, "thickness": surface - y0, "gradient": b,
+            "surface_velocity": a + b * surface, "bed_rotation": w}
+
+
+def at(points, y):
+    """u at y, linear between the profile's points, or None outside them."""
+    for (y1, u1), (y2, u2) in zip(points, points[1:]):
+        if y2 <= y <= y1:
+            return u1 if y1 == y2 else u1 + (u2 - u1) * (y - y1) / (y2 - y1)
+    return None
+
+
+def rms_difference(points, reference):
+    diffs = [at(points, y) - u for y, u in reference if at(points, y) is not None]
+    return math.sqrt(sum(d * d for d in diffs) / len(diffs))
+
+
+def runs_in(kept):
+    """The kept runs by bead friction: {"0.3": ["mu0.3_seed1", ...], ...}."""
+    names = sorted(p.name.removesuffix("_drum_frame.json") for p in kept.glob("mu*_seed*_drum_frame.json"))
+    groups = {}
+    for name in names:
+        groups.setdefault(name.split("_")[0].removeprefix("mu"), []).append(name)
+    return groups
+
+
+def analyse(kept):
+    """The experiment's measures, and each run's by bead friction."""
+    exp = experiment()
+    measured = measures(exp, exp[0][0])
+    runs = {}
+    for friction, names in runs_in(kept).items():
+        for name in names:
+            points, frame = run_profile(kept, name)
+            m = measures(points, frame["surface_level_m"])
+            m["angle"] = frame["angle_of_repose_deg"]
+            m["rms_difference"] = rms_difference(points, exp)
+            level, top = frame["surface_level_m"], exp[0][0]
+            m["rms_below_surface"] = rms_difference([(y - level, u) for y, u in points],
+                                                    [(y - top, u) for y, u in exp])
+            runs.setdefault(friction, []).append(m)
+    return measured, runs
+
+
+def fmt(values, scale=1.0, digits=3):
+    """The mean [95 % t interval]; one seed: its value; two: both, a spread and not an interval."""
+    values = [v * scale for v in values]
+    m, lo, hi = interval(values)
+    if len(values) < 3:
+        return f"{m:.{digits}f} ({', '.join(f'{v:.{digits}f}' for v in values)}: a spread, not an interval)"
+    return f"{m:.{digits}f} [{lo:.{digits}f}, {hi:.{digits}f}]"
+
+
+def table(measured, runs):
+    """One row a measure: the experiment's value, then tumble's mean [95 % t] over the seeds, per bead friction."""
+    rows = [  # quantity, the experiment's value as printed, tumble's per run, scale, digits
+        ("dynamic angle of repose (degrees)", f"{ANGLE_REPORTED:.0f} (as quoted by Lethe's example)",
+         lambda r: r["angle"], 1, 1),
+        ("the surface, below the axis (mm)", f"{-1e3 * measured['surface_y']:.1f} (the highest point)",
+         lambda r: -r["surface_y"], 1e3, 1),
+        ("the layer's lower edge (u = 0), below the axis (mm)", f"{-1e3 * measured['lower_edge_y']:.1f}",
+         lambda r: -r["lower_edge_y"], 1e3, 1),
+        ("flowing layer's thickness (mm)", f"{1e3 * measured['thickness']:.1f}", lambda r: r["thickness"], 1e3, 1),
+        ("the same in bead diameters", f"{measured['thickness'] / BEAD:.1f}", lambda r: r["thickness"], 1 / BEAD, 1),
+        ("velocity at the surface (m/s)", f"{measured['surface_velocity']:.3f}",
+         lambda r: r["surface_velocity"], 1, 3),
+        ("velocity gradient in the layer, du/dy (1/s)", f"{measured['gradient']:.2f}", lambda r: r["gradient"], 1, 2),
+        (f"the bed's rotation below y = {DEEP} m (rad/s; the drum's {OMEGA})", f"{measured['bed_rotation']:.3f}",
+         lambda r: r["bed_rotation"], 1, 3),
+        ("root mean square of tumble's u less the measured, on the line (m/s)", "",
+         lambda r: r["rms_difference"], 1, 3),
+        ("the same, each profile below its own surface (m/s)", "", lambda r: r["rms_below_surface"], 1, 3),
+    ]
+    frictions = sorted(runs, key=float)
+    lines = ["| quantity | Alizadeh et al. (2013) | " +
+             " | ".join(f"tumble, bead friction {f}, {len(runs[f])} seeds" for f in frictions) + " |",
+             "|---|---|" + "---|" * len(frictions)]
+    for q, e, value, scale, digits in rows:
+        lines.append(f"| {q} | {e} | " +
+                     " | ".join(fmt([value(r) for r in runs[f]], scale, digits) for f in frictions) + " |")
+    return "\n".join(lines) + "\n\ntumble: mean over the seeds [95 % t interval]."
+
+
+SECTION = "## A drum against glass beads measured by particle tracking"  # of docs/FIELDS.md
+
+
+def quoted_intervals():
+    """The intervals "X [LO, HI]" that README.md and docs/FIELDS.md's section quote, tables included."""
+    fields = DOCS[1].read_text()
+    section = fields[fields.index(SECTION):]
+    section = section[:section.find("\n## ", 1)]
+    text = " ".join((DOCS[0].read_text() + section).split())  # an interval may run over a line's end
+    return re.findall(r"-?\d+\.\d+ \[-?\d+\.\d+, -?\d+\.\d+\]", text)
+
+
+def with_table(text, tab):
+    i, j = text.index(BEGIN) + len(BEGIN), text.index(END)
+    return text[:i] + "\n" + tab + "\n" + text[j:]
+
+
+def keep(out):
+    """Each finished run's drum frame and a few columns of its depth profile, into kept/."""
+    kept = HERE / "kept"
+    kept.mkdir(exist_ok=True)
+    for run in sorted(out.glob("mu*_seed*")):
+        source = run / "flowing_layer"
+        if not (source / "drum_frame.json").exists():
+            continue
+        shutil.copyfile(source / "drum_frame.json", kept / f"{run.name}_drum_frame.json")
+        rows = read_csv(source / "profile.csv")
+        with open(kept / f"{run.name}_profile.csv", "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(PROFILE_COLUMNS)
+            w.writerows([[r[c] for c in PROFILE_COLUMNS] for r in rows])
+        summary = json.loads((run / "summary.json").read_text())
+        (kept / f"{run.name}_run.json").write_text(json.dumps(
+            {k: summary[k] for k in ("grains", "fill_fraction", "angle_of_repose", "grain_updates_per_second")},
+            indent=1) + "\n")
+
+
+def figure(kept, path):
+    """Left: the profiles on the experiment's line; right: against the depth below each one's own surface."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    exp = experiment()
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 5.2), sharex=True)
+    for (friction, names), colour in zip(sorted(runs_in(kept).items(), key=lambda t: float(t[0])), ["C0", "C3"]):
+        runs = [run_profile(kept, name) for name in names]
+        for ax, shifted in ((left, False), (right, True)):
+            # each run on the depth below its own surface (right), or where it lies (left)
+            profiles = [[(y - frame["surface_level_m"] if shifted else y, u) for y, u in p] for p, frame in runs]
+            top = min(p[0][0] for p in profiles)
+            bands = []
+            for y in (top - 0.0005 * k for k in range(int((top + 0.118) / 0.0005))):
+                got = [at(p, y) for p in profiles]
+                if None not in got:
+                    bands.append((y, *interval(got)))
+            ax.fill_betweenx([b[0] for b in bands], [b[2] for b in bands], [b[3] for b in bands], color=colour,
+                             alpha=0.3, lw=0)
+            ax.plot([b[1] for b in bands], [b[0] for b in bands], "-", color=colour,
+                    label=f"tumble, bead friction {friction}: mean of {len(profiles)} seeds, 95 %")
+    left.plot([u for _, u in exp], [y for y, _ in exp], "kx", label="Alizadeh et al. 2013 (RPT)")
+    right.plot([u for _, u in exp], [y - exp[0][0] for y, _ in exp], "kx",
+               label="Alizadeh et al. 2013, below its highest point")
+    left.plot([OMEGA * y for y in (-0.12, 0.0)], [-0.12, 0.0], "k:", lw=0.8, label="the drum's rotation, omega y")
+    for ax in (left, right):
+        ax.axvline(0.0, color="0.6", lw=0.6)
+        ax.set_xlim(-0.2, 0.45)
+        ax.set_xlabel("velocity along the surface, downhill (m/s)")
+        ax.legend(fontsize=8, loc="lower right")
+    left.set_ylim(-0.12, -0.02)
+    right.set_ylim(-0.09, 0.01)
+    left.set_ylabel("y: position on the normal through the axis (m)")
+    right.set_ylabel("below the surface (m)")
+    fig.suptitle("3 mm glass beads, a drum 24 cm across at 11.6 rpm: the velocity along the surface")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def synthetic_problem():
+    """The estimators on a made-up run whose answers are known, or what they got wrong.
+
+    Surface 30 mm below the axis; u = 12 (y - y0) above y0 = -60 mm, the
+    drum's rotation omega y below y = -90 mm and a straight line between,
+    on a 1 mm grid of depths; the kept files as --keep writes them."""
+    level, y0, grad = -0.030, -0.060, 12.0
+
+    def u(y):
+        if y >= y0:
+            return grad * (y - y0)
+        if y <= DEEP:
+            return OMEGA * y
+        return OMEGA * DEEP * (y - y0) / (DEEP - y0)
+
+    with tempfile.TemporaryDirectory() as tmp:
+        kept = Path(tmp)
+        (kept / "mu0.3_seed1_drum_frame.json").write_text(json.dumps({"surface_level_m": level, "angle_of_repose_deg": 27.0}))
+        with open(kept / "mu0.3_seed1_profile.csv", "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(PROFILE_COLUMNS)
+            for k in range(-3, 90):
+                d = 1e-3 * k
+                w.writerow([repr(d), repr(u(level - d)), "0.6", "0", "0", "0"])
+        points, frame = run_profile(kept, "mu0.3_seed1")
+    got = measures(points, frame["surface_level_m"])
+    want = {"surface_y": level, "lower_edge_y": y0, "thickness": level - y0, "gradient": grad,
+            "surface_velocity": grad * (level - y0), "bed_rotation": OMEGA}
+    wrong = [f"{k} {got[k]!r} where the profile has {v!r}" for k, v in want.items() if abs(got[k] - v) > 1e-9]
+    if points[0][0] > level:
+        wrong.append("took points above the surface")
+    return "; ".join(wrong)
+
+
+def main(argv):
+    if "--keep" in argv:
+        keep(Path([a for a in argv if not a.startswith("--")][0]))
+    kept = HERE / "kept"
+    measured, runs = analyse(kept)
+    tab = table(measured, runs)
+    if "--check" in argv:
+        problem = synthetic_problem()
+        if problem:
+            print(f"studies/drum_flow/analyse.py on a made-up profile: {problem}")
+            return 1
+        stale = [str(p.relative_to(ROOT)) for p in DOCS if with_table(p.read_text(), tab) != p.read_text()]
+        if stale:
+            print(f"{', '.join(stale)}: the table is not the kept runs' (python3 studies/drum_flow/analyse.py)")
+            return 1
+        missing = [q for q in quoted_intervals() if q not in tab]
+        if missing:
+            print(f"studies/drum_flow/README.md or docs/FIELDS.md quotes {', '.join(missing)}: not in the table")
+            return 1
+        print(f"studies/drum_flow: the estimators find a made-up profile's answers; the tables are the "
+              f"{sum(len(v) for v in runs.values())} kept runs'")
+        return 0
+    for p in DOCS:
+        p.write_text(with_table(p.read_text(), tab))
+    print(tab)
+    if "--figure" in argv:
+        figure(kept, FIGURE)
+        print(f"wrote {FIGURE.relative_to(ROOT)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
