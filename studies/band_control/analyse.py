@@ -8,7 +8,9 @@ docs/BANDS.md, "A positive control: a short drum of glass-like beads bands").
     python3 studies/band_control/analyse.py --check   # results.md is results.csv's table (a test)
     python3 studies/band_control/analyse.py --figure  # docs/images/band_control.png (the runs' kymographs)
 
-`collect` reads every finished run (summary.json) of out/: its bands.json
+`collect` reads every finished run (summary.json) of out/, and every run
+stopped before its end whose revolutions `tumble analyze RUN --so-far`
+has analysed (so_far/bands.json): its bands.json
 (tumble's band analysis of the small grains, docs/BAND-ANALYSIS.md) gives
 one row per run: the end layers' excess (phi, the small grains' volume
 fraction, in the 2 cm next to each cap less the bed's mean; negative: rich
@@ -51,14 +53,16 @@ def block_name(a, b):
 
 def collect():
     """Each finished run of out/ replaces its row; the rows of runs not here (made on another machine, kept
-    in results.csv) stay."""
+    in results.csv) stay. A run stopped before its end (kill -INT) counts with the revolutions it turned,
+    once `tumble analyze RUN --so-far` has analysed them (RUN/so_far/bands.json)."""
     kept = {(r["case"], int(r["seed"])): r for r in read_rows()} if CSV.exists() else {}
     rows = []
     for run in sorted(OUT.glob("*_seed*")):
-        if not (run / "summary.json").exists() or not run.is_dir():
+        analysed = run / "bands.json" if (run / "summary.json").exists() else run / "so_far" / "bands.json"
+        if not run.is_dir() or not analysed.exists():
             continue
         case, seed = run.name.rsplit("_seed", 1)
-        bands = json.loads((run / "bands.json").read_text())
+        bands = json.loads(analysed.read_text())
         row = {"case": case, "seed": int(seed), "revolutions": round(bands["final"]["revolutions"], 3),
                "bands_end": bands["final"]["bands"], "onset_revolution": bands["onset_revolution"],
                "core_end": round(bands["final"]["core_fraction"] - bands["final"]["periphery_fraction"], 4)}

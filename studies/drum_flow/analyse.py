@@ -54,7 +54,7 @@ from seeds import interval  # noqa: E402
 
 EXPERIMENT = HERE / "alizadeh_rpt.csv"
 FIGURE = ROOT / "docs" / "images" / "fields_drum_rpt.png"
-DOCS = [HERE / "README.md", ROOT / "docs" / "FIELDS.md"]
+DOCS = [HERE / 'README.md', ROOT / 'docs' / 'FIELDS.md']
 BEGIN, END = "<!-- table: studies/drum_flow/analyse.py -->", "<!-- end of table -->"
 OMEGA = 1.2147  # rad/s, the drum's (alizadeh.toml)
 BEAD = 0.003  # m
