@@ -242,12 +242,13 @@ def figure(kept, path):
             bands = []
             for y in (top - 0.0005 * k for k in range(int((top + 0.118) / 0.0005))):
                 got = [at(p, y) for p in profiles]
-                if None not in got:
-                    bands.append((y, *interval(got)))
+                if None not in got:  # two seeds: their range, a spread and not an interval
+                    bands.append((y, *interval(got)) if len(got) > 2 else (y, sum(got) / len(got), min(got), max(got)))
             ax.fill_betweenx([b[0] for b in bands], [b[2] for b in bands], [b[3] for b in bands], color=colour,
                              alpha=0.3, lw=0)
             ax.plot([b[1] for b in bands], [b[0] for b in bands], "-", color=colour,
-                    label=f"tumble, bead friction {friction}: mean of {len(profiles)} seeds, 95 %")
+                    label=f"tumble, bead friction {friction}: mean of {len(profiles)} seeds, " +
+                    ("95 %" if len(profiles) > 2 else "their range"))
     left.plot([u for _, u in exp], [y for y, _ in exp], "kx", label="Alizadeh et al. 2013 (RPT)")
     right.plot([u for _, u in exp], [y - exp[0][0] for y, _ in exp], "kx",
                label="Alizadeh et al. 2013, below its highest point")

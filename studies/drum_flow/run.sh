@@ -10,7 +10,7 @@
 #     bash studies/drum_flow/run.sh [TUMBLE] [OUT]   (default build/tumble, studies/drum_flow/out)
 #     FRICTIONS="0.3" and SEEDS="1 2 3" (the defaults) choose the runs: the bead
 #     friction of the Lethe project's model of this drum; FRICTIONS="0.3 0.5" adds
-#     0.5, which follows Jop et al.'s mu(I) in studies/mu_i (not run yet).
+#     0.5, which follows Jop et al.'s mu(I) in studies/mu_i.
 # Cost on one core (AMD Zen 5): about 13 minutes a run alone (README.md).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
