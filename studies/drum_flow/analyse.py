@@ -45,6 +45,7 @@ import re
 import shutil
 import sys
 import tempfile
+import tomllib
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
@@ -56,8 +57,9 @@ EXPERIMENT = HERE / "alizadeh_rpt.csv"
 FIGURE = ROOT / "docs" / "images" / "fields_drum_rpt.png"
 DOCS = [HERE / 'README.md', ROOT / 'docs' / 'FIELDS.md']
 BEGIN, END = "<!-- table: studies/drum_flow/analyse.py -->", "<!-- end of table -->"
-OMEGA = 1.2147  # rad/s, the drum's (alizadeh.toml)
-BEAD = 0.003  # m
+SETTINGS = tomllib.loads((HERE / "alizadeh.toml").read_text())
+OMEGA = SETTINGS["rotation"]["omega"]  # rad/s, the drum's
+BEAD = 2 * SETTINGS["material"][0]["radius"]  # m
 DEEP = -0.09  # m: the bed below this turns with the drum
 ANGLE_REPORTED = 27.0  # degrees: the experiment's angle as Lethe's example quotes it (not read in the paper)
 PROFILE_COLUMNS = ["d", "velocity_s", "solid_fraction", "shear_rate", "inertial_number", "friction"]
@@ -119,7 +121,7 @@ def at(points, y):
 
 
 def rms_difference(points, reference):
-    diffs = [at(points, y) - u for y, u in reference if at(points, y) is not None]
+    diffs = [v - u for v, u in ((at(points, y), u) for y, u in reference) if v is not None]
     return math.sqrt(sum(d * d for d in diffs) / len(diffs))
 
 
