@@ -168,8 +168,10 @@ int main(int argc, char** argv) {
     const char* fields_help =
         "Coarse-grained fields averaged during the run into RUN/fields (fields.vti, fields.csv), KEY=VALUE items, "
         "repeated or separated by spaces: every (s, default 0.01), from (s of simulated time, default 0), samples (the "
-        "most states), lo, hi (X,Y,Z; default the domain's box), cell, cells (NX,NY,NZ), average, kernel, width, format "
-        "(tumble run: they replace the scenario file's [fields]; docs/FIELDS.md, \"During a run\")";
+        "most states), lo, hi (X,Y,Z; default the domain's box), cell, cells (NX,NY,NZ), average, kernel, width, format, "
+        "frame (lab, or drum: tumble drum only, the cross-section into RUN/flowing_layer with the drum frame's profile "
+        "found from it at the end), span (the drum frame's, default 0.5) (tumble run: they replace the scenario file's "
+        "[fields]; docs/FIELDS.md, \"During a run\")";
     const auto add_fields_option = [&](CLI::App* command, std::vector<std::string>& items) {
         command->add_option("--fields", items, fields_help)
             ->expected(1)

@@ -109,7 +109,7 @@ public:
                                {plan_.scenario_file, plan_.seed, plan_.duration, plan_.steps, seconds,
                                 sim_.scenario().particles.size(), sim_.scenario().free_count(), phases});
         if (fields_) {
-            const std::string written = fields_->write(dir_ / "fields");
+            const std::string written = fields_->write(dir_);
             if (talk) fmt::print("{}\n", written);
         }
         checkpoint(true, progress.elapsed_seconds());
@@ -186,7 +186,7 @@ int run_command(const RunOptions& options) {
     std::optional<FieldRecorder> fields;
     std::vector<std::string> field_items = config.fields;  // the command line's after the file's: they replace them
     field_items.insert(field_items.end(), options.fields.begin(), options.fields.end());
-    if (!field_items.empty()) fields.emplace(field_items, sim, plan.steps, options.max_memory_gib);
+    if (!field_items.empty()) fields.emplace(field_items, sim, plan.steps, options.max_memory_gib, false);
 
     const auto& dir = config.output.directory;
     std::optional<io::RunLock> lock;  // rank 0's: the other ranks write only their checkpoints

@@ -373,7 +373,7 @@ private:
             summary = io::analyze_drum_run(dir_);
         }
         if (fields_) {
-            const std::string written = fields_->write(dir_ / "fields");
+            const std::string written = fields_->write(dir_);
             if (talk()) fmt::print("{}\n", written);
         }
         checkpoint(true, 0.0);
@@ -469,7 +469,7 @@ DrumOutcome run_drum(const DrumRunOptions& options) {
     Simulation sim(std::move(setup.scenario), threads, mpi::size() > 1 ? Ranks::world : Ranks::one);
     check_drum_durations(s.revolutions, omega, s.samples_per_revolution, s.settle_max_time, sim.dt());
     std::optional<FieldRecorder> fields;
-    if (!options.fields.empty()) fields.emplace(options.fields, sim, 0, options.max_memory_gib);
+    if (!options.fields.empty()) fields.emplace(options.fields, sim, 0, options.max_memory_gib, true);
 
     DrumPlan plan;
     io::DrumRunInfo& info = plan.info;

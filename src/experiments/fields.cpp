@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 #include <utility>
 
@@ -15,6 +16,7 @@
 #include "io/checkpoint.hpp"
 #include "io/config.hpp"
 #include "io/fields_output.hpp"
+#include "io/json.hpp"
 #include "io/toml_reader.hpp"
 #include "io/vtk_output.hpp"
 #include "tumble/core/error.hpp"
@@ -202,20 +204,16 @@ void for_each_sample(io::Checkpoint checkpoint, int samples, double every,
     }
 }
 
-// The drum frame's depth profile (RunFieldsOptions) of the samples of
-// `checkpoint`: the surface found on their cross-section `cs` (of settings
-// `c`; their grain centres reach `reach` from the axis, their radii are
-// `largest` at most), the samples taken again, carried into the drum's
-// coordinates and coarse-grained on a grid resolved along d.
-DrumLayer drum_layer(const analysis::Fields& cs, const analysis::CgSettings& c, double reach, double largest,
-                     io::Checkpoint checkpoint, const RunFieldsOptions& o) {
-    DrumLayer out;
-    out.surface = analysis::find_drum_surface(cs, reach, o.span);
-    // The grid: d from 3 widths above the surface to the deepest grain
-    // surface there can be under it, where the circle the grain centres
-    // reach is deepest (d = level + reach), the cross-section's cell size.
-    const double half = o.span * out.surface.half_length, w = c.width, cell = cs.grid.spacing(0);
-    const double deepest = out.surface.level + reach + largest;
+// The depth profile's grid for the surface of cross-section `cs` (of
+// settings `c`; its grain centres reach `reach` from the axis, their radii
+// are `largest` at most): d from 3 widths above the surface to the deepest
+// grain surface there can be under it, where the circle the grain centres
+// reach is deepest (d = level + reach), at the cross-section's cell size;
+// averaged along s over the middle `span` of the chord and along z.
+analysis::CgSettings profile_settings(const analysis::Fields& cs, const analysis::CgSettings& c,
+                                      const analysis::DrumSurface& surface, double reach, double largest, double span) {
+    const double half = span * surface.half_length, w = c.width, cell = cs.grid.spacing(0);
+    const double deepest = surface.level + reach + largest;
     analysis::CgSettings p;
     p.kernel = c.kernel;
     p.width = w;
@@ -225,6 +223,28 @@ DrumLayer drum_layer(const analysis::Fields& cs, const analysis::CgSettings& c, 
     p.grid.cells = {1, static_cast<std::size_t>(cells), 1};
     p.grid.lo = {-half, -3.0 * w, cs.grid.lo.z};
     p.grid.hi = {half, -3.0 * w + cells * cell, cs.grid.hi.z};
+    return p;
+}
+
+// The profile's depth nodes at two points across the span: the velocity
+// gradient along s, for the shear rate (use_in_plane_shear_rate).
+analysis::CgSettings two_across(analysis::CgSettings p) {
+    p.grid.cells[0] = 2;
+    p.grid.averaged[0] = false;
+    return p;
+}
+
+// The drum frame's depth profile (RunFieldsOptions) of the samples of
+// `checkpoint`: the surface found on their cross-section `cs` (of settings
+// `c`, reach and largest as profile_settings), the samples taken again,
+// carried into the drum's coordinates and coarse-grained on a grid
+// resolved along d.
+DrumLayer drum_layer(const analysis::Fields& cs, const analysis::CgSettings& c, double reach, double largest,
+                     io::Checkpoint checkpoint, const RunFieldsOptions& o) {
+    DrumLayer out;
+    out.surface = analysis::find_drum_surface(cs, reach, o.span);
+    const analysis::CgSettings p = profile_settings(cs, c, out.surface, reach, largest, o.span);
+    const double cells = static_cast<double>(p.grid.cells[1]);
     // The resolved grid: the profile's, with frame_cells along s and z.
     std::optional<analysis::FieldAccumulator> resolved;
     if (o.frame_cells[0] > 1.0 || o.frame_cells[1] > 1.0) {
@@ -241,12 +261,7 @@ DrumLayer drum_layer(const analysis::Fields& cs, const analysis::CgSettings& c, 
                      memory_limit_bytes(o.settings.max_memory_gib), "fields", o.memory_option);
         resolved.emplace(r);
     }
-    // The profile's depth nodes at two points across the span: the velocity
-    // gradient along s, for the shear rate (use_in_plane_shear_rate).
-    analysis::CgSettings two = p;
-    two.grid.cells[0] = 2;
-    two.grid.averaged[0] = false;
-    analysis::FieldAccumulator sum(p), across(two);
+    analysis::FieldAccumulator sum(p), across(two_across(p));
     for_each_sample(std::move(checkpoint), o.samples, o.every, [&](const analysis::GrainState& s, const Simulation&) {
         const analysis::GrainState in_frame = analysis::to_drum_frame(s, out.surface);
         sum.add(in_frame.grains(), in_frame.contacts);
@@ -257,6 +272,20 @@ DrumLayer drum_layer(const analysis::Fields& cs, const analysis::CgSettings& c, 
     analysis::use_in_plane_shear_rate(out.profile, std::move(across).finish());
     out.layer = analysis::flowing_layer(out.profile);
     if (resolved) out.resolved = std::move(*resolved).finish();
+    return out;
+}
+
+// The drum frame of cross-section `cs` averaged in the lab during a run
+// (FieldRecorder): the surface found on it, the profile carried from it
+// (analysis::drum_profile_of), at the grid drum_layer takes.
+DrumLayer drum_layer_of_average(const analysis::Fields& cs, const analysis::CgSettings& c, double reach,
+                                double largest, double span) {
+    DrumLayer out;
+    out.surface = analysis::find_drum_surface(cs, reach, span);
+    const analysis::CgSettings p = profile_settings(cs, c, out.surface, reach, largest, span);
+    out.profile = analysis::drum_profile_of(cs, out.surface, p);
+    analysis::use_in_plane_shear_rate(out.profile, analysis::drum_profile_of(cs, out.surface, two_across(p)));
+    out.layer = analysis::flowing_layer(out.profile);
     return out;
 }
 
@@ -322,6 +351,24 @@ void write_fields_files(const fs::path& out, const analysis::Fields& fields, con
     fs::create_directories(out);
     if (format != "csv") io::write_vti_fields(out / "fields.vti", fields);
     if (format != "vti") io::write_fields_csv(out / "fields.csv", fields);
+}
+
+void write_drum_layer_files(const fs::path& out, const DrumLayer& layer, double span) {
+    fs::create_directories(out);
+    io::write_fields_csv(out / "profile.csv", layer.profile, "sdz");
+    if (layer.resolved) io::write_fields_csv(out / "frame.csv", *layer.resolved, "sdz");
+    io::write_json_file(out / "drum_frame.json", io::drum_frame_json(layer.surface, layer.layer, span));
+}
+
+std::string drum_layer_summary(const DrumLayer& layer) {
+    const analysis::DrumSurface& s = layer.surface;
+    const analysis::FlowingLayer& l = layer.layer;
+    const std::string thickness =
+        std::isfinite(l.thickness)
+            ? fmt::format("flowing layer {:.3g} m ({:.2f} grain diameters) deep", l.thickness, l.thickness / l.diameter)
+            : std::string("no flowing layer (the velocity along the surface does not turn below it)");
+    return fmt::format("free surface at {:.2f} degrees, {:.4g} m from the axis; surface velocity {:.3g} m/s, {}",
+                       s.angle * 180.0 / std::numbers::pi, s.level, l.surface_velocity, thickness);
 }
 
 namespace {
@@ -390,10 +437,16 @@ FieldsDuringRun parse_fields_during_run(const std::vector<std::string>& items) {
                 if (value != "vti" && value != "csv" && value != "both")
                     throw Error("fields: format: vti, csv or both, got \"" + value + "\"");
                 o.format = value;
-            } else if (key == "frame")
-                throw Error("fields: frame: the drum frame needs the free surface of the whole average before its "
-                            "profile; take it after the run with tumble fields --frame drum");
-            else
+            } else if (key == "frame") {
+                if (value != "lab" && value != "drum")
+                    throw Error("fields: frame: lab or drum, got \"" + value + "\"");
+                o.frame = value;
+            } else if (key == "span") {
+                o.span = number_of(key, value);
+                if (!(std::isfinite(o.span) && o.span > 0.0 && o.span <= 1.0))
+                    throw Error("fields: span: the middle part of the free surface that the drum frame averages, a "
+                                "number in (0, 1], got " + value);
+            } else
                 throw Error("fields: " + key + ": no such key; the keys are " +
                             fmt::format("{}", fmt::join(io::field_keys, ", ")));
         }
@@ -403,11 +456,20 @@ FieldsDuringRun parse_fields_during_run(const std::vector<std::string>& items) {
 }
 
 FieldRecorder::FieldRecorder(const std::vector<std::string>& items, const Simulation& sim, std::int64_t last_step,
-                             double max_memory_gib)
+                             double max_memory_gib, bool drum)
     : items_(items), options_(parse_fields_during_run(items)), dt_(sim.dt()) {
     FieldsDuringRun& o = options_;
     o.settings.max_memory_gib = max_memory_gib;
     if (sim.shared()) throw Error("fields: taken during a run on one MPI rank only; take them afterwards with tumble fields");
+    if (o.frame == "drum") {
+        if (!drum)
+            throw Error("fields: frame: drum takes a run of tumble drum (its axis is the drum frame's z); this run "
+                        "is not one");
+        if (!o.settings.average.empty() && o.settings.average != "z")
+            throw Error("fields: average: the drum frame's cross-section is averaged along z, the drum's axis (give z "
+                        "or nothing), got \"" + o.settings.average + "\"");
+        o.settings.average = std::string(1, 'z');
+    }
     if (const std::string problem = field_settings_problem(o.settings); !problem.empty())
         throw Error("fields: " + problem);
     if (!(std::isfinite(o.every) && o.every > 0.0))
@@ -421,10 +483,21 @@ FieldRecorder::FieldRecorder(const std::vector<std::string>& items, const Simula
         throw Error(fmt::format("fields: from: {} s is after the run's end, {:.6g} s", o.from,
                                 static_cast<double>(last_step) * dt_));
     const Domain& domain = sim.scenario().domain;
-    o.settings.lo = o.settings.lo.value_or(domain.lo);
-    o.settings.hi = o.settings.hi.value_or(domain.hi);
+    const analysis::GrainState start = analysis::grain_state(sim);
+    Vec3 lo = domain.lo, hi = domain.hi;
+    if (o.frame == "drum" && !start.radius.empty()) {
+        // The profile is carried from the cross-section, so the
+        // cross-section holds the kernel of every grain whole: 3 widths
+        // beyond the drum's box across its axis (m).
+        double mean = 0.0;
+        for (const double R : start.radius) mean += R / static_cast<double>(start.radius.size());
+        const double reach = 3.0 * o.settings.width.value_or(mean);
+        for (int k = 0; k < 2; ++k) lo[k] -= reach, hi[k] += reach;
+    }
+    o.settings.lo = o.settings.lo.value_or(lo);
+    o.settings.hi = o.settings.hi.value_or(hi);
     try {
-        settings_ = grid_settings(o.settings, analysis::grain_state(sim).grains(), "--max-memory GIB", &domain);
+        settings_ = grid_settings(o.settings, start.grains(), "--max-memory GIB", &domain);
     } catch (const Error& e) {  // named as a key of --fields (the memory's message names fields already)
         const std::string why = e.what();
         throw Error(why.starts_with("fields: ") ? why : "fields: " + why);
@@ -450,6 +523,7 @@ void FieldRecorder::save(io::CheckpointRecord& record) const {
     record.set("fields.steps", std::vector<double>{static_cast<double>(first_), static_cast<double>(between_)});
     record.set("fields.times", times_);
     record.set("fields.sums", sum_->sums());
+    record.set("fields.reach", std::vector<double>{reach_, largest_});
 }
 
 std::optional<FieldRecorder> FieldRecorder::resumed(const io::CheckpointRecord& record, const Simulation& sim) {
@@ -483,6 +557,11 @@ std::optional<FieldRecorder> FieldRecorder::resumed(const io::CheckpointRecord& 
     r.first_ = static_cast<std::int64_t>(steps[0]);
     r.between_ = static_cast<std::int64_t>(steps[1]);
     r.times_ = record.numbers("fields.times");
+    if (record.has("fields.reach")) {  // (checkpoints from before the drum frame during a run have none)
+        const std::vector<double>& reach = record.numbers("fields.reach");
+        if (reach.size() != 2) throw bad("fields.reach has the wrong length");
+        r.reach_ = reach[0], r.largest_ = reach[1];
+    }
     check_memory({field_memory_bytes(r.options_.settings, c.grid), "the grid of the fields taken during the run"},
                  memory_limit_bytes(0.0), record.source, "tumble resume's limit");
     r.sum_.emplace(c);
@@ -516,16 +595,35 @@ void FieldRecorder::advance(Simulation& sim, std::int64_t steps) {
         const analysis::GrainState state = analysis::grain_state(sim);
         sum_->add(state.grains(), state.contacts);
         times_.push_back(state.time);
+        for (std::size_t i = 0; i < state.position.size(); ++i) {
+            reach_ = std::max(reach_, std::hypot(state.position[i].x, state.position[i].y));
+            largest_ = std::max(largest_, state.radius[i]);
+        }
     }
 }
 
-std::string FieldRecorder::write(const fs::path& out) {
+std::string FieldRecorder::write(const fs::path& run_directory) {
     if (times_.empty())
         throw Error(fmt::format("fields: from: no state was taken; the run ended before {} s", options_.from));
-    write_fields_files(out, std::move(*sum_).finish(), options_.format);
+    const bool drum = options_.frame == "drum";
+    const fs::path out = run_directory / (drum ? "flowing_layer" : "fields");
+    const analysis::Fields fields = std::move(*sum_).finish();
     sum_.reset();
-    return fmt::format("fields: {} state{} from t = {:.6g} s to {:.6g} s into {}", times_.size(), times_.size() == 1 ? "" : "s",
-                       times_.front(), times_.back(), out.string());
+    write_fields_files(out, fields, options_.format);
+    std::string said = fmt::format("fields: {} state{} from t = {:.6g} s to {:.6g} s into {}", times_.size(),
+                                   times_.size() == 1 ? "" : "s", times_.front(), times_.back(), out.string());
+    if (drum) {
+        // The cross-section is written whatever the surface: a bed too
+        // shallow or too loose for one says so and the run still ends well.
+        try {
+            const DrumLayer layer = drum_layer_of_average(fields, settings_, reach_, largest_, options_.span);
+            write_drum_layer_files(out, layer, options_.span);
+            said += "\nfields: " + drum_layer_summary(layer);
+        } catch (const Error& e) {
+            said += fmt::format("\nfields: no drum frame (the cross-section is written): {}", e.what());
+        }
+    }
+    return said;
 }
 
 }  // namespace tumble::experiments

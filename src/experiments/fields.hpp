@@ -115,18 +115,31 @@ RunFields run_fields(const RunFieldsOptions& options, const std::function<void(c
 // The files of the fields in `out` (created if missing): fields.vti and
 // fields.csv, or the one `format` ("vti", "csv", "both") names.
 void write_fields_files(const std::filesystem::path& out, const analysis::Fields& fields, const std::string& format);
+// The drum frame's files in `out` (created if missing), beside the
+// cross-section's: profile.csv, frame.csv where resolved, drum_frame.json
+// (io::drum_frame_json); and the line that says what it found.
+void write_drum_layer_files(const std::filesystem::path& out, const DrumLayer& layer, double span);
+std::string drum_layer_summary(const DrumLayer& layer);
 
 // Fields taken while a run goes (tumble run --fields, tumble drum --fields,
 // tumble.run_drum(fields=...); docs/FIELDS.md, "During a run"): the state at
 // the end of every `every` seconds of simulated time from `from` on, each a
 // step taken with its contacts recorded, as tumble fields takes them from a
 // checkpoint, averaged into one grid and written when the run ends.
+//
+// frame "drum" (a run of tumble drum): the grid is the drum's cross-section
+// (averaged along z); at the run's end the free surface is found on it as
+// tumble fields --frame drum finds it, and the depth profile is carried
+// from it (analysis::drum_profile_of: the states are gone, so they cannot
+// be taken again in the surface's coordinates).
 struct FieldsDuringRun {
     FieldSettings settings;  // lo, hi default: the simulation's domain
     double every = 0.01;     // s between the states
     double from = 0.0;       // s of simulated time: the first state is the first step's end at or after it
     int samples = 0;         // the most states taken (0: until the run ends)
     std::string format = "both";
+    std::string frame = "lab";  // or "drum"
+    double span = 0.5;          // the drum frame: the middle part of the surface averaged, in (0, 1]
 };
 // The settings from KEY=VALUE items (an item may hold several, separated by
 // spaces; a later one replaces an earlier one of the same key): the keys
@@ -144,13 +157,14 @@ FieldsDuringRun parse_fields_during_run(const std::vector<std::string>& items);
 // otherwise, and for a simulation shared among MPI ranks.
 //
 // A checkpoint of the run keeps the recorder (save): its items, grid and
-// steps, the states' times and the sums, 24 numbers a node; a resumed run
+// steps, the states' times, reach and the sums, 24 numbers a node; a resumed run
 // goes on from them (resumed) and writes at its end the fields an
 // uninterrupted run would have written, bit for bit.
 class FieldRecorder {
 public:
+    // `drum`: the simulation is a drum's (frame drum is refused otherwise).
     FieldRecorder(const std::vector<std::string>& items, const Simulation& sim, std::int64_t last_step,
-                  double max_memory_gib);
+                  double max_memory_gib, bool drum);
     // Into a checkpoint's record (keys "fields.*"); nothing once written.
     void save(io::CheckpointRecord& record) const;
     // The recorder a checkpoint's record saved, for the simulation restored
@@ -160,9 +174,12 @@ public:
     static std::optional<FieldRecorder> resumed(const io::CheckpointRecord& record, const Simulation& sim);
     // `steps` steps of `sim`, the states due among them taken (Simulation::advance otherwise).
     void advance(Simulation& sim, std::int64_t steps);
-    // The fields of the states taken so far into `out` (write_fields_files);
-    // a line that says what was written.
-    std::string write(const std::filesystem::path& out);
+    // The fields of the states taken so far into RUN/fields
+    // (write_fields_files), or with frame drum into RUN/flowing_layer with
+    // the drum frame's files (write_drum_layer_files; where no surface is
+    // found, the cross-section alone and a line saying why); lines that say
+    // what was written.
+    std::string write(const std::filesystem::path& run_directory);
     const analysis::CgGrid& grid() const { return settings_.grid; }
     std::string summary() const;  // the grid and its memory, and the states' steps
 
@@ -175,6 +192,9 @@ private:
     std::int64_t first_ = 0, between_ = 0;  // the steps of the states: first_ + k between_
     double dt_ = 0.0;
     std::vector<double> times_;  // s, of the states taken
+    // m: the largest distance of a grain centre from the z axis in the
+    // states taken, and the largest radius (the drum frame's profile grid)
+    double reach_ = 0.0, largest_ = 0.0;
     std::optional<analysis::FieldAccumulator> sum_;
 };
 

@@ -56,8 +56,8 @@ struct OutputSettings {
 // The keys of the coarse-grained fields taken during a run: the scenario's
 // [fields], tumble run --fields KEY=VALUE (experiments::parse_fields_during_run;
 // docs/FIELDS.md, "During a run").
-inline constexpr std::string_view field_keys[] = {"every", "from",    "samples", "lo",    "hi",    "cell",
-                                                  "cells", "average", "kernel",  "width", "format"};
+inline constexpr std::string_view field_keys[] = {"every", "from",   "samples", "lo",     "hi",    "cell", "cells",
+                                                  "average", "kernel", "width", "format", "frame", "span"};
 
 struct RunConfig {
     Scenario scenario;

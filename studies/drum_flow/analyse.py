@@ -27,11 +27,20 @@ The same estimators then read the experiment's points and each run:
   points; on the experiment's line, and with each profile put below its
   own surface (the experiment's highest point, the run's fitted surface).
 
-A column per bead friction run (run.sh: 0.3, the Lethe project's model of
-this experiment; 0.5, which follows Jop et al.'s mu(I) in studies/mu_i,
-when asked for); the seeds are the independent samples: mean and 95 % t
-interval (studies/seeds.py). Writes the table between the markers of README.md and
-of docs/FIELDS.md, and the figure docs/images/fields_drum_rpt.png.
+A column per bead friction run at the experiment's 11.6 rpm (run.sh: 0.3,
+the Lethe project's model of this experiment; 0.5, which follows Jop et
+al.'s mu(I) in studies/mu_i, when asked for); the seeds are the
+independent samples: mean and 95 % t interval (studies/seeds.py).
+
+A second table, the layer against the drum's speed (run.sh SPEEDS, bead
+friction 0.3): the same measures at each speed, and the exponents of
+h ~ omega^a, u(0) ~ omega^b and du/dy ~ omega^c, each fitted by least
+squares on the logarithms over the speeds for each seed (seed k of every
+speed: the seeds are independent, so the exponents of seeds 1, 2, 3 are
+three independent samples), then mean and 95 % t interval.
+
+Writes the tables between their markers in README.md and docs/FIELDS.md,
+and the figures docs/images/fields_drum_rpt.png and fields_drum_speed.png.
 
     python3 studies/drum_flow/analyse.py --keep OUT  (what the analysis reads of OUT's runs, into kept/)
     python3 studies/drum_flow/analyse.py [--figure]  (the table from kept/, and the figure)
@@ -55,10 +64,15 @@ from seeds import interval  # noqa: E402
 
 EXPERIMENT = HERE / "alizadeh_rpt.csv"
 FIGURE = ROOT / "docs" / "images" / "fields_drum_rpt.png"
+SPEED_FIGURE = ROOT / "docs" / "images" / "fields_drum_speed.png"
 DOCS = [HERE / 'README.md', ROOT / 'docs' / 'FIELDS.md']
 BEGIN, END = "<!-- table: studies/drum_flow/analyse.py -->", "<!-- end of table -->"
+SPEED_BEGIN = "<!-- speed table: studies/drum_flow/analyse.py -->"
 SETTINGS = tomllib.loads((HERE / "alizadeh.toml").read_text())
 OMEGA = SETTINGS["rotation"]["omega"]  # rad/s, the drum's
+RPM = 11.6  # the experiment's speed, rpm: OMEGA's
+GRAVITY = 9.81  # m/s^2
+RADIUS = SETTINGS["drum"]["diameter"] / 2  # m
 BEAD = 2 * SETTINGS["material"][0]["radius"]  # m
 DEEP = -0.09  # m: the bed below this turns with the drum
 ANGLE_REPORTED = 27.0  # degrees: the experiment's angle as Lethe's example quotes it (not read in the paper)
@@ -125,31 +139,91 @@ def rms_difference(points, reference):
     return math.sqrt(sum(d * d for d in diffs) / len(diffs))
 
 
+def parts(name):
+    """(bead friction, rpm, seed) of a run's name: mu0.3_seed1 (at the experiment's speed), mu0.3_rpm5.8_seed2."""
+    words = name.split("_")
+    rpm = float(words[1].removeprefix("rpm")) if len(words) == 3 else RPM
+    return words[0].removeprefix("mu"), rpm, int(words[-1].removeprefix("seed"))
+
+
+def kept_names(kept):
+    return sorted(p.name.removesuffix("_drum_frame.json") for p in kept.glob("mu*_seed*_drum_frame.json"))
+
+
 def runs_in(kept):
-    """The kept runs by bead friction: {"0.3": ["mu0.3_seed1", ...], ...}."""
-    names = sorted(p.name.removesuffix("_drum_frame.json") for p in kept.glob("mu*_seed*_drum_frame.json"))
+    """The kept runs at the experiment's speed by bead friction: {"0.3": ["mu0.3_seed1", ...], ...}."""
     groups = {}
-    for name in names:
-        groups.setdefault(name.split("_")[0].removeprefix("mu"), []).append(name)
+    for name in kept_names(kept):
+        friction, rpm, _ = parts(name)
+        if rpm == RPM:
+            groups.setdefault(friction, []).append(name)
     return groups
+
+
+def speeds_in(kept, friction="0.3"):
+    """The kept runs of one bead friction by speed: {5.8: ["mu0.3_rpm5.8_seed1", ...], 11.6: [...], ...}."""
+    groups = {}
+    for name in kept_names(kept):
+        f, rpm, _ = parts(name)
+        if f == friction:
+            groups.setdefault(rpm, []).append(name)
+    return dict(sorted(groups.items()))
 
 
 def analyse(kept):
     """The experiment's measures, and each run's by bead friction."""
     exp = experiment()
     measured = measures(exp, exp[0][0])
-    runs = {}
-    for friction, names in runs_in(kept).items():
-        for name in names:
-            points, frame = run_profile(kept, name)
-            m = measures(points, frame["surface_level_m"])
-            m["angle"] = frame["angle_of_repose_deg"]
-            m["rms_difference"] = rms_difference(points, exp)
-            level, top = frame["surface_level_m"], exp[0][0]
-            m["rms_below_surface"] = rms_difference([(y - level, u) for y, u in points],
-                                                    [(y - top, u) for y, u in exp])
-            runs.setdefault(friction, []).append(m)
+    runs = {friction: [run_measures(kept, name, exp) for name in names] for friction, names in runs_in(kept).items()}
     return measured, runs
+
+
+def run_measures(kept, name, exp):
+    """The measures of one kept run, and its profile's differences from the experiment's points `exp`."""
+    points, frame = run_profile(kept, name)
+    m = measures(points, frame["surface_level_m"])
+    m["angle"] = frame["angle_of_repose_deg"]
+    m["rms_difference"] = rms_difference(points, exp)
+    level, top = frame["surface_level_m"], exp[0][0]
+    m["rms_below_surface"] = rms_difference([(y - level, u) for y, u in points], [(y - top, u) for y, u in exp])
+    return m
+
+
+def exponent(xs, ys):
+    """The least-squares slope of log y against log x."""
+    lx, ly = [math.log(x) for x in xs], [math.log(y) for y in ys]
+    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
+    return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sum((a - mx) ** 2 for a in lx)
+
+
+def speed_table(kept):
+    """The layer at each speed (bead friction 0.3), and the exponents over the speeds; "" with one speed."""
+    groups = speeds_in(kept)
+    if len(groups) < 2:
+        return ""
+    exp = experiment()
+    runs = {rpm: {parts(n)[2]: run_measures(kept, n, exp) for n in names} for rpm, names in groups.items()}
+    rpms = list(runs)
+    rows = [("Froude number omega^2 R / g", lambda r, rpm: (rpm * math.pi / 30) ** 2 * RADIUS / GRAVITY, 1, 4, False),
+            ("dynamic angle of repose (degrees)", lambda r, rpm: r["angle"], 1, 1, True),
+            ("flowing layer's thickness (mm)", lambda r, rpm: r["thickness"], 1e3, 1, True),
+            ("velocity at the surface (m/s)", lambda r, rpm: r["surface_velocity"], 1, 3, True),
+            ("velocity gradient in the layer, du/dy (1/s)", lambda r, rpm: r["gradient"], 1, 2, True)]
+    lines = ["| quantity | " + " | ".join(f"{rpm:g} rpm, {len(runs[rpm])} seeds" for rpm in rpms) + " |",
+             "|---|" + "---|" * len(rpms)]
+    for q, value, scale, digits, seeded in rows:
+        cells = [fmt([value(r, rpm) for r in runs[rpm].values()], scale, digits) if seeded
+                 else f"{value(None, rpm) * scale:.{digits}f}" for rpm in rpms]
+        lines.append(f"| {q} | " + " | ".join(cells) + " |")
+    seeds = sorted(set.intersection(*(set(r) for r in runs.values())))
+    omegas = [rpm * math.pi / 30 for rpm in rpms]
+    fits = [("thickness, a in h ~ omega^a", "thickness"), ("surface velocity, b in u(0) ~ omega^b", "surface_velocity"),
+            ("du/dy, c in du/dy ~ omega^c", "gradient")]
+    lines += ["", f"| exponent over {rpms[0]:g} to {rpms[-1]:g} rpm ({len(seeds)} seeds) | fitted |", "|---|---|"]
+    for q, key in fits:
+        lines.append(f"| {q} | " + fmt([exponent(omegas, [runs[rpm][k][key] for rpm in rpms]) for k in seeds], 1, 2)
+                     + " |")
+    return "\n".join(lines) + "\n\ntumble, bead friction 0.3: mean over the seeds [95 % t interval]."
 
 
 def fmt(values, scale=1.0, digits=3):
@@ -203,9 +277,17 @@ def quoted_intervals():
     return re.findall(r"-?\d+\.\d+ \[-?\d+\.\d+, -?\d+\.\d+\]", text)
 
 
-def with_table(text, tab):
-    i, j = text.index(BEGIN) + len(BEGIN), text.index(END)
+def with_table(text, tab, begin=BEGIN):
+    """The text with `tab` between `begin` and the next END (unchanged without `begin`)."""
+    if begin not in text:
+        return text
+    i = text.index(begin) + len(begin)
+    j = text.index(END, i)
     return text[:i] + "\n" + tab + "\n" + text[j:]
+
+
+def with_tables(text, tab, speeds):
+    return with_table(with_table(text, tab), speeds, SPEED_BEGIN)
 
 
 def keep(out):
@@ -269,6 +351,36 @@ def figure(kept, path):
     fig.savefig(path, dpi=110)
 
 
+def speed_figure(kept, path):
+    """The flowing layer's thickness and surface velocity against the drum's speed, with the measurement."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    exp = experiment()
+    measured = measures(exp, exp[0][0])
+    runs = {rpm: [run_measures(kept, n, exp) for n in names] for rpm, names in speeds_in(kept).items()}
+    rpms = list(runs)
+    fig, axes = plt.subplots(1, 3, figsize=(12, 4))
+    for ax, key, scale, label in ((axes[0], "thickness", 1e3, "flowing layer's thickness (mm)"),
+                                  (axes[1], "surface_velocity", 1, "velocity at the surface (m/s)"),
+                                  (axes[2], "gradient", 1, "du/dy in the layer (1/s)")):
+        stats = [interval([r[key] * scale for r in runs[rpm]]) for rpm in rpms]
+        ax.errorbar(rpms, [m for m, _, _ in stats], yerr=[[m - lo for m, lo, _ in stats], [hi - m for m, _, hi in stats]],
+                    fmt="o-", color="C0", capsize=3, label="tumble, bead friction 0.3: mean, 95 % over seeds")
+        ax.plot([RPM], [measured[key] * scale], "kx", ms=9, label="Alizadeh et al. 2013 (RPT)")
+        m0 = stats[rpms.index(RPM)][0]
+        for power, style in ((0.5, "--"), (1.0, ":")):
+            ax.plot(rpms, [m0 * (rpm / RPM) ** power for rpm in rpms], style, color="0.5", lw=0.9,
+                    label=f"omega^{power:g} through tumble's 11.6 rpm")
+        ax.set_xlabel("drum speed (rpm)")
+        ax.set_ylabel(label)
+        ax.set_ylim(bottom=0)
+    axes[0].legend(fontsize=7, loc="lower right")
+    fig.suptitle("3 mm glass beads, a drum 24 cm across: the flowing layer against the drum's speed")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
 def synthetic_problem():
     """The estimators on a made-up run whose answers are known, or what they got wrong.
 
@@ -300,6 +412,12 @@ def synthetic_problem():
     wrong = [f"{k} {got[k]!r} where the profile has {v!r}" for k, v in want.items() if abs(got[k] - v) > 1e-9]
     if points[0][0] > level:
         wrong.append("took points above the surface")
+    # The exponent of a power law with noise-free values, and the names' parts.
+    a = exponent([0.6, 1.2, 1.8], [0.03 * x ** 0.37 for x in (0.6, 1.2, 1.8)])
+    if abs(a - 0.37) > 1e-12:
+        wrong.append(f"exponent {a!r} of a power 0.37")
+    if parts("mu0.3_rpm5.8_seed2") != ("0.3", 5.8, 2) or parts("mu0.5_seed3") != ("0.5", RPM, 3):
+        wrong.append("misread a run's name")
     return "; ".join(wrong)
 
 
@@ -308,17 +426,17 @@ def main(argv):
         keep(Path([a for a in argv if not a.startswith("--")][0]))
     kept = HERE / "kept"
     measured, runs = analyse(kept)
-    tab = table(measured, runs)
+    tab, speeds = table(measured, runs), speed_table(kept)
     if "--check" in argv:
         problem = synthetic_problem()
         if problem:
             print(f"studies/drum_flow/analyse.py on a made-up profile: {problem}")
             return 1
-        stale = [str(p.relative_to(ROOT)) for p in DOCS if with_table(p.read_text(), tab) != p.read_text()]
+        stale = [str(p.relative_to(ROOT)) for p in DOCS if with_tables(p.read_text(), tab, speeds) != p.read_text()]
         if stale:
             print(f"{', '.join(stale)}: the table is not the kept runs' (python3 studies/drum_flow/analyse.py)")
             return 1
-        missing = [q for q in quoted_intervals() if q not in tab]
+        missing = [q for q in quoted_intervals() if q not in tab + speeds]
         if missing:
             print(f"studies/drum_flow/README.md or docs/FIELDS.md quotes {', '.join(missing)}: not in the table")
             return 1
@@ -326,11 +444,14 @@ def main(argv):
               f"{sum(len(v) for v in runs.values())} kept runs'")
         return 0
     for p in DOCS:
-        p.write_text(with_table(p.read_text(), tab))
-    print(tab)
+        p.write_text(with_tables(p.read_text(), tab, speeds))
+    print(tab + "\n\n" + speeds)
     if "--figure" in argv:
         figure(kept, FIGURE)
         print(f"wrote {FIGURE.relative_to(ROOT)}")
+        if speeds:
+            speed_figure(kept, SPEED_FIGURE)
+            print(f"wrote {SPEED_FIGURE.relative_to(ROOT)}")
     return 0
 
 

@@ -164,11 +164,13 @@ def run_drum(config=None, *, on_sample=None, threads=1, force=False, quiet=True,
     raises KeyboardInterrupt.
 
     fields: a dict of the keys of `tumble drum --fields` (every, from,
-    samples, lo, hi, cell, cells, average, kernel, width, format; lo, hi and
-    cells as sequences of three), e.g. {"every": 0.01, "from": 1.0,
-    "average": "z"}: coarse-grained fields averaged during the run into
-    DIR/fields (docs/FIELDS.md, "During a run"); bad ones raise tumble.Error
-    before any work.
+    samples, lo, hi, cell, cells, average, kernel, width, format, frame,
+    span; lo, hi and cells as sequences of three), e.g. {"every": 0.01,
+    "from": 1.0, "average": "z"}: coarse-grained fields averaged during the
+    run into DIR/fields; with "frame": "drum", the cross-section into
+    DIR/flowing_layer with the drum frame's profile (profile.csv,
+    drum_frame.json) found from it at the end (docs/FIELDS.md, "During a
+    run"); bad ones raise tumble.Error before any work.
 
     Returns the run directory (pathlib.Path); read it with tumble.io.Run."""
     settings = drum_settings(config, **options)

@@ -19,19 +19,25 @@ Vec3 DrumSurface::vector(const Vec3& v) const { return {dot(along(), v), -dot(no
 
 namespace {
 
-// The solid fraction of a cross-section (resolved in x and y, one node
-// along z) at a point (x, y), bilinear between the nodes; the edge nodes'
-// values out to the grid's edge, 0 beyond it.
-class CrossSection {
+// Bilinear interpolation on a cross-section's grid (resolved in x and y,
+// one node along z): the four nodes around a point (x, y) and their
+// weights; the edge nodes' values out to the grid's edge, nothing beyond it.
+class Bilinear {
 public:
-    explicit CrossSection(const Fields& f) : f_(f), g_(f.grid) {}
-    double operator()(double x, double y) const {
-        if (x < g_.lo.x || x > g_.hi.x || y < g_.lo.y || y > g_.hi.y) return 0.0;
+    explicit Bilinear(const CgGrid& g) : g_(g) {}
+    struct Corners {
+        std::array<std::size_t, 4> node{};
+        std::array<double, 4> weight{};  // 0 each outside the grid
+    };
+    Corners operator()(double x, double y) const {
+        Corners c;
+        if (x < g_.lo.x || x > g_.hi.x || y < g_.lo.y || y > g_.hi.y) return c;
         const auto [a, u] = cell(x, 0);
         const auto [b, v] = cell(y, 1);
-        const auto at = [&](std::size_t i, std::size_t j) { return f_.solid_fraction[i + g_.cells[0] * j]; };
-        return (1 - u) * (1 - v) * at(a, b) + u * (1 - v) * at(a + 1, b) + (1 - u) * v * at(a, b + 1) +
-               u * v * at(a + 1, b + 1);
+        const std::size_t nx = g_.cells[0];
+        c.node = {a + nx * b, a + 1 + nx * b, a + nx * (b + 1), a + 1 + nx * (b + 1)};
+        c.weight = {(1 - u) * (1 - v), u * (1 - v), (1 - u) * v, u * v};
+        return c;
     }
 
 private:
@@ -42,9 +48,33 @@ private:
         const double below = std::min(std::floor(at), std::max(n - 2.0, 0.0));
         return {static_cast<std::size_t>(below), at - below};
     }
-    const Fields& f_;
     const CgGrid& g_;
 };
+
+// The solid fraction of a cross-section at a point (x, y), bilinear between
+// the nodes (Bilinear).
+class CrossSection {
+public:
+    explicit CrossSection(const Fields& f) : f_(f), at_(f.grid) {}
+    double operator()(double x, double y) const {
+        const Bilinear::Corners c = at_(x, y);
+        double phi = 0.0;
+        for (std::size_t k = 0; k < 4; ++k) phi += c.weight[k] * f_.solid_fraction[c.node[k]];
+        return phi;
+    }
+
+private:
+    const Fields& f_;
+    Bilinear at_;
+};
+
+void add_weighted(Tensor& a, double w, const Tensor& t) {
+    for (std::size_t k = 0; k < 9; ++k) a.c[k] += w * t.c[k];
+}
+
+bool is_cross_section(const CgGrid& g) {
+    return g.averaged[2] && !g.averaged[0] && !g.averaged[1] && g.cells[0] >= 2 && g.cells[1] >= 2;
+}
 
 // Where the column s t + h n (h from `top` down) first reaches phi >= level:
 // its h, linear between steps of `step`; NaN if it does not.
@@ -63,7 +93,7 @@ double first_crossing(const CrossSection& phi, const Vec3& t, const Vec3& n, dou
 
 DrumSurface find_drum_surface(const Fields& cs, double reach, double span) {
     const CgGrid& g = cs.grid;
-    if (!(g.averaged[2] && !g.averaged[0] && !g.averaged[1] && g.cells[0] >= 2 && g.cells[1] >= 2))
+    if (!is_cross_section(g))
         throw Error("drum frame: the surface is found on a cross-section resolved in x and y (2 nodes or more each) "
                     "and averaged along z");
     if (!(reach > 0.0 && std::isfinite(reach)) || !(span > 0.0 && span <= 1.0))
@@ -156,6 +186,68 @@ GrainState to_drum_frame(const GrainState& state, const DrumSurface& surface) {
         c.branch = surface.vector(c.branch);
     }
     return out;
+}
+
+Fields drum_profile_of(const Fields& cs, const DrumSurface& surface, const CgSettings& profile) {
+    const CgGrid &g = cs.grid, &p = profile.grid;
+    if (!is_cross_section(g))
+        throw Error("drum frame: a profile from an average is taken on a cross-section resolved in x and y (2 nodes or "
+                    "more each) and averaged along z");
+    if (!(p.averaged[2] && !p.averaged[1] && p.cells[2] == 1))
+        throw Error("drum frame: a profile from a cross-section is resolved along d and averaged along z");
+    FieldAccumulator sum(profile);  // checks the settings before anything is allocated
+    const Bilinear at(g);
+    const Vec3 t = surface.along(), n = surface.normal();
+    // The frame's axes in the lab: e_s = t, e_d = -n, e_z (DrumSurface::vector).
+    const std::array<Vec3, 3> e{t, -1.0 * n, Vec3{0.0, 0.0, 1.0}};
+    const double step = 0.25 * std::min(g.spacing(0), g.spacing(1));  // m, between points along s
+    const double samples = static_cast<double>(cs.samples);
+    constexpr std::size_t per_node = 24;  // FieldAccumulator::sums()
+    std::vector<double> sums(per_node * p.nodes(), 0.0);
+    for (std::size_t b = 0; b < p.cells[1]; ++b)
+        for (std::size_t a = 0; a < p.cells[0]; ++a) {
+            const std::size_t node = a + p.cells[0] * b;
+            const double d = p.node(a, b, 0).y, s0 = p.lo.x + static_cast<double>(a) * p.spacing(0);
+            const int points = std::max(1, static_cast<int>(std::ceil(p.spacing(0) / step)));
+            // The means along the node's line s t + (level - d) n, s over its
+            // cell: rho, phi, rho x diameter (kg/m^3, 1, kg/m^2), j (kg/(m^2 s)),
+            // the kinetic and contact stresses (Pa), in the lab's axes.
+            double rho = 0.0, phi = 0.0, rho_d = 0.0;
+            Vec3 j;
+            Tensor kinetic, contact;
+            for (int k = 0; k < points; ++k) {
+                const double s = s0 + (k + 0.5) * p.spacing(0) / points;
+                const Vec3 r = s * t + (surface.level - d) * n;
+                const Bilinear::Corners c = at(r.x, r.y);
+                for (std::size_t q = 0; q < 4; ++q) {
+                    const double w = c.weight[q] / points;
+                    if (w == 0.0) continue;
+                    const std::size_t i = c.node[q];
+                    rho += w * cs.density[i], phi += w * cs.solid_fraction[i], rho_d += w * cs.density[i] * cs.diameter[i];
+                    j += w * cs.momentum[i];
+                    add_weighted(kinetic, w, cs.kinetic_stress[i]);
+                    add_weighted(contact, w, cs.contact_stress[i]);
+                }
+            }
+            // Into the frame, times the samples (the accumulator's sums):
+            // v' = (e_s . v, e_d . v, e_z . v), T'_ab = e_a . T e_b.
+            double* x = sums.data() + per_node * node;
+            x[0] = samples * rho, x[1] = samples * phi, x[2] = samples * rho_d;
+            for (std::size_t k = 0; k < 3; ++k) x[3 + k] = samples * dot(e[k], j);
+            for (std::size_t ta = 0; ta < 3; ++ta)
+                for (std::size_t tb = 0; tb < 3; ++tb) {
+                    double kab = 0.0, cab = 0.0;
+                    for (int u = 0; u < 3; ++u)
+                        for (int v = 0; v < 3; ++v) {
+                            const double ee = e[ta][u] * e[tb][v];
+                            kab += ee * kinetic(u, v), cab += ee * contact(u, v);
+                        }
+                    x[6 + 3 * ta + tb] = samples * kab;
+                    x[15 + 3 * ta + tb] = samples * cab;
+                }
+        }
+    sum.restore(sums, cs.samples);
+    return std::move(sum).finish();
 }
 
 FlowingLayer flowing_layer(const Fields& p) {

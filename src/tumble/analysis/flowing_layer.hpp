@@ -64,6 +64,24 @@ DrumSurface find_drum_surface(const Fields& cross_section, double reach, double 
 // forces and branches to their components along (t, -n, z).
 GrainState to_drum_frame(const GrainState& state, const DrumSurface& surface);
 
+// The depth profile of fields averaged in the lab, for fields taken during
+// a run, whose surface is known only at its end: `cross_section` (resolved
+// in x and y, averaged along z) carried onto `profile`, a grid in the
+// drum's coordinates (resolved along d, averaged along z; its cells along s
+// within the surface's chord). Each node takes the mean, over its cell's
+// extent along s, of the cross-section's averages (bilinear between its
+// nodes, at points a quarter of its smaller cell apart) along the line at
+// its depth: density, solid fraction, mass x diameter, momentum and the two
+// stresses, the vectors and tensors turned into the frame (v' = (t . v, -n
+// . v, v_z), T' = Q T Q^T with Q's rows t, -n, z); the velocity, pressure
+// and the rest follow from them as FieldAccumulator::finish derives them.
+// For a steady surface this is the profile of the same states carried into
+// the frame grain by grain and coarse-grained there (to_drum_frame), but for
+// the kernel's ends at the span's edges and the interpolation
+// (docs/FIELDS.md, "During a run"); the kinetic stress is about the lab
+// grid's mean velocity. tumble::Error for grids of other shapes.
+Fields drum_profile_of(const Fields& cross_section, const DrumSurface& surface, const CgSettings& profile);
+
 // The depth profile's shear rate and inertial number from the whole velocity
 // gradient in the plane (s, d). Averaged along s, the profile has only the
 // gradient along d: |du_s/dd| in a layer sheared along the surface, but in
