@@ -140,32 +140,46 @@ def rms_difference(points, reference):
 
 
 def parts(name):
-    """(bead friction, rpm, seed) of a run's name: mu0.3_seed1 (at the experiment's speed), mu0.3_rpm5.8_seed2."""
+    """(bead friction, rpm, stiffness factor, seed) of a run's name: mu0.3_seed1 (the experiment's speed,
+    the beads of alizadeh.toml), mu0.3_rpm5.8_seed2, mu0.3_E10x_seed1 (E ten times alizadeh.toml's)."""
     words = name.split("_")
-    rpm = float(words[1].removeprefix("rpm")) if len(words) == 3 else RPM
-    return words[0].removeprefix("mu"), rpm, int(words[-1].removeprefix("seed"))
+    rpm, stiffness = RPM, 1.0
+    for w in words[1:-1]:
+        if w.startswith("rpm"):
+            rpm = float(w.removeprefix("rpm"))
+        elif w.startswith("E") and w.endswith("x"):
+            stiffness = float(w[1:-1])
+        else:
+            raise ValueError(f"{name}: not a run's name")
+    return words[0].removeprefix("mu"), rpm, stiffness, int(words[-1].removeprefix("seed"))
 
 
 def kept_names(kept):
     return sorted(p.name.removesuffix("_drum_frame.json") for p in kept.glob("mu*_seed*_drum_frame.json"))
 
 
+def group_label(friction, stiffness):
+    """A column's name: the bead friction, and the stiffness where it is not alizadeh.toml's."""
+    return f"bead friction {friction}" + ("" if stiffness == 1.0 else f", E x{stiffness:g}")
+
+
 def runs_in(kept):
-    """The kept runs at the experiment's speed by bead friction: {"0.3": ["mu0.3_seed1", ...], ...}."""
+    """The kept runs at the experiment's speed by bead friction and stiffness, in that order:
+    {"bead friction 0.3": ["mu0.3_seed1", ...], "bead friction 0.3, E x10": [...], ...}."""
     groups = {}
-    for name in kept_names(kept):
-        friction, rpm, _ = parts(name)
+    for name in sorted(kept_names(kept), key=lambda n: parts(n)[:3]):
+        friction, rpm, stiffness, _ = parts(name)
         if rpm == RPM:
-            groups.setdefault(friction, []).append(name)
-    return groups
+            groups.setdefault(group_label(friction, stiffness), []).append(name)
+    return dict(sorted(groups.items(), key=lambda g: (parts(g[1][0])[0], parts(g[1][0])[2])))
 
 
 def speeds_in(kept, friction="0.3"):
     """The kept runs of one bead friction by speed: {5.8: ["mu0.3_rpm5.8_seed1", ...], 11.6: [...], ...}."""
     groups = {}
     for name in kept_names(kept):
-        f, rpm, _ = parts(name)
-        if f == friction:
+        f, rpm, stiffness, _ = parts(name)
+        if f == friction and stiffness == 1.0:
             groups.setdefault(rpm, []).append(name)
     return dict(sorted(groups.items()))
 
@@ -202,7 +216,7 @@ def speed_table(kept):
     if len(groups) < 2:
         return ""
     exp = experiment()
-    runs = {rpm: {parts(n)[2]: run_measures(kept, n, exp) for n in names} for rpm, names in groups.items()}
+    runs = {rpm: {parts(n)[3]: run_measures(kept, n, exp) for n in names} for rpm, names in groups.items()}
     rpms = list(runs)
     rows = [("Froude number omega^2 R / g", lambda r, rpm: (rpm * math.pi / 30) ** 2 * RADIUS / GRAVITY, 1, 4, False),
             ("dynamic angle of repose (degrees)", lambda r, rpm: r["angle"], 1, 1, True),
@@ -255,9 +269,9 @@ def table(measured, runs):
          lambda r: r["rms_difference"], 1, 3),
         ("the same, each profile below its own surface (m/s)", "", lambda r: r["rms_below_surface"], 1, 3),
     ]
-    frictions = sorted(runs, key=float)
+    frictions = list(runs)  # the columns, in runs_in's order
     lines = ["| quantity | Alizadeh et al. (2013) | " +
-             " | ".join(f"tumble, bead friction {f}, {len(runs[f])} seeds" for f in frictions) + " |",
+             " | ".join(f"tumble, {f}, {len(runs[f])} seeds" for f in frictions) + " |",
              "|---|---|" + "---|" * len(frictions)]
     for q, e, value, scale, digits in rows:
         lines.append(f"| {q} | {e} | " +
@@ -317,7 +331,7 @@ def figure(kept, path):
     import matplotlib.pyplot as plt
     exp = experiment()
     fig, (left, right) = plt.subplots(1, 2, figsize=(10, 5.2), sharex=True)
-    for (friction, names), colour in zip(sorted(runs_in(kept).items(), key=lambda t: float(t[0])), ["C0", "C3"]):
+    for (friction, names), colour in zip(runs_in(kept).items(), ["C0", "C3", "C2", "C1"]):
         runs = [run_profile(kept, name) for name in names]
         for ax, shifted in ((left, False), (right, True)):
             # each run on the depth below its own surface (right), or where it lies (left)
@@ -331,7 +345,7 @@ def figure(kept, path):
             ax.fill_betweenx([b[0] for b in bands], [b[2] for b in bands], [b[3] for b in bands], color=colour,
                              alpha=0.3, lw=0)
             ax.plot([b[1] for b in bands], [b[0] for b in bands], "-", color=colour,
-                    label=f"tumble, bead friction {friction}: mean of {len(profiles)} seeds, " +
+                    label=f"tumble, {friction}: mean of {len(profiles)} seeds, " +
                     ("95 %" if len(profiles) > 2 else "their range"))
     left.plot([u for _, u in exp], [y for y, _ in exp], "kx", label="Alizadeh et al. 2013 (RPT)")
     right.plot([u for _, u in exp], [y - exp[0][0] for y, _ in exp], "kx",
@@ -416,7 +430,8 @@ def synthetic_problem():
     a = exponent([0.6, 1.2, 1.8], [0.03 * x ** 0.37 for x in (0.6, 1.2, 1.8)])
     if abs(a - 0.37) > 1e-12:
         wrong.append(f"exponent {a!r} of a power 0.37")
-    if parts("mu0.3_rpm5.8_seed2") != ("0.3", 5.8, 2) or parts("mu0.5_seed3") != ("0.5", RPM, 3):
+    if (parts("mu0.3_rpm5.8_seed2") != ("0.3", 5.8, 1.0, 2) or parts("mu0.5_seed3") != ("0.5", RPM, 1.0, 3)
+            or parts("mu0.3_E10x_seed1") != ("0.3", RPM, 10.0, 1)):
         wrong.append("misread a run's name")
     return "; ".join(wrong)
 
