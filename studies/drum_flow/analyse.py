@@ -375,21 +375,24 @@ def speed_figure(kept, path):
     runs = {rpm: [run_measures(kept, n, exp) for n in names] for rpm, names in speeds_in(kept).items()}
     rpms = list(runs)
     fig, axes = plt.subplots(1, 3, figsize=(12, 4))
-    for ax, key, scale, label in ((axes[0], "thickness", 1e3, "flowing layer's thickness (mm)"),
-                                  (axes[1], "surface_velocity", 1, "velocity at the surface (m/s)"),
-                                  (axes[2], "gradient", 1, "du/dy in the layer (1/s)")):
+    # The two limits of the flux through the layer growing as omega (1/2 u(0) h for a linear profile, u(0) =
+    # h du/dy): a layer of fixed shear rate (h and u(0) as omega^(1/2)) or of fixed thickness (u(0), du/dy as omega).
+    for ax, key, scale, label, limits in (
+            (axes[0], "thickness", 1e3, "flowing layer's thickness (mm)", (0.5, 0.0)),
+            (axes[1], "surface_velocity", 1, "velocity at the surface (m/s)", (0.5, 1.0)),
+            (axes[2], "gradient", 1, "du/dy in the layer (1/s)", (0.0, 1.0))):
         stats = [interval([r[key] * scale for r in runs[rpm]]) for rpm in rpms]
         ax.errorbar(rpms, [m for m, _, _ in stats], yerr=[[m - lo for m, lo, _ in stats], [hi - m for m, _, hi in stats]],
                     fmt="o-", color="C0", capsize=3, label="tumble, bead friction 0.3: mean, 95 % over seeds")
         ax.plot([RPM], [measured[key] * scale], "kx", ms=9, label="Alizadeh et al. 2013 (RPT)")
         m0 = stats[rpms.index(RPM)][0]
-        for power, style in ((0.5, "--"), (1.0, ":")):
+        for power, style, limit in zip(limits, ("--", ":"), ("a fixed shear rate", "a fixed thickness")):
             ax.plot(rpms, [m0 * (rpm / RPM) ** power for rpm in rpms], style, color="0.5", lw=0.9,
-                    label=f"omega^{power:g} through tumble's 11.6 rpm")
+                    label=f"{limit}: omega^{power:g} through tumble's 11.6 rpm")
+        ax.legend(fontsize=7, loc="lower right")
         ax.set_xlabel("drum speed (rpm)")
         ax.set_ylabel(label)
         ax.set_ylim(bottom=0)
-    axes[0].legend(fontsize=7, loc="lower right")
     fig.suptitle("3 mm glass beads, a drum 24 cm across: the flowing layer against the drum's speed")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
