@@ -166,19 +166,31 @@ io::LoadedCheckpoint load_checkpoint(const fs::path& run_directory, const fs::pa
 
 }  // namespace
 
-std::string frame_problem(const RunFieldsOptions& o) {
-    if (o.frame != "lab" && o.frame != "drum") return "frame: lab or drum, got \"" + o.frame + "\"";
-    if (!(std::isfinite(o.span) && o.span > 0.0 && o.span <= 1.0))
+namespace {
+
+// What is wrong with the frame, the span and the averaged axes the drum
+// frame needs (after a run and during one), naming the key; "" if nothing.
+std::string frame_settings_problem(const std::string& frame, double span, const std::string& average) {
+    if (frame != "lab" && frame != "drum") return "frame: lab or drum, got \"" + frame + "\"";
+    if (!(std::isfinite(span) && span > 0.0 && span <= 1.0))
         return fmt::format("span: the middle part of the free surface that the drum frame averages, a number in (0, 1], "
-                           "got {}", o.span);
+                           "got {}", span);
+    if (frame == "drum" && !average.empty() && average != "z")
+        return "average: the drum frame's cross-section is averaged along z, the drum's axis (give z or nothing), got \"" +
+               average + "\"";
+    return {};
+}
+
+}  // namespace
+
+std::string frame_problem(const RunFieldsOptions& o) {
+    if (const std::string problem = frame_settings_problem(o.frame, o.span, o.settings.average); !problem.empty())
+        return problem;
     for (const double n : o.frame_cells)
         if (!(n >= 1.0 && n <= max_nodes && n == std::floor(n)))
             return fmt::format("frame_cells: the cells along s and z, whole numbers >= 1, got {}", n);
     if (o.frame == "lab" && (o.frame_cells[0] != 1.0 || o.frame_cells[1] != 1.0))
         return "frame_cells: a grid in the drum's coordinates, for the drum frame (frame drum) only";
-    if (o.frame == "drum" && !o.settings.average.empty() && o.settings.average != "z")
-        return "average: the drum frame's cross-section is averaged along z, the drum's axis (give z or nothing), got \"" +
-               o.settings.average + "\"";
     return {};
 }
 
@@ -437,20 +449,15 @@ FieldsDuringRun parse_fields_during_run(const std::vector<std::string>& items) {
                 if (value != "vti" && value != "csv" && value != "both")
                     throw Error("fields: format: vti, csv or both, got \"" + value + "\"");
                 o.format = value;
-            } else if (key == "frame") {
-                if (value != "lab" && value != "drum")
-                    throw Error("fields: frame: lab or drum, got \"" + value + "\"");
-                o.frame = value;
-            } else if (key == "span") {
-                o.span = number_of(key, value);
-                if (!(std::isfinite(o.span) && o.span > 0.0 && o.span <= 1.0))
-                    throw Error("fields: span: the middle part of the free surface that the drum frame averages, a "
-                                "number in (0, 1], got " + value);
-            } else
+            } else if (key == "frame") o.frame = value;
+            else if (key == "span") o.span = number_of(key, value);
+            else
                 throw Error("fields: " + key + ": no such key; the keys are " +
                             fmt::format("{}", fmt::join(io::field_keys, ", ")));
         }
     }
+    if (const std::string problem = frame_settings_problem(o.frame, o.span, o.settings.average); !problem.empty())
+        throw Error("fields: " + problem);
     o.settings.vti = o.format != "csv";
     return o;
 }
@@ -461,13 +468,10 @@ FieldRecorder::FieldRecorder(const std::vector<std::string>& items, const Simula
     FieldsDuringRun& o = options_;
     o.settings.max_memory_gib = max_memory_gib;
     if (sim.shared()) throw Error("fields: taken during a run on one MPI rank only; take them afterwards with tumble fields");
-    if (o.frame == "drum") {
+    if (o.frame == "drum") {  // (its averaged axes checked by parse_fields_during_run)
         if (!drum)
             throw Error("fields: frame: drum takes a run of tumble drum (its axis is the drum frame's z); this run "
                         "is not one");
-        if (!o.settings.average.empty() && o.settings.average != "z")
-            throw Error("fields: average: the drum frame's cross-section is averaged along z, the drum's axis (give z "
-                        "or nothing), got \"" + o.settings.average + "\"");
         o.settings.average = std::string(1, 'z');
     }
     if (const std::string problem = field_settings_problem(o.settings); !problem.empty())

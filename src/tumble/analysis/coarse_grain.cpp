@@ -61,11 +61,6 @@ std::string number(double v) {
     return out.str();
 }
 
-// a += w t, component by component.
-void add_scaled(Tensor& a, double w, const Tensor& t) {
-    for (std::size_t k = 0; k < 9; ++k) a.c[k] += w * t.c[k];
-}
-
 // The dyad f (x) b: (a, b) = f_a b_b.
 Tensor dyad(const Vec3& f, const Vec3& b) {
     Tensor t;
@@ -426,10 +421,6 @@ void FieldAccumulator::add(const CgGrains& grains, std::span<const CgContact> co
         }
     });
     ++samples_;
-}
-
-namespace {
-constexpr std::size_t sums_per_node = 24;
 }
 
 std::vector<double> FieldAccumulator::sums() const {

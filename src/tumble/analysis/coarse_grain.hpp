@@ -109,6 +109,11 @@ struct Tensor {
     double trace() const { return c[0] + c[4] + c[8]; }
 };
 
+// a += w t, component by component.
+inline void add_scaled(Tensor& a, double w, const Tensor& t) {
+    for (std::size_t k = 0; k < 9; ++k) a.c[k] += w * t.c[k];
+}
+
 // The fields on the grid's nodes (index as CgGrid::node), averaged over the
 // samples given. The sums over grains and contacts are time-averaged
 // (density, momentum, the stresses); the rest is derived from the averages.
@@ -173,6 +178,7 @@ public:
     // mass, volume, mass x diameter, momentum (3), kinetic (9) and contact
     // (9) stress sums, 24 numbers, node after node; and the samples added.
     std::vector<double> sums() const;
+    static constexpr std::size_t sums_per_node = 24;
     std::size_t samples() const { return samples_; }
     // Goes on from sums() and samples() of an accumulator of the same
     // settings: the fields finished later are bit for bit those of one

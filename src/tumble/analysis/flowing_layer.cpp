@@ -68,8 +68,19 @@ private:
     Bilinear at_;
 };
 
-void add_weighted(Tensor& a, double w, const Tensor& t) {
-    for (std::size_t k = 0; k < 9; ++k) a.c[k] += w * t.c[k];
+// A tensor's components in the drum's frame, T' = Q T Q^T, Q's rows t, -n
+// and z: each column turned as a vector (DrumSurface::vector), then each row.
+Tensor turned(const DrumSurface& surface, const Tensor& T) {
+    Tensor QT, out;
+    for (int b = 0; b < 3; ++b) {
+        const Vec3 column = surface.vector({T(0, b), T(1, b), T(2, b)});
+        for (int a = 0; a < 3; ++a) QT.c[static_cast<std::size_t>(3 * a + b)] = column[a];
+    }
+    for (int a = 0; a < 3; ++a) {
+        const Vec3 row = surface.vector({QT(a, 0), QT(a, 1), QT(a, 2)});
+        for (int b = 0; b < 3; ++b) out.c[static_cast<std::size_t>(3 * a + b)] = row[b];
+    }
+    return out;
 }
 
 bool is_cross_section(const CgGrid& g) {
@@ -198,11 +209,9 @@ Fields drum_profile_of(const Fields& cs, const DrumSurface& surface, const CgSet
     FieldAccumulator sum(profile);  // checks the settings before anything is allocated
     const Bilinear at(g);
     const Vec3 t = surface.along(), n = surface.normal();
-    // The frame's axes in the lab: e_s = t, e_d = -n, e_z (DrumSurface::vector).
-    const std::array<Vec3, 3> e{t, -1.0 * n, Vec3{0.0, 0.0, 1.0}};
     const double step = 0.25 * std::min(g.spacing(0), g.spacing(1));  // m, between points along s
     const double samples = static_cast<double>(cs.samples);
-    constexpr std::size_t per_node = 24;  // FieldAccumulator::sums()
+    constexpr std::size_t per_node = FieldAccumulator::sums_per_node;
     std::vector<double> sums(per_node * p.nodes(), 0.0);
     for (std::size_t b = 0; b < p.cells[1]; ++b)
         for (std::size_t a = 0; a < p.cells[0]; ++a) {
@@ -225,26 +234,18 @@ Fields drum_profile_of(const Fields& cs, const DrumSurface& surface, const CgSet
                     const std::size_t i = c.node[q];
                     rho += w * cs.density[i], phi += w * cs.solid_fraction[i], rho_d += w * cs.density[i] * cs.diameter[i];
                     j += w * cs.momentum[i];
-                    add_weighted(kinetic, w, cs.kinetic_stress[i]);
-                    add_weighted(contact, w, cs.contact_stress[i]);
+                    add_scaled(kinetic, w, cs.kinetic_stress[i]);
+                    add_scaled(contact, w, cs.contact_stress[i]);
                 }
             }
-            // Into the frame, times the samples (the accumulator's sums):
-            // v' = (e_s . v, e_d . v, e_z . v), T'_ab = e_a . T e_b.
+            // Into the frame (DrumSurface::vector, turned), times the
+            // samples: the accumulator's sums, in FieldAccumulator::sums()'s order.
             double* x = sums.data() + per_node * node;
+            const Vec3 j_frame = surface.vector(j);
+            const Tensor k_frame = turned(surface, kinetic), c_frame = turned(surface, contact);
             x[0] = samples * rho, x[1] = samples * phi, x[2] = samples * rho_d;
-            for (std::size_t k = 0; k < 3; ++k) x[3 + k] = samples * dot(e[k], j);
-            for (std::size_t ta = 0; ta < 3; ++ta)
-                for (std::size_t tb = 0; tb < 3; ++tb) {
-                    double kab = 0.0, cab = 0.0;
-                    for (int u = 0; u < 3; ++u)
-                        for (int v = 0; v < 3; ++v) {
-                            const double ee = e[ta][u] * e[tb][v];
-                            kab += ee * kinetic(u, v), cab += ee * contact(u, v);
-                        }
-                    x[6 + 3 * ta + tb] = samples * kab;
-                    x[15 + 3 * ta + tb] = samples * cab;
-                }
+            for (int k = 0; k < 3; ++k) x[3 + k] = samples * j_frame[k];
+            for (std::size_t k = 0; k < 9; ++k) x[6 + k] = samples * k_frame.c[k], x[15 + k] = samples * c_frame.c[k];
         }
     sum.restore(sums, cs.samples);
     return std::move(sum).finish();
